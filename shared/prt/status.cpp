@@ -1,0 +1,20 @@
+#include "prt/status.h"
+
+namespace prt {
+
+const char* statusCodeName(StatusCode code) {
+  switch (code) {
+    case StatusCode::kOk: return "ok";
+    case StatusCode::kInvalidArgument: return "invalid argument";
+    case StatusCode::kSizeMismatch: return "size mismatch";
+    case StatusCode::kNotFinite: return "not finite";
+  }
+  return "unknown";
+}
+
+std::string Status::toString() const {
+  if (isOk()) return "ok";
+  return std::string(statusCodeName(code_)) + ": " + message_;
+}
+
+}  // namespace prt
