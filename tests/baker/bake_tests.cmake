@@ -1,0 +1,5 @@
+# Baker tests (native only): real Embree on scenes built in code.
+add_executable(prt_bake_tests ${CMAKE_CURRENT_LIST_DIR}/transfer_test.cpp)
+target_include_directories(prt_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_bake_tests PRIVATE prt_bake GTest::gtest_main)
+add_test(NAME bake_tests COMMAND prt_bake_tests)
