@@ -12,6 +12,12 @@ Status checkImage(const RgbImage& image, const char* what) {
                              std::to_string(image.height) + "; each side must be in [1, " +
                              std::to_string(kMaxImageSide) + "]");
   }
+  if (static_cast<long long>(image.width) * image.height > kMaxImagePixels) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         std::string(what) + " is " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + "; at most " + std::to_string(kMaxImagePixels) +
+                             " pixels are supported");
+  }
   const std::size_t expected = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3;
   if (image.rgb.size() != expected) {
     return Status::error(StatusCode::kSizeMismatch, std::string(what) + " has " + std::to_string(image.rgb.size()) +

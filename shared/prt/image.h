@@ -11,6 +11,8 @@
 namespace prt {
 
 inline constexpr int kMaxImageSide = 1 << 15;  // 32768 pixels on a side
+// A total cap too, so a corrupt header cannot ask for a 12 GiB allocation: 8192 x 8192.
+inline constexpr long long kMaxImagePixels = 1LL << 26;
 
 // Linear RGB, row-major, row 0 at the top, 3 floats per pixel.
 struct RgbImage {
@@ -24,7 +26,7 @@ struct RgbImage {
   }
 };
 
-// Ok when 1 <= width, height <= kMaxImageSide, rgb.size() == width*height*3 and every value
+// Ok when 1 <= width, height <= kMaxImageSide, width*height <= kMaxImagePixels, rgb.size() == width*height*3 and every value
 // is finite. The message names `what` and the first offending size or pixel.
 Status checkImage(const RgbImage& image, const char* what);
 
