@@ -1,11 +1,15 @@
 // prt-bake: the offline baker's command-line entry point. Dispatches to one command per
 // file (probe_command.cpp, ...) and is the last wall before the OS: nothing throws past it.
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "asset_commands.h"
+#include "bake_command.h"
 #include "cli_args.h"
 #include "probe_command.h"
 
@@ -16,12 +20,18 @@
 namespace {
 
 constexpr const char* kHelp =
-    "Usage: prt-bake <command> [options]\n"
+    "Usage: prt-bake SCENE.gltf|SCENE.glb -o ASSET [options]   bake a scene\n"
+    "       prt-bake --default -o ASSET [options]              bake the built-in room\n"
+    "       prt-bake <command> [options]\n"
     "\n"
-    "Offline baker of the PRT project.\n"
+    "Offline baker of the PRT project: diffuse SH transfer with Embree.\n"
     "\n"
     "Commands:\n"
     "  probe      project an environment map (EXR, HDR, PNG, JPEG) onto spherical harmonics\n"
+    "  info       verify a baked asset and print what it holds\n"
+    "  shade      print every vertex's exit radiance under a light, from an asset\n"
+    "\n"
+    "Bake options: 'prt-bake --default --help'.\n"
     "\n"
     "Options:\n"
     "  -h, --help     show this help ('prt-bake <command> --help' for a command's options)\n"
@@ -45,8 +55,16 @@ int run(const std::vector<std::string>& args) {
   }
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (command == "probe") return prt::runProbeCommand(rest, stdout, stderr);
-  if (command.size() > 1 && command[0] == '-') return usageError("unknown option '" + command + "'");
-  return usageError("unknown command '" + command + "'");
+  if (command == "info") return prt::runInfoCommand(rest, stdout, stderr);
+  if (command == "shade") return prt::runShadeCommand(rest, stdout, stderr);
+  // Anything else is a bake: `prt-bake SCENE -o ASSET ...` or `prt-bake --default ...`,
+  // except a bare word that is neither a file nor a glTF name: most likely a mistyped command.
+  const bool looksLikeScene = command[0] == '-' || command.find('.') != std::string::npos ||
+                              command.find('/') != std::string::npos || access(command.c_str(), F_OK) == 0;
+  if (!looksLikeScene) {
+    return usageError("unknown command '" + command + "' (commands: probe, info, shade; or a SCENE.gltf/.glb to bake)");
+  }
+  return prt::runBakeCommand(args, stdout, stderr);
 }
 
 }  // namespace

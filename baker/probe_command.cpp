@@ -7,6 +7,8 @@
 
 #include "builtin_environment.h"
 #include "cli_args.h"
+#include "environment_map.h"
+#include "json_text.h"
 #include "image_io.h"
 #include "prt/cubemap.h"
 #include "prt/sh_basis.h"
@@ -22,37 +24,6 @@ constexpr FlagSpec kProbeFlags[] = {
     {"--order", true},        {"--format", true},  {"--window", true},
     {"--window-width", true}, {"--builtin", true}, {"--json", false},
 };
-
-enum class EnvLayout { kEquirect, kAngular, kCross };
-
-const char* layoutName(EnvLayout layout) {
-  switch (layout) {
-    case EnvLayout::kEquirect: return "equirect";
-    case EnvLayout::kAngular: return "angular";
-    case EnvLayout::kCross: return "cross";
-  }
-  return "unknown";
-}
-
-Status parseLayout(std::string_view name, EnvLayout* out) {
-  for (EnvLayout l : {EnvLayout::kEquirect, EnvLayout::kAngular, EnvLayout::kCross}) {
-    if (name == layoutName(l)) {
-      *out = l;
-      return Status::ok();
-    }
-  }
-  return Status::error(StatusCode::kInvalidArgument,
-                       "unknown --format '" + std::string(name) + "' (expected equirect, angular or cross)");
-}
-
-// The layout an image's aspect ratio implies, with the ratio in words; nullopt if none.
-std::optional<EnvLayout> guessLayout(int w, int h, const char** aspect) {
-  if (w == 2 * h) { *aspect = "2:1"; return EnvLayout::kEquirect; }
-  if (w == h) { *aspect = "1:1"; return EnvLayout::kAngular; }
-  if (3 * w == 4 * h) { *aspect = "4:3"; return EnvLayout::kCross; }
-  if (4 * w == 3 * h) { *aspect = "3:4"; return EnvLayout::kCross; }
-  return std::nullopt;
-}
 
 struct ProbeOptions {
   std::string image;    // empty with --builtin
@@ -110,57 +81,6 @@ Status parseProbeOptions(std::span<const std::string> args, ProbeOptions* o) {
   return Status::ok();
 }
 
-Status projectLayout(EnvLayout layout, int order, const RgbImage& image, std::vector<Rgb>* out) {
-  switch (layout) {
-    case EnvLayout::kEquirect: return projectEquirect(order, image, out);
-    case EnvLayout::kAngular: return projectAngularMap(order, image, out);
-    case EnvLayout::kCross: {
-      CubeMap cube;
-      if (Status s = cubeMapFromCross(image, &cube); !s.isOk()) return s;
-      return projectCubeMap(order, cube, out);
-    }
-  }
-  return Status::error(StatusCode::kInvalidArgument, "unknown layout");
-}
-
-// JSON string literal; bytes that are not valid UTF-8 are escaped as Latin-1 code points so
-// the output always parses, whatever bytes a file name holds.
-std::string jsonString(const std::string& s) {
-  std::string r = "\"";
-  char buf[8];
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c == '"' || c == '\\') {
-      r += '\\';
-      r += static_cast<char>(c);
-    } else if (c < 0x20 || c == 0x7f) {
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      r += buf;
-    } else if (c < 0x80) {
-      r += static_cast<char>(c);
-    } else {
-      // Length of a well-formed UTF-8 sequence starting here, or 0.
-      const std::size_t n = c >= 0xf0 && c < 0xf5 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c < 0xe0 ? 2 : 0;
-      bool ok = n > 0 && i + n <= s.size();
-      for (std::size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xc0) == 0x80;
-      if (ok) {
-        r.append(s, i, n);
-        i += n - 1;
-      } else {
-        std::snprintf(buf, sizeof buf, "\\u%04x", c);
-        r += buf;
-      }
-    }
-  }
-  return r + "\"";
-}
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
 // The width shWindowWeights uses: 0 stands for the order.
 double effectiveWindowWidth(const ProbeOptions& o) { return o.windowWidth > 0.0f ? o.windowWidth : o.order; }
 
@@ -183,13 +103,13 @@ std::string formatJson(const ProbeOptions& o, const ProbeResult& r) {
   s += "  \"order\": " + std::to_string(o.order) + ",\n";
   s += std::string("  \"window\": \"") + shWindowName(o.window) + "\",\n";
   if (o.window != ShWindow::kNone) {
-    s += "  \"window_width\": " + num(effectiveWindowWidth(o)) + ",\n";
+    s += "  \"window_width\": " + jsonNumber(effectiveWindowWidth(o)) + ",\n";
   }
   s += "  \"index_convention\": \"i = l(l+1)+m\",\n";
   s += "  \"coefficients\": [\n";
   for (std::size_t i = 0; i < r.coeffs.size(); ++i) {
     const Rgb& c = r.coeffs[i];
-    s += "    [" + num(c.r) + ", " + num(c.g) + ", " + num(c.b) + "]" + (i + 1 < r.coeffs.size() ? ",\n" : "\n");
+    s += "    [" + jsonNumber(c.r) + ", " + jsonNumber(c.g) + ", " + jsonNumber(c.b) + "]" + (i + 1 < r.coeffs.size() ? ",\n" : "\n");
   }
   s += "  ]\n}\n";
   return s;
@@ -205,7 +125,7 @@ std::string formatTable(const ProbeOptions& o, const ProbeResult& r) {
   std::snprintf(line, sizeof line, "order: %d (%d coefficients, index i = l(l+1)+m), window: %s", o.order,
                 shCoeffCount(o.order), shWindowName(o.window));
   s += line;
-  if (o.window != ShWindow::kNone) s += " (width " + num(effectiveWindowWidth(o)) + " bands)";
+  if (o.window != ShWindow::kNone) s += " (width " + jsonNumber(effectiveWindowWidth(o)) + " bands)";
   s += "\n";
   std::snprintf(line, sizeof line, "%5s %3s %3s %16s %16s %16s\n", "i", "l", "m", "r", "g", "b");
   s += line;

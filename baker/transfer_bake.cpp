@@ -102,9 +102,44 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
+// Rays of the direct pass for one vertex: one per sample direction above the tangent
+// plane, from `origin` (already offset along n). Writes the clamped-cosine weights
+// w max(0, n.w)/pi of every sample (0 below the plane) and, per ray, its sample index.
+unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 origin, float eps, RTCRayHit* rays, std::uint32_t* sample,
+                  float* cosineWeight) {
+  const std::size_t sampleCount = table.dirs.size();
+  const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
+  unsigned count = 0;
+  for (std::size_t k = 0; k < sampleCount; ++k) {
+    const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
+    cosineWeight[k] = c > 0.0f ? c * sampleWeight : 0.0f;
+    if (c <= 0.0f) continue;
+    RTCRayHit& r = rays[count];
+    r.ray.org_x = origin.x;
+    r.ray.org_y = origin.y;
+    r.ray.org_z = origin.z;
+    r.ray.tnear = eps;
+    r.ray.dir_x = table.dirs.x[k];
+    r.ray.dir_y = table.dirs.y[k];
+    r.ray.dir_z = table.dirs.z[k];
+    r.ray.time = 0.0f;
+    r.ray.tfar = INFINITY;
+    r.ray.mask = 0xFFFFFFFFu;
+    r.ray.id = 0;
+    r.ray.flags = 0;
+    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    sample[count] = static_cast<std::uint32_t>(k);
+    ++count;
+  }
+  return count;
+}
 
-Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
+// Offsets relative to the scene: far above float rounding of positions (~1e-7 of the
+// extent), far below any feature the transfer can resolve.
+float rayOffset(const EmbreeScene& embree) { return 1e-5f * std::max(embree.diagonal(), 1e-6f); }
+
+Status checkOptions(const Scene& scene, const BakeOptions& o) {
   if (o.order < 2 || o.order > 8) {
     return Status::error(StatusCode::kInvalidArgument, "bake order " + std::to_string(o.order) + " is outside [2, 8]");
   }
@@ -122,6 +157,14 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   for (std::uint32_t index : scene.indices) {
     if (index >= vertexCount) return Status::error(StatusCode::kInvalidArgument, "scene index out of range");
   }
+  return Status::ok();
+}
+
+}  // namespace
+
+Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
+  if (Status st = checkOptions(scene, o); !st.isOk()) return st;
+  const std::size_t vertexCount = scene.positions.size();
 
   SampleTable table;
   if (Status s = makeSamples(o, &table); !s.isOk()) return s;
@@ -130,10 +173,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
 
   const int n2 = shCoeffCount(o.order);
   const std::size_t sampleCount = table.dirs.size();
-  const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
-  // Offsets relative to the scene: far above float rounding of positions (~1e-7 of the
-  // extent), far below any feature the transfer can resolve.
-  const float eps = 1e-5f * std::max(embree.diagonal(), 1e-6f);
+  const float eps = rayOffset(embree);
   const unsigned threads = o.threads ? o.threads : defaultThreadCount();
   const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
 
@@ -182,30 +222,8 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
       for (std::size_t v = begin; v < end; ++v) {
         const Vec3 n = scene.normals[v];
         const Vec3 origin = scene.positions[v] + n * eps;
-        unsigned count = 0;
-        for (std::size_t k = 0; k < sampleCount; ++k) {
-          const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
-          s.unshadowedW[k] = c > 0.0f ? c * sampleWeight : 0.0f;
-          s.shadowedW[k] = s.unshadowedW[k];
-          if (c <= 0.0f) continue;
-          RTCRayHit& r = s.rays[count];
-          r.ray.org_x = origin.x;
-          r.ray.org_y = origin.y;
-          r.ray.org_z = origin.z;
-          r.ray.tnear = eps;
-          r.ray.dir_x = table.dirs.x[k];
-          r.ray.dir_y = table.dirs.y[k];
-          r.ray.dir_z = table.dirs.z[k];
-          r.ray.time = 0.0f;
-          r.ray.tfar = INFINITY;
-          r.ray.mask = 0xFFFFFFFFu;
-          r.ray.id = 0;
-          r.ray.flags = 0;
-          r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-          s.sample[count] = static_cast<std::uint32_t>(k);
-          ++count;
-        }
+        const unsigned count = fillRays(table, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
+        std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
         if (rec) {
           rtcIntersect1M(embree.handle(), &context, s.rays.data(), count, sizeof(RTCRayHit));
         } else {
@@ -298,6 +316,51 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
     std::swap(previous, current);
     if (!(energy > o.bounceThreshold * energy0)) break;
   }
+  return Status::ok();
+}
+
+Status measureRawOcclusion(const Scene& scene, const BakeOptions& o, PassStats* out) {
+  if (Status st = checkOptions(scene, o); !st.isOk()) return st;
+  SampleTable table;
+  if (Status st = makeSamples(o, &table); !st.isOk()) return st;
+  EmbreeScene embree;
+  if (Status st = EmbreeScene::build(scene, &embree); !st.isOk()) return st;
+  const float eps = rayOffset(embree);
+  const std::size_t vertexCount = scene.positions.size(), sampleCount = table.dirs.size();
+  const unsigned threads = o.threads ? o.threads : defaultThreadCount();
+  const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
+  struct Scratch {
+    std::vector<RTCRayHit> rays;
+    std::vector<std::uint32_t> sample;
+    std::vector<float> weight;
+  };
+  std::vector<Scratch> scratch(threads);
+  for (auto& s : scratch) {
+    s.rays.resize(sampleCount);
+    s.sample.resize(sampleCount);
+    s.weight.resize(sampleCount);
+  }
+  std::atomic<std::uint64_t> rays{0};
+  const auto t0 = std::chrono::steady_clock::now();
+  parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
+    Scratch& s = scratch[thread];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    std::uint64_t n = 0;
+    const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    for (std::size_t v = begin; v < end; ++v) {
+      const Vec3 normal = scene.normals[v];
+      const unsigned count =
+          fillRays(table, normal, scene.positions[v] + normal * eps, eps, s.rays.data(), s.sample.data(), s.weight.data());
+      rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
+      n += count;
+    }
+    rays += n;
+  });
+  out->name = "raw occlusion";
+  out->seconds = secondsSince(t0);
+  out->rays = rays.load();
   return Status::ok();
 }
 

@@ -65,4 +65,9 @@ struct BakeResult {
 // interreflection, 12 bytes per occluded ray (hit triangle, barycentrics, weight).
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);
 
+// Benchmark reference: casts exactly the direct pass's rays (same origins, directions and
+// offsets) as Embree occlusion rays and does nothing else: no SH, no hit records. Its
+// rays/s is the ceiling the direct pass is measured against.
+Status measureRawOcclusion(const Scene& scene, const BakeOptions& options, PassStats* out);
+
 }  // namespace prt::bake

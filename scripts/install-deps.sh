@@ -10,7 +10,7 @@ packages=(
   # the wasm toolchain and the runtime its tests run in
   emscripten nodejs
   # the baker: ray tracing, image loading for `prt-bake probe`
-  libembree-dev libopenexr-dev libstb-dev
+  libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
 )

@@ -8,6 +8,11 @@ const char* statusCodeName(StatusCode code) {
     case StatusCode::kInvalidArgument: return "invalid argument";
     case StatusCode::kSizeMismatch: return "size mismatch";
     case StatusCode::kNotFinite: return "not finite";
+    case StatusCode::kTruncated: return "truncated";
+    case StatusCode::kBadMagic: return "bad magic";
+    case StatusCode::kBadVersion: return "bad version";
+    case StatusCode::kChecksumMismatch: return "checksum mismatch";
+    case StatusCode::kCorrupt: return "corrupt";
   }
   return "unknown";
 }

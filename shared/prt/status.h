@@ -13,6 +13,12 @@ enum class StatusCode {
   kInvalidArgument,  // a parameter is outside its documented range (order, size, direction)
   kSizeMismatch,     // a buffer is too small or sizes disagree
   kNotFinite,        // an input value is NaN or infinite
+  // Decoding untrusted bytes (prt/asset.h):
+  kTruncated,         // the data ends before the structure it declares
+  kBadMagic,          // not this format at all
+  kBadVersion,        // a format version this reader cannot read
+  kChecksumMismatch,  // stored and computed checksums differ: damaged in storage or transit
+  kCorrupt,           // checksums pass but the content is inconsistent or out of range
 };
 
 // Returns a stable lower-case name for a code ("ok", "invalid argument", ...).

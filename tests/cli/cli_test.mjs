@@ -129,7 +129,8 @@ function expectTruncationsFail(src, cuts, kind) {
 const cases = {
   help() {
     let r = expectExit(['--help'], 0);
-    check(/Usage: prt-bake <command>/.test(r.stdout) && /probe/.test(r.stdout), `--help output: ${r.stdout}`);
+    check(/Usage: prt-bake/.test(r.stdout) && /prt-bake <command>/.test(r.stdout) && /probe/.test(r.stdout) && /--default -o ASSET/.test(r.stdout) &&
+          /info/.test(r.stdout) && /shade/.test(r.stdout), `--help output: ${r.stdout}`);
     expectExit(['-h'], 0);
     r = expectExit(['probe', '--help'], 0);
     for (const flag of ['--order', '--format', '--window', '--window-width', '--builtin', '--json', 'equirect', 'angular', 'cross']) {

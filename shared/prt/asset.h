@@ -1,0 +1,180 @@
+// The baked-scene asset: what the baker writes, the server serves and the client decodes.
+// Byte layout, checksums and compatibility rules: docs/asset-format.md. Encoding and
+// decoding work on memory only (the baker writes files, the server and browser fetch
+// them), so the same code runs natively and in wasm. The reader treats its input as
+// untrusted: every count, offset, size and checksum is checked before anything is read.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "prt/status.h"
+#include "prt/vec3.h"
+
+namespace prt {
+
+// Which transfer a pass holds (docs/sh-conventions.md, baker/transfer_bake.h).
+enum class TransferKind : std::uint32_t {
+  kUnshadowed = 0,
+  kShadowed = 1,
+  kInterreflected = 2,
+};
+
+// "unshadowed" | "shadowed" | "interreflected", or "unknown" for other values.
+const char* transferKindName(TransferKind kind);
+
+struct TransferPass {
+  TransferKind kind = TransferKind::kUnshadowed;
+  // 1: scalar transfer, exit radiance = albedo * sum_i T_i L_i (unshadowed, shadowed);
+  // 3: RGB transfer with albedo folded in, exit radiance_c = sum_i T_ci L_ci (interreflected).
+  int channels = 1;
+  int bounces = 0;  // interreflection bounces actually gathered; 0 for the other kinds
+  // vertexCount * channels * order*order floats, layout [vertex][channel][coefficient].
+  std::vector<float> coeffs;
+};
+
+struct BakedAsset {
+  int shOrder = 0;  // kMinShOrder..kMaxShOrder (the baker uses 2..8)
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;         // one per position
+  std::vector<Rgb> albedo;           // one per position, linear
+  std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
+  std::vector<TransferPass> passes;  // 1..3, at most one per kind; order is kept
+  // Bake metadata. samples and seed are 64-bit because the baker's options are
+  // (BakeOptions::samples is a size_t, ::seed a uint64_t); narrowing would lose the seed.
+  std::uint64_t samples = 0;
+  std::uint64_t seed = 0;
+  std::string sampling;  // "hammersley" | "stratified" (any isValidAssetSamplingName string)
+  std::string name;      // for catalogues and logs (isValidAssetName)
+};
+
+// Returns the pass of `kind`, or nullptr if the asset has none.
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind);
+
+// ---- Format constants (docs/asset-format.md) -------------------------------------------
+
+inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
+inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
+inline constexpr std::uint16_t kAssetVersionMinor = 0;  // new section types bump this
+inline constexpr std::size_t kAssetHeaderSize = 64;
+inline constexpr std::size_t kAssetSectionEntrySize = 40;
+inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
+
+// Limits chosen so that every size the reader derives (count * stride) fits in 64 bits
+// with room to spare, and so that no field can make a reader allocate absurd memory.
+inline constexpr std::uint32_t kMaxAssetVertices = 1u << 28;
+inline constexpr std::uint32_t kMaxAssetTriangles = 1u << 28;
+inline constexpr std::uint32_t kMaxAssetSections = 1024;
+inline constexpr std::uint32_t kMaxAssetBounces = 1024;
+inline constexpr std::size_t kMaxAssetNameBytes = 4096;
+inline constexpr std::size_t kMaxAssetSamplingBytes = 32;
+// A prefix this long always holds the header, table and metadata of files encodeAsset
+// writes (it places the metadata section first), which is all peekAssetHeader reads.
+inline constexpr std::size_t kAssetPeekPrefixSize = 64 * 1024;
+
+enum class AssetSectionType : std::uint32_t {
+  // 0 is reserved: a zeroed table entry is rejected rather than skipped as unknown.
+  kPositions = 1,  // float32 x,y,z per vertex
+  kNormals = 2,    // float32 x,y,z per vertex
+  kIndices = 3,    // uint32 per index, 3 per triangle
+  kAlbedo = 4,     // float32 r,g,b per vertex
+  kTransfer = 5,   // float32 coefficients; arg0 kind, arg1 channels, arg2 bounces
+  kMetadata = 6,   // bytes: samples, seed, sampling, name
+};
+
+enum class AssetElementFormat : std::uint32_t {
+  kFloat32 = 1,  // IEEE-754 binary32, little-endian
+  kUint32 = 2,   // little-endian
+  kBytes = 3,    // a structure of its own, described with its section type
+};
+
+// Byte offsets of the fixed header fields and of the fields inside one section-table entry.
+namespace asset_layout {
+inline constexpr std::size_t kMagic = 0;           // 4 bytes "PRTA"
+inline constexpr std::size_t kVersionMajor = 4;    // u16
+inline constexpr std::size_t kVersionMinor = 6;    // u16
+inline constexpr std::size_t kFlags = 8;           // u32, 0 in version 1
+inline constexpr std::size_t kShOrder = 12;        // u32
+inline constexpr std::size_t kVertexCount = 16;    // u32
+inline constexpr std::size_t kTriangleCount = 20;  // u32
+inline constexpr std::size_t kSectionCount = 24;   // u32
+inline constexpr std::size_t kTableCrc = 28;       // u32, CRC-32C of the whole section table
+inline constexpr std::size_t kFileSize = 32;       // u64
+inline constexpr std::size_t kReserved = 40;       // 20 bytes, 0
+inline constexpr std::size_t kHeaderCrc = 60;      // u32, CRC-32C of header bytes 0..59
+
+inline constexpr std::size_t kEntryType = 0;     // u32 AssetSectionType
+inline constexpr std::size_t kEntryFormat = 4;   // u32 AssetElementFormat
+inline constexpr std::size_t kEntryOffset = 8;   // u64, from the start of the file
+inline constexpr std::size_t kEntrySize = 16;    // u64, payload bytes
+inline constexpr std::size_t kEntryArg0 = 24;    // u32, meaning depends on the type
+inline constexpr std::size_t kEntryArg1 = 28;    // u32
+inline constexpr std::size_t kEntryArg2 = 32;    // u32
+inline constexpr std::size_t kEntryCrc = 36;     // u32, CRC-32C of the payload
+}  // namespace asset_layout
+
+// ---- Validation, encoding, decoding ---------------------------------------------------
+
+// True for names encodeAsset accepts: at most kMaxAssetNameBytes of well-formed UTF-8 with
+// no control characters, so a catalogue can put it in JSON or a log line as it is.
+bool isValidAssetName(std::string_view name);
+// True for at most kMaxAssetSamplingBytes of [a-z0-9_-] (empty allowed): an identifier,
+// not free text, so tools can switch on it.
+bool isValidAssetSamplingName(std::string_view sampling);
+
+// Ok when `asset` can be encoded: order in range, 1..kMaxAssetVertices vertices with as
+// many normals and albedos, 1..kMaxAssetTriangles triangles with every index in range,
+// every float finite, 1..3 passes of distinct valid kinds with channels 1 or 3, bounces 0
+// except for interreflection, coefficient counts matching, and valid name and sampling.
+Status checkAsset(const BakedAsset& asset);
+
+// Validates `asset` (checkAsset) and replaces *out with its encoding.
+Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out);
+
+struct AssetPassInfo {
+  TransferKind kind = TransferKind::kUnshadowed;
+  int channels = 0;
+  int bounces = 0;
+};
+
+// What a catalogue needs to list an asset without decoding it.
+struct AssetSummary {
+  std::uint16_t versionMajor = 0;
+  std::uint16_t versionMinor = 0;
+  int shOrder = 0;
+  std::uint32_t vertexCount = 0;
+  std::uint32_t triangleCount = 0;
+  std::uint32_t sectionCount = 0;  // including sections of types this reader skips
+  std::uint64_t fileSize = 0;      // as the header declares it; compare with the real size
+  std::vector<AssetPassInfo> passes;  // in table order
+  std::uint64_t samples = 0;
+  std::uint64_t seed = 0;
+  std::string sampling;
+  std::string name;
+};
+
+// Reads the header, section table and metadata section and validates them (magic,
+// version, checksums of header, table and metadata, every table entry's bounds against
+// the declared file size, alignment, overlaps, required sections, sizes against counts)
+// without touching the other sections. `bytes` is the whole file or any prefix of it
+// holding those parts (kAssetPeekPrefixSize suffices for files encodeAsset wrote);
+// kTruncated when it is too short. Does not check the other sections' checksums or
+// contents: use verifyAsset for that.
+Status peekAssetHeader(std::span<const std::uint8_t> bytes, AssetSummary* out);
+
+// Validates the whole file as decodeAsset does, every checksum and every value, without
+// allocating the arrays. `out` (may be null) receives the summary on success.
+Status verifyAsset(std::span<const std::uint8_t> bytes, AssetSummary* out);
+
+// Validates `bytes` (the whole file) completely and decodes it into *out, which is left
+// unchanged on error. Errors: kTruncated (file shorter than its structure says), kBadMagic,
+// kBadVersion (a major version this reader does not know), kChecksumMismatch, kCorrupt
+// (anything else; the message names the section and the problem). Never reads outside
+// `bytes`, and allocates no more than about the file's size.
+Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out);
+
+}  // namespace prt

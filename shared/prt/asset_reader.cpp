@@ -1,0 +1,606 @@
+// Asset decoding and validation of untrusted bytes (layout: docs/asset-format.md).
+//
+// Order of trust: magic and version first (so a wrong file or a newer format gets its own
+// error), then the header checksum before any header field is used, then the table
+// checksum before any entry is used, then every entry's bounds against the file, then each
+// section's checksum before its payload is interpreted. All offset and size arithmetic is
+// done in 64 bits after checks that rule out overflow, so it is also right in wasm, where
+// size_t is 32 bits.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+#include "prt/asset.h"
+#include "prt/checksum.h"
+#include "prt/sh_basis.h"
+
+namespace prt {
+namespace {
+
+namespace L = asset_layout;
+
+std::uint16_t getU16(const std::uint8_t* p) {
+  return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
+}
+std::uint32_t getU32(const std::uint8_t* p) {
+  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 | static_cast<std::uint32_t>(p[2]) << 16 |
+         static_cast<std::uint32_t>(p[3]) << 24;
+}
+std::uint64_t getU64(const std::uint8_t* p) {
+  return static_cast<std::uint64_t>(getU32(p)) | static_cast<std::uint64_t>(getU32(p + 4)) << 32;
+}
+
+std::string hex32(std::uint32_t v) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string s = "0x00000000";
+  for (int i = 0; i < 8; ++i) s[9 - i] = kDigits[(v >> (4 * i)) & 0xFu];
+  return s;
+}
+
+std::string num(std::uint64_t v) { return std::to_string(v); }
+
+struct Entry {
+  std::uint32_t index = 0;  // position in the table
+  std::uint32_t type = 0, format = 0;
+  std::uint64_t offset = 0, size = 0;
+  std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0, crc = 0;
+};
+
+struct Parsed {
+  std::uint16_t major = 0, minor = 0;
+  std::uint32_t order = 0, vertexCount = 0, triangleCount = 0, sectionCount = 0;
+  std::uint64_t fileSize = 0;
+  std::vector<Entry> entries;  // table order
+  int positions = -1, normals = -1, indices = -1, albedo = -1, metadata = -1;
+  std::vector<int> transfer;  // entry indices, table order
+};
+
+struct Metadata {
+  std::uint64_t samples = 0, seed = 0;
+  std::string sampling, name;
+};
+
+constexpr std::uint32_t kTypePositions = static_cast<std::uint32_t>(AssetSectionType::kPositions);
+constexpr std::uint32_t kTypeNormals = static_cast<std::uint32_t>(AssetSectionType::kNormals);
+constexpr std::uint32_t kTypeIndices = static_cast<std::uint32_t>(AssetSectionType::kIndices);
+constexpr std::uint32_t kTypeAlbedo = static_cast<std::uint32_t>(AssetSectionType::kAlbedo);
+constexpr std::uint32_t kTypeTransfer = static_cast<std::uint32_t>(AssetSectionType::kTransfer);
+constexpr std::uint32_t kTypeMetadata = static_cast<std::uint32_t>(AssetSectionType::kMetadata);
+constexpr std::uint32_t kFormatFloat32 = static_cast<std::uint32_t>(AssetElementFormat::kFloat32);
+constexpr std::uint32_t kFormatUint32 = static_cast<std::uint32_t>(AssetElementFormat::kUint32);
+constexpr std::uint32_t kFormatBytes = static_cast<std::uint32_t>(AssetElementFormat::kBytes);
+constexpr std::uint64_t kMetadataFixedBytes = 24;
+
+// "section 3 (indices)", "section 5 (transfer shadowed)", "section 7 (type 99)": every
+// error about a section names it by table position and meaning.
+std::string sectionLabel(const Entry& e) {
+  std::string s = "section " + num(e.index) + " (";
+  switch (e.type) {
+    case kTypePositions: s += "positions"; break;
+    case kTypeNormals: s += "normals"; break;
+    case kTypeIndices: s += "indices"; break;
+    case kTypeAlbedo: s += "albedo"; break;
+    case kTypeTransfer:
+      s += e.arg0 <= 2 ? std::string("transfer ") + transferKindName(static_cast<TransferKind>(e.arg0))
+                       : "transfer kind " + num(e.arg0);
+      break;
+    case kTypeMetadata: s += "metadata"; break;
+    default: s += "type " + num(e.type); break;
+  }
+  return s + ")";
+}
+
+Status corrupt(std::string message) { return Status::error(StatusCode::kCorrupt, std::move(message)); }
+
+// Magic, version, header checksum and header fields. Needs only the first 64 bytes.
+Status parseHeader(std::span<const std::uint8_t> bytes, Parsed* p) {
+  const std::uint8_t* b = bytes.data();
+  const std::size_t magicBytes = std::min<std::size_t>(bytes.size(), 4);
+  if (magicBytes > 0 && std::memcmp(b, kAssetMagic, magicBytes) != 0) {
+    return Status::error(StatusCode::kBadMagic, "not an asset file: it does not start with \"PRTA\"");
+  }
+  if (bytes.size() < 8) {
+    return Status::error(StatusCode::kTruncated, "asset is " + num(bytes.size()) + " bytes, shorter than its " +
+                                                     num(kAssetHeaderSize) + "-byte header");
+  }
+  p->major = getU16(b + L::kVersionMajor);
+  p->minor = getU16(b + L::kVersionMinor);
+  // Checked before the header checksum: another major version may lay its header out
+  // differently, and "too new" is the error its reader needs to see.
+  if (p->major != kAssetVersionMajor) {
+    const std::string theirs = num(p->major) + "." + num(p->minor);
+    const std::string ours = num(kAssetVersionMajor) + "." + num(kAssetVersionMinor);
+    return Status::error(StatusCode::kBadVersion,
+                         p->major > kAssetVersionMajor
+                             ? "asset format version " + theirs + " is newer than this reader's " + ours
+                             : "asset format version " + theirs + " is older than this reader's " + ours + " and not supported");
+  }
+  if (bytes.size() < kAssetHeaderSize) {
+    return Status::error(StatusCode::kTruncated, "asset is " + num(bytes.size()) + " bytes, shorter than its " +
+                                                     num(kAssetHeaderSize) + "-byte header");
+  }
+  const std::uint32_t storedCrc = getU32(b + L::kHeaderCrc);
+  const std::uint32_t crc = crc32c(bytes.first(L::kHeaderCrc));
+  if (storedCrc != crc) {
+    return Status::error(StatusCode::kChecksumMismatch,
+                         "header checksum " + hex32(storedCrc) + " stored, " + hex32(crc) + " computed");
+  }
+  const std::uint32_t flags = getU32(b + L::kFlags);
+  if (flags != 0) return corrupt("header flags " + hex32(flags) + " are not defined in format version 1");
+  for (std::size_t i = L::kReserved; i < L::kHeaderCrc; ++i) {
+    if (b[i] != 0) return corrupt("reserved header byte " + num(i) + " is not zero");
+  }
+  p->order = getU32(b + L::kShOrder);
+  p->vertexCount = getU32(b + L::kVertexCount);
+  p->triangleCount = getU32(b + L::kTriangleCount);
+  p->sectionCount = getU32(b + L::kSectionCount);
+  p->fileSize = getU64(b + L::kFileSize);
+  if (p->order < static_cast<std::uint32_t>(kMinShOrder) || p->order > static_cast<std::uint32_t>(kMaxShOrder)) {
+    return corrupt("header SH order " + num(p->order) + " is outside [" + num(kMinShOrder) + ", " + num(kMaxShOrder) + "]");
+  }
+  if (p->vertexCount < 1 || p->vertexCount > kMaxAssetVertices) {
+    return corrupt("header vertex count " + num(p->vertexCount) + " is outside [1, " + num(kMaxAssetVertices) + "]");
+  }
+  if (p->triangleCount < 1 || p->triangleCount > kMaxAssetTriangles) {
+    return corrupt("header triangle count " + num(p->triangleCount) + " is outside [1, " + num(kMaxAssetTriangles) + "]");
+  }
+  if (p->sectionCount < 1 || p->sectionCount > kMaxAssetSections) {
+    return corrupt("header section count " + num(p->sectionCount) + " is outside [1, " + num(kMaxAssetSections) + "]");
+  }
+  const std::uint64_t tableEnd = kAssetHeaderSize + static_cast<std::uint64_t>(p->sectionCount) * kAssetSectionEntrySize;
+  if (p->fileSize < tableEnd) {
+    return corrupt("header file size " + num(p->fileSize) + " is smaller than header and section table (" + num(tableEnd) + " bytes)");
+  }
+  return Status::ok();
+}
+
+// A whole file must be exactly as long as its header says.
+Status checkWholeFileSize(std::span<const std::uint8_t> bytes, const Parsed& p) {
+  if (bytes.size() < p.fileSize) {
+    return Status::error(StatusCode::kTruncated,
+                         "asset is " + num(bytes.size()) + " bytes but its header declares " + num(p.fileSize));
+  }
+  if (bytes.size() > p.fileSize) {
+    return corrupt("asset is " + num(bytes.size()) + " bytes but its header declares " + num(p.fileSize) +
+                   ": trailing bytes");
+  }
+  return Status::ok();
+}
+
+// Checks one known section's table entry against the header counts; `seen*` detect repeats.
+Status checkKnownEntry(const Entry& e, Parsed* p) {
+  const std::string label = sectionLabel(e);
+  auto expectFormat = [&](std::uint32_t format, const char* name) -> Status {
+    if (e.format != format) return corrupt(label + " has element format " + num(e.format) + "; " + name + " expected");
+    return Status::ok();
+  };
+  auto expectNoArgs = [&]() -> Status {
+    if (e.arg0 != 0 || e.arg1 != 0 || e.arg2 != 0) return corrupt(label + " has non-zero arguments");
+    return Status::ok();
+  };
+  auto expectSize = [&](std::uint64_t size, const char* how) -> Status {
+    if (e.size != size) {
+      return corrupt(label + " is " + num(e.size) + " bytes; " + num(size) + " expected (" + how + ")");
+    }
+    return Status::ok();
+  };
+  auto once = [&](int* slot) -> Status {
+    if (*slot >= 0) return corrupt(label + " repeats section " + num(static_cast<std::uint64_t>(*slot)) + "; it must occur once");
+    *slot = static_cast<int>(e.index);
+    return Status::ok();
+  };
+  const std::uint64_t v = p->vertexCount;
+  Status s;
+  switch (e.type) {
+    case kTypePositions:
+    case kTypeNormals:
+    case kTypeAlbedo:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(v * 12, "12 bytes per vertex")).isOk()) {
+        return s;
+      }
+      return once(e.type == kTypePositions ? &p->positions : e.type == kTypeNormals ? &p->normals : &p->albedo);
+    case kTypeIndices:
+      if (!(s = expectFormat(kFormatUint32, "uint32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(static_cast<std::uint64_t>(p->triangleCount) * 12, "12 bytes per triangle")).isOk()) {
+        return s;
+      }
+      return once(&p->indices);
+    case kTypeMetadata:
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      if (e.size < kMetadataFixedBytes || e.size > kMetadataFixedBytes + kMaxAssetSamplingBytes + kMaxAssetNameBytes) {
+        return corrupt(label + " is " + num(e.size) + " bytes; " + num(kMetadataFixedBytes) + " to " +
+                       num(kMetadataFixedBytes + kMaxAssetSamplingBytes + kMaxAssetNameBytes) + " expected");
+      }
+      return once(&p->metadata);
+    case kTypeTransfer: {
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk()) return s;
+      if (e.arg0 > 2) return corrupt(label + " has unknown transfer kind " + num(e.arg0));
+      if (e.arg1 != 1 && e.arg1 != 3) return corrupt(label + " has " + num(e.arg1) + " channels; 1 or 3 expected");
+      const bool interreflected = e.arg0 == static_cast<std::uint32_t>(TransferKind::kInterreflected);
+      if (interreflected ? e.arg2 > kMaxAssetBounces : e.arg2 != 0) {
+        return corrupt(label + " has " + num(e.arg2) + " bounces; " +
+                       (interreflected ? "at most " + num(kMaxAssetBounces) : std::string("0")) + " expected");
+      }
+      // v <= 2^28, channels <= 3, order^2 <= 256: the product stays below 2^40.
+      if (!(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
+                           "4 bytes per vertex, channel and coefficient"))
+               .isOk()) {
+        return s;
+      }
+      for (int other : p->transfer) {
+        if (p->entries[static_cast<std::size_t>(other)].arg0 == e.arg0) {
+          return corrupt(label + " repeats the transfer kind of section " + num(static_cast<std::uint64_t>(other)));
+        }
+      }
+      p->transfer.push_back(static_cast<int>(e.index));
+      return Status::ok();
+    }
+    default:
+      return Status::ok();  // unknown types are skipped (forward compatibility)
+  }
+}
+
+// Section table: checksum, then each entry's bounds, alignment, known-type rules, then
+// overlaps and required sections. Entries are checked against the declared file size, so
+// this also works on a prefix (peekAssetHeader).
+Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
+  const std::uint64_t tableBytes = static_cast<std::uint64_t>(p->sectionCount) * kAssetSectionEntrySize;
+  const std::uint64_t tableEnd = kAssetHeaderSize + tableBytes;
+  if (bytes.size() < tableEnd) {
+    return Status::error(StatusCode::kTruncated, "asset is " + num(bytes.size()) + " bytes; its header and section table need " +
+                                                     num(tableEnd));
+  }
+  const auto table = bytes.subspan(kAssetHeaderSize, static_cast<std::size_t>(tableBytes));
+  const std::uint32_t storedCrc = getU32(bytes.data() + L::kTableCrc);
+  const std::uint32_t crc = crc32c(table);
+  if (storedCrc != crc) {
+    return Status::error(StatusCode::kChecksumMismatch,
+                         "section table checksum " + hex32(storedCrc) + " stored, " + hex32(crc) + " computed");
+  }
+  p->entries.resize(p->sectionCount);
+  for (std::uint32_t i = 0; i < p->sectionCount; ++i) {
+    const std::uint8_t* t = table.data() + static_cast<std::size_t>(i) * kAssetSectionEntrySize;
+    Entry& e = p->entries[i];
+    e.index = i;
+    e.type = getU32(t + L::kEntryType);
+    e.format = getU32(t + L::kEntryFormat);
+    e.offset = getU64(t + L::kEntryOffset);
+    e.size = getU64(t + L::kEntrySize);
+    e.arg0 = getU32(t + L::kEntryArg0);
+    e.arg1 = getU32(t + L::kEntryArg1);
+    e.arg2 = getU32(t + L::kEntryArg2);
+    e.crc = getU32(t + L::kEntryCrc);
+    const std::string label = sectionLabel(e);
+    if (e.type == 0) return corrupt(label + ": section type 0 is reserved");
+    if (e.offset % kAssetAlignment != 0) {
+      return corrupt(label + " offset " + num(e.offset) + " is not a multiple of " + num(kAssetAlignment));
+    }
+    if (e.offset < tableEnd) {
+      return corrupt(label + " offset " + num(e.offset) + " lies inside the header or section table (which end at " +
+                     num(tableEnd) + ")");
+    }
+    // Written as two comparisons so offset + size is never formed: it could wrap.
+    if (e.offset > p->fileSize || e.size > p->fileSize - e.offset) {
+      return corrupt(label + " (offset " + num(e.offset) + ", " + num(e.size) + " bytes) extends past the end of the " +
+                     num(p->fileSize) + "-byte file");
+    }
+    if (Status s = checkKnownEntry(e, p); !s.isOk()) return s;
+  }
+  std::vector<const Entry*> sorted;
+  sorted.reserve(p->entries.size());
+  for (const Entry& e : p->entries) sorted.push_back(&e);
+  std::sort(sorted.begin(), sorted.end(), [](const Entry* a, const Entry* b) {
+    return a->offset != b->offset ? a->offset < b->offset : a->size < b->size;
+  });
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    const Entry& a = *sorted[i - 1];
+    const Entry& b = *sorted[i];
+    if (a.offset + a.size > b.offset) {  // both within the file: no overflow
+      return corrupt(sectionLabel(a) + " and " + sectionLabel(b) + " overlap");
+    }
+  }
+  const std::pair<int, const char*> required[] = {{p->positions, "positions"}, {p->normals, "normals"},
+                                                  {p->indices, "indices"},     {p->albedo, "albedo"},
+                                                  {p->metadata, "metadata"}};
+  for (const auto& [slot, name] : required) {
+    if (slot < 0) return corrupt(std::string("the required ") + name + " section is missing");
+  }
+  if (p->transfer.empty()) return corrupt("the asset has no transfer section");
+  return Status::ok();
+}
+
+std::span<const std::uint8_t> payloadOf(std::span<const std::uint8_t> bytes, const Entry& e) {
+  return bytes.subspan(static_cast<std::size_t>(e.offset), static_cast<std::size_t>(e.size));
+}
+
+Status checkSectionCrc(std::span<const std::uint8_t> bytes, const Entry& e) {
+  const std::uint32_t crc = crc32c(payloadOf(bytes, e));
+  if (crc != e.crc) {
+    return Status::error(StatusCode::kChecksumMismatch,
+                         sectionLabel(e) + " checksum " + hex32(e.crc) + " stored, " + hex32(crc) + " computed");
+  }
+  return Status::ok();
+}
+
+// Bytes not covered by the header, the table or a section (alignment padding) must be zero,
+// so that every byte of a valid file is pinned by a checksum or by this rule.
+Status checkPadding(std::span<const std::uint8_t> bytes, const Parsed& p) {
+  std::vector<const Entry*> sorted;
+  for (const Entry& e : p.entries) sorted.push_back(&e);
+  std::sort(sorted.begin(), sorted.end(), [](const Entry* a, const Entry* b) { return a->offset < b->offset; });
+  std::uint64_t cursor = kAssetHeaderSize + static_cast<std::uint64_t>(p.sectionCount) * kAssetSectionEntrySize;
+  auto zeroUpTo = [&](std::uint64_t end) -> Status {
+    for (std::uint64_t i = cursor; i < end; ++i) {
+      if (bytes[static_cast<std::size_t>(i)] != 0) return corrupt("padding byte at offset " + num(i) + " is not zero");
+    }
+    return Status::ok();
+  };
+  for (const Entry* e : sorted) {
+    if (Status s = zeroUpTo(e->offset); !s.isOk()) return s;
+    cursor = std::max(cursor, e->offset + e->size);
+  }
+  return zeroUpTo(p.fileSize);
+}
+
+Status parseMetadata(std::span<const std::uint8_t> payload, const Entry& e, Metadata* m) {
+  // The entry check guaranteed 24 <= size <= 24 + 32 + 4096.
+  const std::uint8_t* b = payload.data();
+  m->samples = getU64(b);
+  m->seed = getU64(b + 8);
+  const std::uint64_t samplingLength = getU32(b + 16);
+  const std::uint64_t nameLength = getU32(b + 20);
+  if (kMetadataFixedBytes + samplingLength + nameLength != payload.size()) {
+    return corrupt(sectionLabel(e) + " is " + num(payload.size()) + " bytes but holds a " + num(samplingLength) +
+                   "-byte sampling name and a " + num(nameLength) + "-byte asset name after its 24 fixed bytes");
+  }
+  const char* text = reinterpret_cast<const char*>(b + kMetadataFixedBytes);
+  const std::string_view sampling(text, static_cast<std::size_t>(samplingLength));
+  const std::string_view name(text + samplingLength, static_cast<std::size_t>(nameLength));
+  if (!isValidAssetSamplingName(sampling)) {
+    return corrupt(sectionLabel(e) + ": sampling name is not at most " + num(kMaxAssetSamplingBytes) + " characters of [a-z0-9_-]");
+  }
+  if (!isValidAssetName(name)) {
+    return corrupt(sectionLabel(e) + ": asset name is not at most " + num(kMaxAssetNameBytes) +
+                   " bytes of UTF-8 without control characters");
+  }
+  m->sampling.assign(sampling);
+  m->name.assign(name);
+  return Status::ok();
+}
+
+// Finite means the exponent bits are not all ones (which is what NaN and infinity share).
+Status checkFloats(std::span<const std::uint8_t> payload, const Entry& e) {
+  const std::size_t count = payload.size() / 4;
+  const std::uint8_t* b = payload.data();
+  for (std::size_t i = 0; i < count; ++i) {
+    if ((getU32(b + 4 * i) & 0x7F800000u) == 0x7F800000u) {
+      return corrupt(sectionLabel(e) + ": value " + num(i) + " is not finite");
+    }
+  }
+  return Status::ok();
+}
+
+Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::uint32_t vertexCount) {
+  const std::size_t count = payload.size() / 4;
+  const std::uint8_t* b = payload.data();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t index = getU32(b + 4 * i);
+    if (index >= vertexCount) {
+      return corrupt(sectionLabel(e) + ": index " + num(i) + " (triangle " + num(i / 3) + ") is " + num(index) +
+                     ", not below the vertex count " + num(vertexCount));
+    }
+  }
+  return Status::ok();
+}
+
+// Everything decodeAsset checks; afterwards every section may be read without checks.
+Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m) {
+  if (Status s = parseHeader(bytes, p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(bytes, *p); !s.isOk()) return s;
+  if (Status s = parseTable(bytes, p); !s.isOk()) return s;
+  if (Status s = checkPadding(bytes, *p); !s.isOk()) return s;
+  // Every section's checksum, unknown ones included, before any content check: damage
+  // reads as damage, not as whatever inconsistency it happens to produce.
+  for (const Entry& e : p->entries) {
+    if (Status s = checkSectionCrc(bytes, e); !s.isOk()) return s;
+  }
+  for (const Entry& e : p->entries) {
+    const auto payload = payloadOf(bytes, e);
+    Status s;
+    switch (e.type) {
+      case kTypePositions:
+      case kTypeNormals:
+      case kTypeAlbedo:
+      case kTypeTransfer: s = checkFloats(payload, e); break;
+      case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
+      case kTypeMetadata: s = parseMetadata(payload, e, m); break;
+      default: break;
+    }
+    if (!s.isOk()) return s;
+  }
+  return Status::ok();
+}
+
+void fillSummary(const Parsed& p, Metadata&& m, AssetSummary* out) {
+  AssetSummary s;
+  s.versionMajor = p.major;
+  s.versionMinor = p.minor;
+  s.shOrder = static_cast<int>(p.order);
+  s.vertexCount = p.vertexCount;
+  s.triangleCount = p.triangleCount;
+  s.sectionCount = p.sectionCount;
+  s.fileSize = p.fileSize;
+  for (int t : p.transfer) {
+    const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2)});
+  }
+  s.samples = m.samples;
+  s.seed = m.seed;
+  s.sampling = std::move(m.sampling);
+  s.name = std::move(m.name);
+  *out = std::move(s);
+}
+
+// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks. Only the big-endian
+// branches use it, hence maybe_unused.
+[[maybe_unused]] float floatFromBits(std::uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+// Copies a validated float payload; memcpy on little-endian hosts, per value otherwise.
+void readFloats(std::span<const std::uint8_t> payload, float* dst) {
+  const std::size_t count = payload.size() / 4;
+  if constexpr (std::endian::native == std::endian::little) {
+    if (count > 0) std::memcpy(dst, payload.data(), count * 4);
+  } else {
+    for (std::size_t i = 0; i < count; ++i) dst[i] = floatFromBits(getU32(payload.data() + 4 * i));
+  }
+}
+
+template <typename T>
+void readTriples(std::span<const std::uint8_t> payload, std::vector<T>* out) {
+  static_assert(sizeof(T) == 3 * sizeof(float) && std::is_trivially_copyable_v<T>, "T must be 3 packed floats");
+  out->resize(payload.size() / sizeof(T));
+  if constexpr (std::endian::native == std::endian::little) {
+    if (!out->empty()) std::memcpy(out->data(), payload.data(), out->size() * sizeof(T));
+  } else {
+    for (std::size_t i = 0; i < out->size(); ++i) {
+      float f[3];
+      readFloats(payload.subspan(12 * i, 12), f);
+      std::memcpy(&(*out)[i], f, sizeof f);
+    }
+  }
+}
+
+}  // namespace
+
+const char* transferKindName(TransferKind kind) {
+  switch (kind) {
+    case TransferKind::kUnshadowed: return "unshadowed";
+    case TransferKind::kShadowed: return "shadowed";
+    case TransferKind::kInterreflected: return "interreflected";
+  }
+  return "unknown";
+}
+
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind) {
+  for (const TransferPass& p : asset.passes)
+    if (p.kind == kind) return &p;
+  return nullptr;
+}
+
+bool isValidAssetSamplingName(std::string_view sampling) {
+  if (sampling.size() > kMaxAssetSamplingBytes) return false;
+  for (char ch : sampling) {
+    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+bool isValidAssetName(std::string_view name) {
+  if (name.size() > kMaxAssetNameBytes) return false;
+  // UTF-8 per RFC 3629: shortest form only, no surrogates, nothing above U+10FFFF.
+  std::size_t i = 0;
+  while (i < name.size()) {
+    const auto b0 = static_cast<std::uint8_t>(name[i]);
+    if (b0 < 0x80) {
+      if (b0 < 0x20 || b0 == 0x7F) return false;  // C0 controls and DEL
+      ++i;
+      continue;
+    }
+    std::size_t len = 0;
+    std::uint32_t cp = 0, min = 0;
+    if ((b0 & 0xE0) == 0xC0) {
+      len = 2, cp = b0 & 0x1Fu, min = 0x80;
+    } else if ((b0 & 0xF0) == 0xE0) {
+      len = 3, cp = b0 & 0x0Fu, min = 0x800;
+    } else if ((b0 & 0xF8) == 0xF0) {
+      len = 4, cp = b0 & 0x07u, min = 0x10000;
+    } else {
+      return false;
+    }
+    if (name.size() - i < len) return false;
+    for (std::size_t k = 1; k < len; ++k) {
+      const auto b = static_cast<std::uint8_t>(name[i + k]);
+      if ((b & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (b & 0x3Fu);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    if (cp >= 0x80 && cp < 0xA0) return false;  // C1 controls
+    i += len;
+  }
+  return true;
+}
+
+Status peekAssetHeader(std::span<const std::uint8_t> bytes, AssetSummary* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "peekAssetHeader: out is null");
+  Parsed p;
+  if (Status s = parseHeader(bytes, &p); !s.isOk()) return s;
+  if (Status s = parseTable(bytes, &p); !s.isOk()) return s;
+  const Entry& e = p.entries[static_cast<std::size_t>(p.metadata)];
+  if (e.offset + e.size > bytes.size()) {  // both bounded by the declared file size: no overflow
+    return Status::error(StatusCode::kTruncated, "asset prefix is " + num(bytes.size()) + " bytes; its metadata section needs " +
+                                                     num(e.offset + e.size));
+  }
+  const auto payload = payloadOf(bytes, e);
+  if (Status s = checkSectionCrc(bytes, e); !s.isOk()) return s;
+  Metadata m;
+  if (Status s = parseMetadata(payload, e, &m); !s.isOk()) return s;
+  fillSummary(p, std::move(m), out);
+  return Status::ok();
+}
+
+Status verifyAsset(std::span<const std::uint8_t> bytes, AssetSummary* out) {
+  Parsed p;
+  Metadata m;
+  if (Status s = validateAll(bytes, &p, &m); !s.isOk()) return s;
+  if (out != nullptr) fillSummary(p, std::move(m), out);
+  return Status::ok();
+}
+
+Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAsset: out is null");
+  Parsed p;
+  Metadata m;
+  if (Status s = validateAll(bytes, &p, &m); !s.isOk()) return s;
+  BakedAsset a;
+  a.shOrder = static_cast<int>(p.order);
+  auto payload = [&](int entry) { return payloadOf(bytes, p.entries[static_cast<std::size_t>(entry)]); };
+  readTriples(payload(p.positions), &a.positions);
+  readTriples(payload(p.normals), &a.normals);
+  readTriples(payload(p.albedo), &a.albedo);
+  {
+    const auto b = payload(p.indices);
+    a.indices.resize(b.size() / 4);
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(a.indices.data(), b.data(), b.size());
+    } else {
+      for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = getU32(b.data() + 4 * i);
+    }
+  }
+  for (int t : p.transfer) {
+    const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    TransferPass pass;
+    pass.kind = static_cast<TransferKind>(e.arg0);
+    pass.channels = static_cast<int>(e.arg1);
+    pass.bounces = static_cast<int>(e.arg2);
+    pass.coeffs.resize(static_cast<std::size_t>(e.size / 4));
+    readFloats(payload(t), pass.coeffs.data());
+    a.passes.push_back(std::move(pass));
+  }
+  a.samples = m.samples;
+  a.seed = m.seed;
+  a.sampling = std::move(m.sampling);
+  a.name = std::move(m.name);
+  *out = std::move(a);
+  return Status::ok();
+}
+
+}  // namespace prt

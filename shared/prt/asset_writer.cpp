@@ -1,0 +1,262 @@
+// Asset validation and encoding (layout: docs/asset-format.md).
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <type_traits>
+
+#include "prt/asset.h"
+#include "prt/checksum.h"
+#include "prt/sh_basis.h"
+
+namespace prt {
+namespace {
+
+namespace L = asset_layout;
+
+// Everything is written byte by byte in little-endian order, so the encoding does not
+// depend on the host; bulk copies below are only taken where the host is little-endian.
+void putU16(std::uint8_t* p, std::uint16_t v) {
+  p[0] = static_cast<std::uint8_t>(v);
+  p[1] = static_cast<std::uint8_t>(v >> 8);
+}
+void putU32(std::uint8_t* p, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+void putU64(std::uint8_t* p, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks. Only the big-endian
+// branches use it, hence maybe_unused.
+[[maybe_unused]] std::uint32_t floatBits(float f) {
+  std::uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return u;
+}
+
+// Writes `count` floats; memcpy is the same bytes on a little-endian host, per-value
+// stores are the portable fallback.
+void putFloats(std::uint8_t* p, const float* src, std::size_t count) {
+  if constexpr (std::endian::native == std::endian::little) {
+    if (count > 0) std::memcpy(p, src, count * sizeof(float));
+  } else {
+    for (std::size_t i = 0; i < count; ++i) putU32(p + 4 * i, floatBits(src[i]));
+  }
+}
+
+// Vec3 and Rgb are three packed floats, so their arrays are float arrays for the copy.
+template <typename T>
+void putTriples(std::uint8_t* p, const std::vector<T>& v) {
+  static_assert(sizeof(T) == 3 * sizeof(float) && std::is_trivially_copyable_v<T>, "T must be 3 packed floats");
+  if constexpr (std::endian::native == std::endian::little) {
+    if (!v.empty()) std::memcpy(p, v.data(), v.size() * sizeof(T));
+  } else {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      float f[3];
+      std::memcpy(f, &v[i], sizeof f);
+      putFloats(p + 12 * i, f, 3);
+    }
+  }
+}
+
+bool finite3(Vec3 v) { return isFinite(v); }
+bool finite3(Rgb c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
+template <typename T>
+Status checkTriples(const std::vector<T>& v, const char* what) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!finite3(v[i])) {
+      return Status::error(StatusCode::kNotFinite, std::string(what) + " " + std::to_string(i) + " is not finite");
+    }
+  }
+  return Status::ok();
+}
+
+bool isKnownKind(TransferKind kind) { return static_cast<std::uint32_t>(kind) <= 2; }
+
+// One section as laid out: table entry fields plus where its payload comes from.
+struct PlannedSection {
+  AssetSectionType type;
+  AssetElementFormat format;
+  std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0;
+  std::uint64_t size = 0;
+  std::uint64_t offset = 0;
+  const TransferPass* pass = nullptr;  // for kTransfer
+};
+
+std::uint64_t alignUp(std::uint64_t v) { return (v + (kAssetAlignment - 1)) & ~static_cast<std::uint64_t>(kAssetAlignment - 1); }
+
+}  // namespace
+
+Status checkAsset(const BakedAsset& asset) {
+  if (Status s = checkShOrder(asset.shOrder); !s.isOk()) return Status::error(s.code(), "asset: " + s.message());
+  const std::size_t vertexCount = asset.positions.size();
+  if (vertexCount < 1 || vertexCount > kMaxAssetVertices) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(vertexCount) +
+                                                           " vertices; 1 to " + std::to_string(kMaxAssetVertices) + " are allowed");
+  }
+  if (asset.normals.size() != vertexCount || asset.albedo.size() != vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(vertexCount) + " positions, " +
+                                                        std::to_string(asset.normals.size()) + " normals and " +
+                                                        std::to_string(asset.albedo.size()) + " albedos; all must be equal");
+  }
+  if (asset.indices.size() % 3 != 0 || asset.indices.empty() || asset.indices.size() / 3 > kMaxAssetTriangles) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.indices.size()) +
+                                                        " indices; a positive multiple of 3, at most 3*" +
+                                                        std::to_string(kMaxAssetTriangles) + ", is needed");
+  }
+  for (std::size_t i = 0; i < asset.indices.size(); ++i) {
+    if (asset.indices[i] >= vertexCount) {
+      return Status::error(StatusCode::kInvalidArgument, "index " + std::to_string(i) + " is " + std::to_string(asset.indices[i]) +
+                                                             ", not below the vertex count " + std::to_string(vertexCount));
+    }
+  }
+  if (Status s = checkTriples(asset.positions, "position"); !s.isOk()) return s;
+  if (Status s = checkTriples(asset.normals, "normal"); !s.isOk()) return s;
+  if (Status s = checkTriples(asset.albedo, "albedo"); !s.isOk()) return s;
+
+  if (asset.passes.empty() || asset.passes.size() > 3) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "asset has " + std::to_string(asset.passes.size()) + " transfer passes; 1 to 3 are needed");
+  }
+  const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
+  for (std::size_t p = 0; p < asset.passes.size(); ++p) {
+    const TransferPass& pass = asset.passes[p];
+    const std::string label = "transfer pass " + std::to_string(p);
+    if (!isKnownKind(pass.kind)) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           label + " has unknown kind " + std::to_string(static_cast<std::uint32_t>(pass.kind)));
+    }
+    const std::string named = label + " (" + transferKindName(pass.kind) + ")";
+    for (std::size_t q = 0; q < p; ++q) {
+      if (asset.passes[q].kind == pass.kind) {
+        return Status::error(StatusCode::kInvalidArgument,
+                             named + " repeats the kind of pass " + std::to_string(q) + "; at most one per kind");
+      }
+    }
+    if (pass.channels != 1 && pass.channels != 3) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           named + " has " + std::to_string(pass.channels) + " channels; 1 or 3 are allowed");
+    }
+    const bool interreflected = pass.kind == TransferKind::kInterreflected;
+    if (interreflected ? (pass.bounces < 0 || pass.bounces > static_cast<int>(kMaxAssetBounces)) : pass.bounces != 0) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           named + " has bounces " + std::to_string(pass.bounces) +
+                               (interreflected ? "; 0 to " + std::to_string(kMaxAssetBounces) + " are allowed"
+                                               : "; only interreflection has bounces"));
+    }
+    const std::uint64_t expected = static_cast<std::uint64_t>(vertexCount) * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel;
+    if (pass.coeffs.size() != expected) {
+      return Status::error(StatusCode::kSizeMismatch, named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " +
+                                                          std::to_string(expected) + " expected (vertices * channels * order^2)");
+    }
+    for (std::size_t i = 0; i < pass.coeffs.size(); ++i) {
+      if (!std::isfinite(pass.coeffs[i])) {
+        return Status::error(StatusCode::kNotFinite, named + " coefficient " + std::to_string(i) + " is not finite");
+      }
+    }
+  }
+  if (!isValidAssetName(asset.name)) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "asset name must be at most " + std::to_string(kMaxAssetNameBytes) +
+                             " bytes of UTF-8 without control characters");
+  }
+  if (!isValidAssetSamplingName(asset.sampling)) {
+    return Status::error(StatusCode::kInvalidArgument, "asset sampling '" + asset.sampling + "' must be at most " +
+                                                           std::to_string(kMaxAssetSamplingBytes) + " characters of [a-z0-9_-]");
+  }
+  return Status::ok();
+}
+
+Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "encodeAsset: out is null");
+  if (Status s = checkAsset(asset); !s.isOk()) return s;
+
+  const std::uint64_t vertexCount = asset.positions.size();
+  const std::uint64_t triangleCount = asset.indices.size() / 3;
+  const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
+
+  // Metadata first: it is tiny and holds the name, so a catalogue can read a short prefix.
+  std::vector<PlannedSection> sections;
+  sections.push_back({AssetSectionType::kMetadata, AssetElementFormat::kBytes, 0, 0, 0,
+                      24 + asset.sampling.size() + asset.name.size(), 0, nullptr});
+  sections.push_back({AssetSectionType::kPositions, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
+  sections.push_back({AssetSectionType::kNormals, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
+  sections.push_back({AssetSectionType::kIndices, AssetElementFormat::kUint32, 0, 0, 0, triangleCount * 12, 0, nullptr});
+  sections.push_back({AssetSectionType::kAlbedo, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
+  for (const TransferPass& pass : asset.passes) {
+    sections.push_back({AssetSectionType::kTransfer, AssetElementFormat::kFloat32, static_cast<std::uint32_t>(pass.kind),
+                        static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
+                        vertexCount * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel * 4, 0, &pass});
+  }
+
+  const std::uint64_t tableEnd = kAssetHeaderSize + sections.size() * kAssetSectionEntrySize;
+  std::uint64_t end = tableEnd;
+  for (PlannedSection& s : sections) {
+    s.offset = alignUp(end);
+    end = s.offset + s.size;
+  }
+  const std::uint64_t fileSize = end;
+  // Matters in wasm, where size_t is 32 bits: refuse rather than wrap.
+  if (fileSize > std::numeric_limits<std::size_t>::max() || fileSize > out->max_size()) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "encoded asset would be " + std::to_string(fileSize) + " bytes, too large for this platform");
+  }
+
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(fileSize), 0);
+  std::uint8_t* base = bytes.data();
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const PlannedSection& s = sections[i];
+    std::uint8_t* p = base + s.offset;
+    switch (s.type) {
+      case AssetSectionType::kMetadata:
+        putU64(p, asset.samples);
+        putU64(p + 8, asset.seed);
+        putU32(p + 16, static_cast<std::uint32_t>(asset.sampling.size()));
+        putU32(p + 20, static_cast<std::uint32_t>(asset.name.size()));
+        if (!asset.sampling.empty()) std::memcpy(p + 24, asset.sampling.data(), asset.sampling.size());
+        if (!asset.name.empty()) std::memcpy(p + 24 + asset.sampling.size(), asset.name.data(), asset.name.size());
+        break;
+      case AssetSectionType::kPositions: putTriples(p, asset.positions); break;
+      case AssetSectionType::kNormals: putTriples(p, asset.normals); break;
+      case AssetSectionType::kAlbedo: putTriples(p, asset.albedo); break;
+      case AssetSectionType::kIndices:
+        if constexpr (std::endian::native == std::endian::little) {
+          std::memcpy(p, asset.indices.data(), asset.indices.size() * 4);
+        } else {
+          for (std::size_t k = 0; k < asset.indices.size(); ++k) putU32(p + 4 * k, asset.indices[k]);
+        }
+        break;
+      case AssetSectionType::kTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
+    }
+    std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
+    putU32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
+    putU32(e + L::kEntryFormat, static_cast<std::uint32_t>(s.format));
+    putU64(e + L::kEntryOffset, s.offset);
+    putU64(e + L::kEntrySize, s.size);
+    putU32(e + L::kEntryArg0, s.arg0);
+    putU32(e + L::kEntryArg1, s.arg1);
+    putU32(e + L::kEntryArg2, s.arg2);
+    putU32(e + L::kEntryCrc, crc32c({p, static_cast<std::size_t>(s.size)}));
+  }
+
+  std::memcpy(base + L::kMagic, kAssetMagic, 4);
+  putU16(base + L::kVersionMajor, kAssetVersionMajor);
+  putU16(base + L::kVersionMinor, kAssetVersionMinor);
+  putU32(base + L::kFlags, 0);
+  putU32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));
+  putU32(base + L::kVertexCount, static_cast<std::uint32_t>(vertexCount));
+  putU32(base + L::kTriangleCount, static_cast<std::uint32_t>(triangleCount));
+  putU32(base + L::kSectionCount, static_cast<std::uint32_t>(sections.size()));
+  putU32(base + L::kTableCrc, crc32c({base + kAssetHeaderSize, static_cast<std::size_t>(tableEnd - kAssetHeaderSize)}));
+  putU64(base + L::kFileSize, fileSize);
+  putU32(base + L::kHeaderCrc, crc32c({base, L::kHeaderCrc}));
+
+  *out = std::move(bytes);
+  return Status::ok();
+}
+
+}  // namespace prt
