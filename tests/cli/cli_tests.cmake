@@ -53,3 +53,11 @@ foreach(case IN LISTS PRT_CLI_CASES)
   endif()
   set_tests_properties(cli_${case} PROPERTIES FIXTURES_REQUIRED prt_cli_fixtures TIMEOUT 300)
 endforeach()
+
+# Baking, `info` and `shade` end to end (bake_cli_test.mjs, one ctest test per case).
+foreach(case IN ITEMS default_scene determinism bad_assets bad_scenes usage_errors interrupted)
+  add_test(NAME bake_cli_${case}
+           COMMAND ${PRT_NODE} ${CMAKE_CURRENT_LIST_DIR}/bake_cli_test.mjs ${case} $<TARGET_FILE:prt-bake>
+                   ${CMAKE_CURRENT_BINARY_DIR}/bake_cli_work/${case})
+  set_tests_properties(bake_cli_${case} PROPERTIES TIMEOUT 600)
+endforeach()

