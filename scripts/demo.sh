@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The demo, from a fresh clone: install what is missing, build, and project an environment
-# into spherical harmonics with `prt-bake probe` (the built-in sky, then a real HDR map
-# from Debian's blender-data). Later stages turn this into the web demo.
+# The demo, from a fresh clone: install what is missing, build, project environments into
+# spherical harmonics with `prt-bake probe` (the built-in sky, then a real HDR map from
+# Debian's blender-data), bake the built-in room scene and show what the asset holds.
+# Later stages turn this into the web demo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,4 +22,9 @@ if [[ -n "$exr" ]]; then
   "$bake" probe "$exr" --order 3
 fi
 echo
-echo "More: $bake probe --help"
+echo "=== baking the built-in room scene (Embree, order 5, 1024 samples, interreflection)"
+mkdir -p build/demo
+"$bake" --default -o build/demo/room.prt
+"$bake" info build/demo/room.prt
+echo
+echo "More: $bake --help, $bake probe --help, docs/baker.md"

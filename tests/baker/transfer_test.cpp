@@ -146,6 +146,60 @@ TEST(Transfer, StratifiedSamplingAgreesWithHammersley) {
   EXPECT_FALSE(bakeTransfer(s, o, &st).isOk()) << "stratified needs a square count";
 }
 
+TEST(Transfer, ThinOneSidedWallShadowsBothSides) {
+  // A single-sided vertical quad (normal +x) standing on the floor occludes floor points on
+  // its front and on its back alike.
+  Scene s;
+  test::addPlane(&s, 2.0f, 16, 0.0f, {0.5f, 0.5f, 0.5f});  // vertices every 0.25 m
+  const auto base = static_cast<std::uint32_t>(s.positions.size());
+  for (Vec3 p : {Vec3{0, 0, -1.5f}, Vec3{0, 0, 1.5f}, Vec3{0, 1.5f, -1.5f}, Vec3{0, 1.5f, 1.5f}}) {
+    s.positions.push_back(p);
+    s.normals.push_back({1, 0, 0});
+    s.albedo.push_back({0.5f, 0.5f, 0.5f});
+  }
+  for (std::uint32_t i : {0u, 2u, 1u, 1u, 2u, 3u}) s.indices.push_back(base + i);
+  BakeOptions o = quickOptions();
+  o.interreflection = false;
+  BakeResult r;
+  ASSERT_TRUE(bakeTransfer(s, o, &r).isOk());
+  const int n2 = shCoeffCount(o.order);
+  auto vertexAt = [&](float x, float z) {
+    for (std::size_t v = 0; v < base; ++v)
+      if (std::fabs(s.positions[v].x - x) < 1e-4f && std::fabs(s.positions[v].z - z) < 1e-4f) return v;
+    return std::size_t{0};
+  };
+  const std::size_t front = vertexAt(0.25f, 0.0f), back = vertexAt(-0.25f, 0.0f), far = vertexAt(2.0f, 2.0f);
+  const float frontRatio = r.shadowed[front * n2] / r.unshadowed[front * n2];
+  const float backRatio = r.shadowed[back * n2] / r.unshadowed[back * n2];
+  EXPECT_LT(frontRatio, 0.8f);
+  EXPECT_NEAR(frontRatio, backRatio, 0.02f) << "the back of the wall must shadow as much as its front";
+  EXPECT_GT(r.shadowed[far * n2] / r.unshadowed[far * n2], frontRatio);
+}
+
+TEST(Transfer, RayOffsetsScaleWithTheScene) {
+  // The same scene at millimetre and kilometre scale bakes to the same transfer.
+  auto bakeScaled = [](float scale) {
+    Scene s;
+    test::addPlane(&s, 2.0f * scale, 12, 0.0f, {0.6f, 0.6f, 0.6f});
+    test::addSphere(&s, {0, 0.8f * scale, 0}, 0.7f * scale, 24, 12, {0.4f, 0.4f, 0.4f});
+    BakeOptions o = quickOptions();
+    o.samples = 1024;
+    o.maxBounces = 2;
+    BakeResult r;
+    EXPECT_TRUE(bakeTransfer(s, o, &r).isOk());
+    return r;
+  };
+  const BakeResult unit = bakeScaled(1.0f), small = bakeScaled(1e-3f), large = bakeScaled(1e3f);
+  ASSERT_EQ(unit.shadowed.size(), small.shadowed.size());
+  int differing = 0;
+  for (std::size_t i = 0; i < unit.shadowed.size(); ++i) {
+    differing += std::fabs(unit.shadowed[i] - small.shadowed[i]) > 2e-3f;
+    differing += std::fabs(unit.shadowed[i] - large.shadowed[i]) > 2e-3f;
+  }
+  // Float rounding may flip a grazing ray or two, nothing more.
+  EXPECT_LE(differing, static_cast<int>(unit.shadowed.size() / 1000)) << differing << " coefficients differ";
+}
+
 TEST(Transfer, RejectsBadOptions) {
   Scene s;
   test::addPlane(&s, 1.0f, 2, 0.0f, {0.5f, 0.5f, 0.5f});
