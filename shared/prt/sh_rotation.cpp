@@ -112,7 +112,9 @@ Status ShRotation::make(int order, const Mat3& r, ShRotation* out) {
   return Status::ok();
 }
 
-Status ShRotation::apply(std::span<const float> in, std::span<float> out) const {
+// Band-by-band product out = D in, for scalar or RGB coefficients (T + T * float).
+template <typename T>
+Status ShRotation::applyTo(std::span<const T> in, std::span<T> out) const {
   const std::size_t n = static_cast<std::size_t>(shCoeffCount(order_));
   if (order_ == 0) return Status::error(StatusCode::kInvalidArgument, "rotation was not built");
   if (in.size() < n || out.size() < n) {
@@ -120,28 +122,15 @@ Status ShRotation::apply(std::span<const float> in, std::span<float> out) const 
   }
   for (int l = 0; l < order_; ++l) {
     for (int m = -l; m <= l; ++m) {
-      float acc = 0.0f;
-      for (int k = -l; k <= l; ++k) acc += at(l, m, k) * in[shIndex(l, k)];
-      out[shIndex(l, m)] = acc;
-    }
-  }
-  return Status::ok();
-}
-
-Status ShRotation::apply(std::span<const Rgb> in, std::span<Rgb> out) const {
-  const std::size_t n = static_cast<std::size_t>(shCoeffCount(order_));
-  if (order_ == 0) return Status::error(StatusCode::kInvalidArgument, "rotation was not built");
-  if (in.size() < n || out.size() < n) {
-    return Status::error(StatusCode::kSizeMismatch, "coefficient arrays must hold " + std::to_string(n) + " values");
-  }
-  for (int l = 0; l < order_; ++l) {
-    for (int m = -l; m <= l; ++m) {
-      Rgb acc;
+      T acc{};
       for (int k = -l; k <= l; ++k) acc = acc + in[shIndex(l, k)] * at(l, m, k);
       out[shIndex(l, m)] = acc;
     }
   }
   return Status::ok();
 }
+
+Status ShRotation::apply(std::span<const float> in, std::span<float> out) const { return applyTo(in, out); }
+Status ShRotation::apply(std::span<const Rgb> in, std::span<Rgb> out) const { return applyTo(in, out); }
 
 }  // namespace prt

@@ -32,6 +32,8 @@ class ShRotation {
   Status apply(std::span<const Rgb> in, std::span<Rgb> out) const;
 
  private:
+  template <typename T>
+  Status applyTo(std::span<const T> in, std::span<T> out) const;
   static int offset(int l) { return l * (2 * l - 1) * (2 * l + 1) / 3; }  // sum_{k<l} (2k+1)^2
   int order_ = 0;
   std::vector<float> values_;
