@@ -22,8 +22,12 @@ void ProgressBar::update(const BakeProgress& p) {
   if (!tty_) {
     if (done) {
       const double s = std::chrono::duration<double>(now - passStart_).count();
-      std::fprintf(stream_, "prt-bake: %s: %zu vertices, %.2f s, %.2f Mrays/s\n", p.pass, p.total, s,
-                   s > 0 ? static_cast<double>(p.rays) / s * 1e-6 : 0.0);
+      if (p.rays > 0) {
+        std::fprintf(stream_, "prt-bake: %s: %zu vertices, %.2f s, %.2f Mrays/s\n", p.pass, p.total, s,
+                     s > 0 ? static_cast<double>(p.rays) / s * 1e-6 : 0.0);
+      } else {
+        std::fprintf(stream_, "prt-bake: %s: %zu vertices, %.2f s\n", p.pass, p.total, s);
+      }
     }
     return;
   }
@@ -35,8 +39,10 @@ void ProgressBar::update(const BakeProgress& p) {
   const int width = 30, filled = static_cast<int>(fraction * width);
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(width, '.');
-  std::fprintf(stream_, "\r%-9s [%s] %5.1f%%  %7.2f Mrays/s  ETA %5.0fs ", p.pass, bar.c_str(), 100.0 * fraction,
-               s > 0 ? static_cast<double>(p.rays) / s * 1e-6 : 0.0, std::max(0.0, eta));
+  char rate[32] = "  (no rays)   ";  // bounce passes gather cached hits and cast nothing
+  if (p.rays > 0) std::snprintf(rate, sizeof rate, "%7.2f Mrays/s", s > 0 ? static_cast<double>(p.rays) / s * 1e-6 : 0.0);
+  std::fprintf(stream_, "\r%-9s [%s] %5.1f%%  %s  ETA %5.0fs ", p.pass, bar.c_str(), 100.0 * fraction, rate,
+               std::max(0.0, eta));
   std::fflush(stream_);
   drawn_ = true;
 }
