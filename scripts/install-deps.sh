@@ -3,6 +3,7 @@
 # Usage: scripts/install-deps.sh            (everything: native, wasm, test data)
 # Idempotent: a second run installs nothing and does not touch the network.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=(
   # native toolchain and test framework
@@ -13,17 +14,36 @@ packages=(
   libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
+  # headless browser for the web client's tests (driven by playwright-core from npm)
+  chromium
 )
 
 missing=()
+# npm comes with the machine's Node.js where it has one; otherwise Debian's package.
+command -v npm >/dev/null || packages+=(npm)
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
     missing+=("$p")
   fi
 done
 
+# npm packages of a folder, from its lockfile; skipped while the lockfile is unchanged.
+npm_ci() {
+  local dir=$1 stamp=$1/node_modules/.prt-lockfile-sha256
+  local want
+  want=$(sha256sum "$dir/package-lock.json" | cut -d' ' -f1)
+  if [[ -f $stamp && $(cat "$stamp") == "$want" ]]; then
+    echo "install-deps: $dir/node_modules is up to date"
+    return
+  fi
+  echo "install-deps: npm ci in $dir"
+  (cd "$dir" && npm ci --ignore-scripts --no-audit --no-fund)
+  echo "$want" > "$stamp"
+}
+
 if ((${#missing[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} packages already installed"
+  npm_ci web
   exit 0
 fi
 
@@ -41,3 +61,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${sudo[@]}" apt-get update -q
 "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+npm_ci web

@@ -1,0 +1,160 @@
+#include "client_app.h"
+
+#include <emscripten/html5.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "prt/sh_basis.h"
+#include "prt/sh_rotation.h"
+#include "transfer_texture.h"
+
+namespace prt::web {
+
+ClientApp::ClientApp(const std::string& selector) {
+  EmscriptenWebGLContextAttributes attrs;
+  emscripten_webgl_init_context_attributes(&attrs);
+  attrs.majorVersion = 2;
+  attrs.minorVersion = 0;
+  attrs.antialias = true;
+  attrs.depth = true;
+  attrs.preserveDrawingBuffer = true;  // screenshots and tests read the canvas after a frame
+  context_ = emscripten_webgl_create_context(selector.c_str(), &attrs);
+  if (context_ <= 0) {
+    error_ = "WebGL2 is not available in this browser (context creation failed)";
+    return;
+  }
+  emscripten_webgl_make_context_current(context_);
+  if (Status s = renderer_.init(); !s.isOk()) error_ = s.message();
+  setWhiteFurnace(1.0f);
+}
+
+std::uint8_t* ClientApp::reserveAsset(std::size_t bytes) {
+  pending_.clear();
+  pending_.shrink_to_fit();
+  try {
+    pending_.resize(bytes);
+  } catch (...) {
+    return nullptr;
+  }
+  return pending_.data();
+}
+
+std::string ClientApp::loadAsset() {
+  if (!ok()) return error_;
+  BakedAsset decoded;
+  const Status s = decodeAsset(pending_, &decoded);
+  pending_.clear();
+  pending_.shrink_to_fit();
+  if (!s.isOk()) return s.toString();
+  if (Status u = renderer_.upload(decoded); !u.isOk()) return u.message();
+  asset_ = std::move(decoded);
+  boundsMin_ = boundsMax_ = asset_.positions.front();
+  for (const Vec3& p : asset_.positions) {
+    boundsMin_ = {std::min(boundsMin_.x, p.x), std::min(boundsMin_.y, p.y), std::min(boundsMin_.z, p.z)};
+    boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
+  }
+  displayOrder_ = asset_.shOrder;
+  if (!renderer_.hasPass(mode_)) {
+    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
+      if (renderer_.hasPass(m)) mode_ = m;
+  }
+  frameScene();
+  return "";
+}
+
+std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int order) {
+  if (order < 1 || order > kMaxShOrder || flatRgb.size() != static_cast<std::size_t>(3 * shCoeffCount(order))) {
+    return "environment SH must hold order^2 RGB coefficients, order 1.." + std::to_string(kMaxShOrder);
+  }
+  for (float v : flatRgb)
+    if (!std::isfinite(v)) return "environment SH holds a non-finite value";
+  environmentOrder_ = std::min(order, 8);
+  environment_.assign(static_cast<std::size_t>(shCoeffCount(environmentOrder_)), Rgb{});
+  for (std::size_t i = 0; i < environment_.size(); ++i) environment_[i] = {flatRgb[3 * i], flatRgb[3 * i + 1], flatRgb[3 * i + 2]};
+  updateLighting();
+  return "";
+}
+
+void ClientApp::setWhiteFurnace(float intensity) {
+  environmentOrder_ = 1;
+  environment_.assign(1, Rgb{1, 1, 1} * (intensity * static_cast<float>(2.0 * std::sqrt(kPi))));
+  updateLighting();
+}
+
+void ClientApp::setEnvRotation(float yaw, float pitch) {
+  yaw_ = yaw;
+  pitch_ = std::clamp(pitch, -1.5f, 1.5f);
+}
+void ClientApp::setLightColor(float r, float g, float b) { color_ = {r, g, b}; }
+void ClientApp::setMode(int mode) {
+  const auto m = static_cast<ShadingMode>(std::clamp(mode, 0, 3));
+  if (renderer_.hasPass(m) || asset_.positions.empty()) mode_ = m;
+}
+void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, asset_.shOrder)); }
+void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
+
+void ClientApp::orbit(float dx, float dy) {
+  camYaw_ += dx;
+  camPitch_ = std::clamp(camPitch_ + dy, -1.5f, 1.5f);
+}
+void ClientApp::pan(float dx, float dy) {
+  const Vec3 forward{-std::sin(camYaw_) * std::cos(camPitch_), -std::sin(camPitch_), -std::cos(camYaw_) * std::cos(camPitch_)};
+  Vec3 right = cross(forward, {0, 1, 0});
+  right = right * (1.0f / std::max(1e-6f, length(right)));
+  const Vec3 up = cross(right, forward);
+  target_ = target_ + (right * dx + up * dy) * (distance_ * 0.5f);
+}
+void ClientApp::zoom(float factor) { distance_ = std::clamp(distance_ * factor, radius_ * 0.05f, radius_ * 50.0f); }
+
+void ClientApp::frameScene() {
+  target_ = (boundsMin_ + boundsMax_) * 0.5f;
+  radius_ = std::max(1e-3f, 0.5f * length(boundsMax_ - boundsMin_));
+  const float fov = 0.8f;
+  distance_ = radius_ / std::sin(0.5f * fov) * 1.05f;
+  camYaw_ = 0.0f;
+  camPitch_ = 0.35f;
+}
+
+void ClientApp::updateLighting() {
+  Mat3 r = rotationAxisAngle({0, 1, 0}, yaw_) * rotationAxisAngle({1, 0, 0}, pitch_);
+  lighting_ = environment_;
+  if (environmentOrder_ > 1) {
+    ShRotation rot;
+    if (ShRotation::make(environmentOrder_, r, &rot).isOk()) (void)rot.apply(environment_, lighting_);
+  }
+  for (Rgb& c : lighting_) c = {c.r * color_.r, c.g * color_.g, c.b * color_.b};
+  packLighting(lighting_, displayOrder_, packed_);
+}
+
+void ClientApp::render(int width, int height) {
+  if (!ok() || width <= 0 || height <= 0) return;
+  emscripten_webgl_make_context_current(context_);
+  updateLighting();  // the shared SH rotation, every frame
+  const Vec3 eye = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
+                                  std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
+  const float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
+  const float farZ = distance_ + 2.0f * radius_;
+  viewProjection_ = multiply(perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ), lookAt(eye, target_, {0, 1, 0}));
+  FrameParams p;
+  p.viewProjection = viewProjection_;
+  p.mode = mode_;
+  p.displayOrder = displayOrder_;
+  p.exposure = exposure_;
+  p.background = background_;
+  p.lighting = packed_;
+  renderer_.draw(width, height, p);
+}
+
+std::vector<float> ClientApp::lightSH() const {
+  const int n = shCoeffCount(std::max(1, std::min(displayOrder_, 8)));
+  std::vector<float> out(static_cast<std::size_t>(3 * n), 0.0f);
+  for (int i = 0; i < n && i < static_cast<int>(lighting_.size()); ++i) {
+    out[3 * i] = lighting_[i].r;
+    out[3 * i + 1] = lighting_[i].g;
+    out[3 * i + 2] = lighting_[i].b;
+  }
+  return out;
+}
+
+}  // namespace prt::web

@@ -1,0 +1,192 @@
+#include "gl_renderer.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "transfer_texture.h"
+#include "web_shaders.h"
+
+namespace prt::web {
+namespace {
+
+Status compile(GLenum type, const char* source, GLuint* out) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    glDeleteShader(s);
+    return Status::error(StatusCode::kInvalidArgument, std::string("shader compile failed: ") + log);
+  }
+  *out = s;
+  return Status::ok();
+}
+
+GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
+  GLuint b = 0;
+  glGenBuffers(1, &b);
+  glBindBuffer(target, b);
+  glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
+  return b;
+}
+
+}  // namespace
+
+Status GlRenderer::link(const char* vs, const char* fs, Program* out) {
+  GLuint v = 0, f = 0;
+  if (Status s = compile(GL_VERTEX_SHADER, vs, &v); !s.isOk()) return s;
+  if (Status s = compile(GL_FRAGMENT_SHADER, fs, &f); !s.isOk()) {
+    glDeleteShader(v);
+    return s;
+  }
+  const GLuint p = glCreateProgram();
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    glDeleteProgram(p);
+    return Status::error(StatusCode::kInvalidArgument, std::string("program link failed: ") + log);
+  }
+  out->id = p;
+  out->viewProjection = glGetUniformLocation(p, "uViewProjection");
+  out->inverseViewProjection = glGetUniformLocation(p, "uInverseViewProjection");
+  out->lightR = glGetUniformLocation(p, "uLightR");
+  out->lightG = glGetUniformLocation(p, "uLightG");
+  out->lightB = glGetUniformLocation(p, "uLightB");
+  out->exposure = glGetUniformLocation(p, "uExposure");
+  out->transfer = glGetUniformLocation(p, "uTransfer");
+  out->textureWidth = glGetUniformLocation(p, "uTextureWidth");
+  out->texelsPerChannel = glGetUniformLocation(p, "uTexelsPerChannel");
+  out->channels = glGetUniformLocation(p, "uChannels");
+  out->activeTexels = glGetUniformLocation(p, "uActiveTexels");
+  return Status::ok();
+}
+
+Status GlRenderer::init() {
+  if (Status s = link(shaders::k_prt_vert, shaders::k_shade_frag, &prt_); !s.isOk()) return s;
+  if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
+  if (Status s = link(shaders::k_background_vert, shaders::k_background_frag, &background_); !s.isOk()) return s;
+  glGenVertexArrays(1, &backgroundVao_);
+  return Status::ok();
+}
+
+void GlRenderer::release() {
+  for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_}) {
+    if (*b) glDeleteBuffers(1, b);
+    *b = 0;
+  }
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  vao_ = 0;
+  for (PassTexture& t : passes_) {
+    if (t.texture) glDeleteTextures(1, &t.texture);
+    t = {};
+  }
+  indexCount_ = 0;
+}
+
+Status GlRenderer::upload(const BakedAsset& asset) {
+  // Pack first: nothing on the GPU changes if a pass does not fit.
+  std::array<TransferTexture, 3> packed;
+  for (const TransferPass& pass : asset.passes) {
+    const auto kind = static_cast<std::size_t>(pass.kind);
+    if (kind > 2) continue;
+    if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), &packed[kind]); !s.isOk()) return s;
+  }
+  release();
+  glGenVertexArrays(1, &vao_);
+  glBindVertexArray(vao_);
+  positions_ = makeBuffer(GL_ARRAY_BUFFER, asset.positions.data(), asset.positions.size() * sizeof(Vec3));
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  albedo_ = makeBuffer(GL_ARRAY_BUFFER, asset.albedo.data(), asset.albedo.size() * sizeof(Rgb));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
+  normals_ = makeBuffer(GL_ARRAY_BUFFER, asset.normals.data(), asset.normals.size() * sizeof(Vec3));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  indices_ = makeBuffer(GL_ELEMENT_ARRAY_BUFFER, asset.indices.data(), asset.indices.size() * sizeof(std::uint32_t));
+  glBindVertexArray(0);
+  indexCount_ = static_cast<GLsizei>(asset.indices.size());
+  bakedOrder_ = asset.shOrder;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const TransferTexture& t = packed[k];
+    if (t.texels.empty()) continue;
+    glGenTextures(1, &passes_[k].texture);
+    glBindTexture(GL_TEXTURE_2D, passes_[k].texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.texels.data());
+    passes_[k].channels = t.channels;
+    passes_[k].texelsPerChannel = t.texelsPerChannel;
+  }
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    release();
+    return Status::error(StatusCode::kInvalidArgument,
+                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
+                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+  }
+  return Status::ok();
+}
+
+bool GlRenderer::hasPass(ShadingMode mode) const {
+  if (mode == ShadingMode::kLambert) return indexCount_ > 0;
+  return passes_[static_cast<std::size_t>(mode)].texture != 0;
+}
+
+void GlRenderer::draw(int width, int height, const FrameParams& p) {
+  glViewport(0, 0, width, height);
+  glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  auto setLighting = [&](const Program& prog) {
+    glUniform4fv(prog.lightR, 16, p.lighting);
+    glUniform4fv(prog.lightG, 16, p.lighting + 64);
+    glUniform4fv(prog.lightB, 16, p.lighting + 128);
+    glUniform1f(prog.exposure, p.exposure);
+  };
+  if (p.background) {
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(background_.id);
+    const Mat4 inv = inverse(p.viewProjection);
+    glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, inv.data());
+    setLighting(background_);
+    glBindVertexArray(backgroundVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  if (indexCount_ == 0) return;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(vao_);
+  if (p.mode == ShadingMode::kLambert) {
+    glUseProgram(lambert_.id);
+    glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+    setLighting(lambert_);
+  } else {
+    const PassTexture& t = passes_[static_cast<std::size_t>(p.mode)];
+    if (!t.texture) return;
+    glUseProgram(prt_.id);
+    glUniformMatrix4fv(prt_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+    setLighting(prt_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, t.texture);
+    glUniform1i(prt_.transfer, 0);
+    glUniform1i(prt_.textureWidth, kTransferTextureWidth);
+    glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
+    glUniform1i(prt_.channels, t.channels);
+    glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(p.displayOrder, 1, bakedOrder_)));
+  }
+  glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace prt::web

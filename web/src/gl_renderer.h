@@ -1,0 +1,57 @@
+// WebGL2 drawing of a baked asset: geometry buffers, one transfer texture per pass, the PRT
+// and Lambert programs and the SH background. All GL in the project lives in web/.
+#pragma once
+
+#include <GLES3/gl3.h>
+
+#include <array>
+#include <string>
+
+#include "mat4.h"
+#include "prt/asset.h"
+#include "prt/status.h"
+
+namespace prt::web {
+
+enum class ShadingMode { kUnshadowed = 0, kShadowed = 1, kInterreflected = 2, kLambert = 3 };
+
+struct FrameParams {
+  Mat4 viewProjection{};
+  ShadingMode mode = ShadingMode::kInterreflected;
+  int displayOrder = 5;        // <= the baked order
+  float exposure = 1.0f;       // linear multiplier
+  bool background = true;      // draw the SH environment behind the scene
+  const float* lighting = nullptr;  // 3 x 64 floats from packLighting
+};
+
+class GlRenderer {
+ public:
+  // Compiles the programs; the WebGL2 context must be current.
+  Status init();
+  // Uploads geometry and every transfer pass of `asset`, replacing any previous scene.
+  Status upload(const BakedAsset& asset);
+  bool hasPass(ShadingMode mode) const;
+  void draw(int width, int height, const FrameParams& p);
+
+ private:
+  struct Program {
+    GLuint id = 0;
+    GLint viewProjection = -1, lightR = -1, lightG = -1, lightB = -1, exposure = -1;
+    GLint transfer = -1, textureWidth = -1, texelsPerChannel = -1, channels = -1, activeTexels = -1;
+    GLint inverseViewProjection = -1;
+  };
+  struct PassTexture {
+    GLuint texture = 0;
+    int channels = 0, texelsPerChannel = 0;
+  };
+  Status link(const char* vs, const char* fs, Program* out);
+  void release();
+
+  Program prt_, lambert_, background_;
+  GLuint vao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, backgroundVao_ = 0;
+  GLsizei indexCount_ = 0;
+  int bakedOrder_ = 0;
+  std::array<PassTexture, 3> passes_{};
+};
+
+}  // namespace prt::web

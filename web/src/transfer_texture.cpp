@@ -1,0 +1,52 @@
+#include "transfer_texture.h"
+
+#include <algorithm>
+#include <string>
+
+#include "prt/sh_basis.h"
+
+namespace prt::web {
+
+Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, TransferTexture* out) {
+  if (pass.channels != 1 && pass.channels != 3) {
+    return Status::error(StatusCode::kInvalidArgument, "transfer pass has " + std::to_string(pass.channels) + " channels");
+  }
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order));
+  if (pass.coeffs.size() != vertexCount * n2 * static_cast<std::size_t>(pass.channels)) {
+    return Status::error(StatusCode::kSizeMismatch, "transfer pass size does not match the vertex count");
+  }
+  const int perChannel = texelsForOrder(order);
+  const std::size_t texelCount = vertexCount * static_cast<std::size_t>(perChannel * pass.channels);
+  const std::size_t maxTexels = static_cast<std::size_t>(kTransferTextureWidth) * kTransferTextureWidth;
+  if (texelCount > maxTexels) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "transfer needs " + std::to_string(texelCount) + " texels; one texture holds at most " +
+                             std::to_string(maxTexels));
+  }
+  out->width = kTransferTextureWidth;
+  out->height = static_cast<int>(std::max<std::size_t>(1, (texelCount + kTransferTextureWidth - 1) / kTransferTextureWidth));
+  out->channels = pass.channels;
+  out->texelsPerChannel = perChannel;
+  out->texels.assign(static_cast<std::size_t>(out->width) * out->height * 4, 0.0f);
+  const std::size_t padded = static_cast<std::size_t>(perChannel) * 4;
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    for (int c = 0; c < pass.channels; ++c) {
+      const float* src = &pass.coeffs[(v * pass.channels + c) * n2];
+      float* dst = &out->texels[(v * pass.channels + c) * padded];
+      std::copy(src, src + n2, dst);
+    }
+  }
+  return Status::ok();
+}
+
+void packLighting(const std::vector<Rgb>& coeffs, int displayOrder, float* out) {
+  std::fill(out, out + 3 * 64, 0.0f);
+  const std::size_t n = std::min(coeffs.size(), static_cast<std::size_t>(shCoeffCount(std::min(displayOrder, 8))));
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = coeffs[i].r;
+    out[64 + i] = coeffs[i].g;
+    out[128 + i] = coeffs[i].b;
+  }
+}
+
+}  // namespace prt::web

@@ -1,0 +1,36 @@
+// Packs a transfer pass into RGBA32F texels for the vertex shader (shaders/prt.vert):
+// per vertex, per channel, the order^2 coefficients padded to whole texels. GL-free, so
+// the packing is tested under Node like the rest of the shared code.
+#pragma once
+
+#include <vector>
+
+#include "prt/asset.h"
+#include "prt/status.h"
+#include "prt/vec3.h"
+
+namespace prt::web {
+
+// Guaranteed by every WebGL2 implementation (MAX_TEXTURE_SIZE >= 2048).
+inline constexpr int kTransferTextureWidth = 2048;
+
+struct TransferTexture {
+  int width = 0, height = 0;   // texels
+  int channels = 0;            // 1 or 3
+  int texelsPerChannel = 0;    // ceil(order^2 / 4)
+  std::vector<float> texels;   // width * height * 4 floats
+};
+
+// Texels of one channel at `order`: ceil(order^2 / 4).
+inline int texelsForOrder(int order) { return (order * order + 3) / 4; }
+
+// Packs `pass` of an asset with `vertexCount` vertices at SH order `order`. Errors when the
+// texture would exceed kTransferTextureWidth^2 texels (too many vertices for one texture).
+Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, TransferTexture* out);
+
+// Packs lighting (order^2 RGB coefficients) into 16 vec4 per channel in the same layout,
+// keeping only the first `displayOrder`^2 coefficients (the rest zero): the uniforms
+// uLightR/G/B. out must hold 3 * 64 floats.
+void packLighting(const std::vector<Rgb>& coeffs, int displayOrder, float* out);
+
+}  // namespace prt::web
