@@ -43,6 +43,25 @@ const hook = {
     for (let i = 0; i < flat.length; i += 3) rows.push([flat[i], flat[i + 1], flat[i + 2]]);
     return rows;
   },
+  // Canvas pixel (CSS pixels, origin top-left) where world point p appeared in the last frame.
+  project(p) {
+    if (!app) return null;
+    const [x, y] = app.project(p[0], p[1], p[2]);
+    return [(x * 0.5 + 0.5) * canvas.clientWidth, (0.5 - y * 0.5) * canvas.clientHeight];
+  },
+  // Benchmark: draws n frames back to back, each finished with a 1-pixel readPixels (so the
+  // GPU work is inside the measurement), and returns the mean milliseconds per frame.
+  timeFrames(n) {
+    if (!app || !hook.ready) return NaN;
+    const gl = canvas.getContext('webgl2');
+    const pixel = new Uint8Array(4);
+    const t0 = performance.now();
+    for (let i = 0; i < n; i++) {
+      app.render(canvas.width, canvas.height);
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    }
+    return (performance.now() - t0) / n;
+  },
   set(options) {
     if ('mode' in options) state.mode = options.mode;
     if ('order' in options) state.order = options.order;

@@ -146,6 +146,16 @@ void ClientApp::render(int width, int height) {
   renderer_.draw(width, height, p);
 }
 
+std::vector<float> ClientApp::project(float x, float y, float z) const {
+  const Mat4& m = viewProjection_;
+  const float cx = m[0] * x + m[4] * y + m[8] * z + m[12];
+  const float cy = m[1] * x + m[5] * y + m[9] * z + m[13];
+  const float cz = m[2] * x + m[6] * y + m[10] * z + m[14];
+  const float cw = m[3] * x + m[7] * y + m[11] * z + m[15];
+  if (!(std::fabs(cw) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
+  return {cx / cw, cy / cw, cz / cw};
+}
+
 std::vector<float> ClientApp::lightSH() const {
   const int n = shCoeffCount(std::max(1, std::min(displayOrder_, 8)));
   std::vector<float> out(static_cast<std::size_t>(3 * n), 0.0f);

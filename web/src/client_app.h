@@ -48,6 +48,10 @@ class ClientApp {
   // Updates the lighting (rotation, colour, truncation) and draws one frame.
   void render(int width, int height);
 
+  // Where world point (x, y, z) landed in the last frame: [ndcX, ndcY, depth], NDC in
+  // [-1, 1] with +y up. Lets tests find scene features on screen without guessing.
+  std::vector<float> project(float x, float y, float z) const;
+
   // The lighting of the last frame at the display order, flat [r,g,b] per coefficient.
   std::vector<float> lightSH() const;
 

@@ -25,6 +25,8 @@ std::string setEnvironment(ClientApp& app, const val& flat, int order) {
 
 val lightSH(const ClientApp& app) { return val::array(app.lightSH()); }
 
+val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_client) {
@@ -47,6 +49,7 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("frameScene", &ClientApp::frameScene)
       .function("render", &ClientApp::render)
       .function("lightSH", &lightSH)
+      .function("project", &project)
       .function("vertexCount", &ClientApp::vertexCount)
       .function("triangleCount", &ClientApp::triangleCount)
       .function("bakedOrder", &ClientApp::bakedOrder)

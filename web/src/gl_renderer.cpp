@@ -95,11 +95,13 @@ void GlRenderer::release() {
 
 Status GlRenderer::upload(const BakedAsset& asset) {
   // Pack first: nothing on the GPU changes if a pass does not fit.
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   std::array<TransferTexture, 3> packed;
   for (const TransferPass& pass : asset.passes) {
     const auto kind = static_cast<std::size_t>(pass.kind);
     if (kind > 2) continue;
-    if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), &packed[kind]); !s.isOk()) return s;
+    if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), maxSize, &packed[kind]); !s.isOk()) return s;
   }
   release();
   glGenVertexArrays(1, &vao_);

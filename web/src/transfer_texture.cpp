@@ -7,7 +7,7 @@
 
 namespace prt::web {
 
-Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, TransferTexture* out) {
+Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, int maxHeight, TransferTexture* out) {
   if (pass.channels != 1 && pass.channels != 3) {
     return Status::error(StatusCode::kInvalidArgument, "transfer pass has " + std::to_string(pass.channels) + " channels");
   }
@@ -17,11 +17,11 @@ Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount
   }
   const int perChannel = texelsForOrder(order);
   const std::size_t texelCount = vertexCount * static_cast<std::size_t>(perChannel * pass.channels);
-  const std::size_t maxTexels = static_cast<std::size_t>(kTransferTextureWidth) * kTransferTextureWidth;
+  const std::size_t maxTexels = static_cast<std::size_t>(kTransferTextureWidth) * static_cast<std::size_t>(std::max(1, maxHeight));
   if (texelCount > maxTexels) {
     return Status::error(StatusCode::kInvalidArgument,
-                         "transfer needs " + std::to_string(texelCount) + " texels; one texture holds at most " +
-                             std::to_string(maxTexels));
+                         "transfer needs " + std::to_string(texelCount) + " texels; one texture on this device holds at most " +
+                             std::to_string(maxTexels) + " (MAX_TEXTURE_SIZE " + std::to_string(maxHeight) + ")");
   }
   out->width = kTransferTextureWidth;
   out->height = static_cast<int>(std::max<std::size_t>(1, (texelCount + kTransferTextureWidth - 1) / kTransferTextureWidth));

@@ -24,9 +24,10 @@ struct TransferTexture {
 // Texels of one channel at `order`: ceil(order^2 / 4).
 inline int texelsForOrder(int order) { return (order * order + 3) / 4; }
 
-// Packs `pass` of an asset with `vertexCount` vertices at SH order `order`. Errors when the
-// texture would exceed kTransferTextureWidth^2 texels (too many vertices for one texture).
-Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, TransferTexture* out);
+// Packs `pass` of an asset with `vertexCount` vertices at SH order `order` into a texture
+// kTransferTextureWidth wide and at most `maxHeight` rows (the device's MAX_TEXTURE_SIZE).
+// Errors, naming both numbers, when the scene does not fit in one texture.
+Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, int maxHeight, TransferTexture* out);
 
 // Packs lighting (order^2 RGB coefficients) into 16 vec4 per channel in the same layout,
 // keeping only the first `displayOrder`^2 coefficients (the rest zero): the uniforms
