@@ -35,7 +35,7 @@ GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
 
 }  // namespace
 
-Status GlRenderer::link(const char* vs, const char* fs, Program* out) {
+Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* feedback) {
   GLuint v = 0, f = 0;
   if (Status s = compile(GL_VERTEX_SHADER, vs, &v); !s.isOk()) return s;
   if (Status s = compile(GL_FRAGMENT_SHADER, fs, &f); !s.isOk()) {
@@ -45,6 +45,7 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out) {
   const GLuint p = glCreateProgram();
   glAttachShader(p, v);
   glAttachShader(p, f);
+  if (feedback) glTransformFeedbackVaryings(p, 1, &feedback, GL_SEPARATE_ATTRIBS);
   glLinkProgram(p);
   glDeleteShader(v);
   glDeleteShader(f);
@@ -72,7 +73,9 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out) {
 }
 
 Status GlRenderer::init() {
-  if (Status s = link(shaders::k_prt_vert, shaders::k_shade_frag, &prt_); !s.isOk()) return s;
+  if (Status s = link(shaders::k_prt_vert, shaders::k_discard_frag, &prt_, "vRadiance"); !s.isOk()) return s;
+  if (Status s = link(shaders::k_radiance_vert, shaders::k_shade_frag, &radiance_); !s.isOk()) return s;
+  glGenTransformFeedbacks(1, &feedback_);
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
   if (Status s = link(shaders::k_background_vert, shaders::k_background_frag, &background_); !s.isOk()) return s;
   glGenVertexArrays(1, &backgroundVao_);
@@ -80,12 +83,15 @@ Status GlRenderer::init() {
 }
 
 void GlRenderer::release() {
-  for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_}) {
+  for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_}) {
     if (*b) glDeleteBuffers(1, b);
     *b = 0;
   }
-  if (vao_) glDeleteVertexArrays(1, &vao_);
-  vao_ = 0;
+  for (GLuint* a : {&vao_, &feedbackVao_}) {
+    if (*a) glDeleteVertexArrays(1, a);
+    *a = 0;
+  }
+  vertexCount_ = 0;
   for (PassTexture& t : passes_) {
     if (t.texture) glDeleteTextures(1, &t.texture);
     t = {};
@@ -116,7 +122,20 @@ Status GlRenderer::upload(const BakedAsset& asset) {
   glEnableVertexAttribArray(2);
   glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
   indices_ = makeBuffer(GL_ELEMENT_ARRAY_BUFFER, asset.indices.data(), asset.indices.size() * sizeof(std::uint32_t));
+  radianceBuffer_ = makeBuffer(GL_ARRAY_BUFFER, nullptr, asset.positions.size() * sizeof(Vec3));
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  glGenVertexArrays(1, &feedbackVao_);
+  glBindVertexArray(feedbackVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, positions_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, albedo_);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
   glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  vertexCount_ = static_cast<GLsizei>(asset.positions.size());
   indexCount_ = static_cast<GLsizei>(asset.indices.size());
   bakedOrder_ = asset.shOrder;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -167,27 +186,47 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   if (indexCount_ == 0) return;
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glBindVertexArray(vao_);
   if (p.mode == ShadingMode::kLambert) {
+    glEnable(GL_DEPTH_TEST);
+    glBindVertexArray(vao_);
     glUseProgram(lambert_.id);
     glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
     setLighting(lambert_);
-  } else {
-    const PassTexture& t = passes_[static_cast<std::size_t>(p.mode)];
-    if (!t.texture) return;
-    glUseProgram(prt_.id);
-    glUniformMatrix4fv(prt_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
-    setLighting(prt_);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, t.texture);
-    glUniform1i(prt_.transfer, 0);
-    glUniform1i(prt_.textureWidth, kTransferTextureWidth);
-    glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
-    glUniform1i(prt_.channels, t.channels);
-    glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(p.displayOrder, 1, bakedOrder_)));
+    glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+    return;
   }
+  const PassTexture& t = passes_[static_cast<std::size_t>(p.mode)];
+  if (!t.texture) return;
+  // PRT pass: prt.vert runs once per vertex (points, rasteriser off) and its exit radiance
+  // is captured by transform feedback. Shading every vertex exactly once matters where
+  // vertices are not cached between triangles (software WebGL shades each corner anew).
+  glUseProgram(prt_.id);
+  glUniformMatrix4fv(prt_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+  setLighting(prt_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, t.texture);
+  glUniform1i(prt_.transfer, 0);
+  glUniform1i(prt_.textureWidth, kTransferTextureWidth);
+  glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
+  glUniform1i(prt_.channels, t.channels);
+  glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(p.displayOrder, 1, bakedOrder_)));
+  glBindVertexArray(feedbackVao_);
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, radianceBuffer_);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, vertexCount_);
+  glEndTransformFeedback();
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+  glDisable(GL_RASTERIZER_DISCARD);
+  // Draw pass with the captured radiance.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(vao_);
+  glUseProgram(radiance_.id);
+  glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+  glUniform1f(radiance_.exposure, p.exposure);
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
 }
 

@@ -44,11 +44,16 @@ class GlRenderer {
     GLuint texture = 0;
     int channels = 0, texelsPerChannel = 0;
   };
-  Status link(const char* vs, const char* fs, Program* out);
+  // `feedback`: name of a varying to capture with transform feedback, or nullptr.
+  Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   void release();
 
-  Program prt_, lambert_, background_;
-  GLuint vao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, backgroundVao_ = 0;
+  Program prt_, lambert_, background_, radiance_;
+  // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
+  // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
+  GLuint vao_ = 0, feedbackVao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, radianceBuffer_ = 0;
+  GLuint backgroundVao_ = 0, feedback_ = 0;
+  GLsizei vertexCount_ = 0;
   GLsizei indexCount_ = 0;
   int bakedOrder_ = 0;
   std::array<PassTexture, 3> passes_{};
