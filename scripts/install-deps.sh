@@ -12,6 +12,9 @@ packages=(
   emscripten nodejs
   # the baker: ray tracing, image loading for `prt-bake probe`
   libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
+  # the server: Boost.Beast/Asio (header-only), and the encoders of its precompressed
+  # variants (gzip, zstd, brotli)
+  libboost-dev zlib1g-dev libzstd-dev libbrotli-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
   # headless browser for the web client's tests (driven by playwright-core from npm)

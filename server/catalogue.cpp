@@ -1,0 +1,233 @@
+#include "catalogue.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "content_hash.h"
+#include "encoded_variants.h"
+#include "json_text.h"
+#include "request_target.h"
+
+namespace prt::serve {
+namespace {
+
+constexpr std::string_view kExtensions[] = {".prt"};
+
+std::int64_t steadyNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string baseName(const std::string& rel) {
+  const std::size_t slash = rel.rfind('/');
+  return slash == std::string::npos ? rel : rel.substr(slash + 1);
+}
+
+std::string stem(const std::string& fileName) {
+  const std::size_t dot = fileName.rfind('.');
+  return dot == std::string::npos ? fileName : fileName.substr(0, dot);
+}
+
+// Reads all `size` bytes of `fd` from offset 0.
+Status readAll(int fd, std::uint64_t size, std::vector<std::uint8_t>* out) {
+  out->resize(static_cast<std::size_t>(size));
+  std::size_t done = 0;
+  while (done < out->size()) {
+    const ssize_t n = ::pread(fd, out->data() + done, out->size() - done, static_cast<off_t>(done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return Status::error(StatusCode::kInvalidArgument, std::string("read failed: ") + std::strerror(errno));
+    if (n == 0) return Status::error(StatusCode::kTruncated, "file shrank while being read");
+    done += static_cast<std::size_t>(n);
+  }
+  return Status::ok();
+}
+
+bool urlSafeName(std::string_view name) {
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '\\') return false;
+  }
+  return true;
+}
+
+// Examines one listed file: open, read, verify, hash, make the variants.
+std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const ScannedFile& scanned,
+                                              const CatalogueOptions& options, bool* unstable) {
+  auto e = std::make_shared<CatalogueEntry>();
+  e->file = scanned.relPath;
+  const std::string fileName = baseName(scanned.relPath);
+  e->name = stem(fileName);
+  e->bytes = scanned.stamp.size;
+  if (!scanned.problem.empty()) {
+    e->error = scanned.problem;
+    return e;
+  }
+  FileRef file;
+  struct stat st {};
+  switch (root.openRelative(scanned.relPath, &file, &st)) {
+    case OpenOutcome::kFile: break;
+    case OpenOutcome::kOutside: e->error = "resolves outside the root"; return e;
+    default: e->error = "cannot be opened"; *unstable = true; return e;
+  }
+  e->stamp = stampOf(st);
+  e->bytes = e->stamp.size;
+  if (e->bytes > options.maxAssetBytes) {
+    e->error = "larger than the server's limit of " + std::to_string(options.maxAssetBytes) + " bytes";
+    return e;
+  }
+  if (!urlSafeName(fileName)) {
+    e->error = "file name holds control characters or a backslash";
+    return e;
+  }
+  std::vector<std::uint8_t> bytes;
+  if (Status s = readAll(file->fd(), e->bytes, &bytes); !s.isOk()) {
+    e->error = s.message();
+    *unstable = true;
+    return e;
+  }
+  struct stat after {};
+  if (::fstat(file->fd(), &after) != 0 || !(stampOf(after) == e->stamp)) {
+    // Being written right now; what was read may be half old, half new.
+    e->error = "changed while being read; it will be examined again";
+    e->stamp = {};
+    *unstable = true;
+    return e;
+  }
+  if (Status s = verifyAsset(bytes, &e->summary); !s.isOk()) {
+    e->error = s.toString();
+    return e;
+  }
+  if (!e->summary.name.empty()) e->name = e->summary.name;
+  e->hash = hashHex(xxh64(bytes));
+  e->url = "/assets/" + e->hash + "/" + encodePathSegment(fileName);
+
+  auto resource = std::make_shared<Resource>();
+  resource->contentType = "application/octet-stream";
+  // The URL changes whenever the content does, so any cache may keep it for good.
+  resource->cacheControl = "public, max-age=31536000, immutable";
+  Variant identity;
+  identity.body.file = std::move(file);
+  identity.body.size = e->bytes;
+  identity.etag = etagFor(e->hash, Encoding::kIdentity);
+  resource->variants.push_back(std::move(identity));
+  if (options.compress && e->bytes <= options.maxCompressBytes) {
+    for (Variant& v : makeEncodedVariants(bytes, e->hash, VariantStorage::kTempFile, nullptr)) {
+      resource->variants.push_back(std::move(v));
+    }
+  }
+  e->resource = std::move(resource);
+  e->usable = true;
+  return e;
+}
+
+std::string entryJson(const CatalogueEntry& e) {
+  std::string j = "{\"name\":" + jsonString(e.name) + ",\"file\":" + jsonString(e.file) +
+                  ",\"usable\":" + (e.usable ? "true" : "false") + ",\"bytes\":" + std::to_string(e.bytes);
+  if (!e.usable) return j + ",\"error\":" + jsonString(e.error) + "}";
+  const AssetSummary& s = e.summary;
+  j += ",\"url\":" + jsonString(e.url) + ",\"hash\":" + jsonString(e.hash);
+  j += ",\"version\":\"" + std::to_string(s.versionMajor) + "." + std::to_string(s.versionMinor) + "\"";
+  j += ",\"vertices\":" + std::to_string(s.vertexCount) + ",\"triangles\":" + std::to_string(s.triangleCount);
+  j += ",\"shOrder\":" + std::to_string(s.shOrder) + ",\"passes\":[";
+  for (std::size_t i = 0; i < s.passes.size(); ++i) {
+    const AssetPassInfo& p = s.passes[i];
+    j += std::string(i ? "," : "") + "{\"kind\":" + jsonString(transferKindName(p.kind)) +
+         ",\"channels\":" + std::to_string(p.channels) + ",\"bounces\":" + std::to_string(p.bounces) + "}";
+  }
+  j += "],\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling) + ",\"encodings\":[";
+  for (std::size_t i = 1; i < e.resource->variants.size(); ++i) {
+    j += std::string(i > 1 ? "," : "") + "\"" + encodingToken(e.resource->variants[i].encoding) + "\"";
+  }
+  return j + "]}";
+}
+
+// The /api/scenes document as a resource: revalidated on every use (no-cache), with an
+// ETag from its content, so an unchanged catalogue costs a client one 304.
+std::shared_ptr<const Resource> documentResource(const std::string& text) {
+  auto r = std::make_shared<Resource>();
+  r->contentType = "application/json";
+  r->cacheControl = "no-cache";
+  const std::string tag = hashHex(xxh64({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}));
+  Variant identity;
+  identity.body = memoryBody(text);
+  identity.etag = etagFor(tag, Encoding::kIdentity);
+  r->variants.push_back(std::move(identity));
+  for (Variant& v : makeEncodedVariants({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, tag,
+                                        VariantStorage::kMemory, nullptr)) {
+    r->variants.push_back(std::move(v));
+  }
+  return r;
+}
+
+}  // namespace
+
+Catalogue::Catalogue(RootDir root, CatalogueOptions options) : root_(std::move(root)), options_(options) {
+  std::lock_guard lock(scanMutex_);
+  refresh();
+  nextCheck_.store(steadyNs() + std::chrono::nanoseconds(options_.recheck).count());
+}
+
+std::shared_ptr<const CatalogueSnapshot> Catalogue::current() {
+  if (steadyNs() >= nextCheck_.load(std::memory_order_relaxed)) {
+    std::unique_lock lock(scanMutex_, std::try_to_lock);
+    if (lock.owns_lock() && steadyNs() >= nextCheck_.load()) {
+      refresh();
+      nextCheck_.store(steadyNs() + std::chrono::nanoseconds(options_.recheck).count());
+    }
+  }
+  std::lock_guard lock(snapshotMutex_);
+  return snapshot_;
+}
+
+std::shared_ptr<const CatalogueEntry> Catalogue::findAsset(std::string_view path) {
+  const std::shared_ptr<const CatalogueSnapshot> snap = current();
+  const auto it = snap->byPath.find(path);
+  if (it == snap->byPath.end()) return nullptr;
+  const CatalogueEntry& e = *it->second;
+  struct stat st {};
+  if (::fstat(e.resource->variants[0].body.file->fd(), &st) != 0 || !(stampOf(st) == e.stamp)) {
+    nextCheck_.store(0);  // rewritten in place: the next request rescans
+    return nullptr;
+  }
+  return it->second;
+}
+
+void Catalogue::refresh() {
+  std::vector<ScannedFile> listing = scanDirectory(root_, kExtensions);
+  std::shared_ptr<const CatalogueSnapshot> old;
+  {
+    std::lock_guard lock(snapshotMutex_);
+    old = snapshot_;
+  }
+  if (old && !old->retry && old->listing == listing) return;
+
+  std::map<std::string, std::shared_ptr<const CatalogueEntry>, std::less<>> previous;
+  if (old) {
+    for (const auto& e : old->entries) previous.emplace(e->file, e);
+  }
+  auto snap = std::make_shared<CatalogueSnapshot>();
+  for (const ScannedFile& f : listing) {
+    const auto it = previous.find(f.relPath);
+    const bool same = it != previous.end() && f.problem.empty() && !(it->second->stamp == FileStamp{}) &&
+                      it->second->stamp == f.stamp;
+    std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &snap->retry);
+    if (entry->usable) {
+      ++snap->usableCount;
+      snap->byPath.emplace("/assets/" + entry->hash + "/" + baseName(entry->file), entry);
+    }
+    snap->entries.push_back(std::move(entry));
+  }
+  std::string json = "{\"scenes\":[";
+  for (std::size_t i = 0; i < snap->entries.size(); ++i) json += (i ? ",\n" : "\n") + entryJson(*snap->entries[i]);
+  json += "\n],\"usable\":" + std::to_string(snap->usableCount) +
+          ",\"unusable\":" + std::to_string(snap->entries.size() - static_cast<std::size_t>(snap->usableCount)) + "}\n";
+  snap->json = documentResource(json);
+  snap->listing = std::move(listing);
+  std::lock_guard lock(snapshotMutex_);
+  snapshot_ = std::move(snap);
+}
+
+}  // namespace prt::serve

@@ -1,0 +1,173 @@
+#include "light_library.h"
+
+#include <cstdio>
+
+#include "content_hash.h"
+#include "encoded_variants.h"
+#include "image_io.h"
+#include "json_text.h"
+#include "light_preview.h"
+
+namespace prt::serve {
+namespace {
+
+constexpr std::string_view kExtensions[] = {".exr", ".hdr"};
+constexpr int kPreviewWidth = 256;
+
+std::string stemOf(const std::string& rel) {
+  std::string name = rel.substr(rel.rfind('/') == std::string::npos ? 0 : rel.rfind('/') + 1);
+  const std::size_t dot = name.rfind('.');
+  return dot == std::string::npos ? name : name.substr(0, dot);
+}
+
+ImageFormat sniffFormat(const std::string& path) {
+  unsigned char head[16] = {};
+  std::size_t got = 0;
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    got = std::fread(head, 1, sizeof head, f);
+    std::fclose(f);
+  }
+  return detectImageFormat(head, got);
+}
+
+std::shared_ptr<const Resource> jsonResource(const std::string& text) {
+  auto r = std::make_shared<Resource>();
+  r->contentType = "application/json";
+  r->cacheControl = "no-cache";
+  const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+  const std::string tag = hashHex(xxh64(bytes));
+  Variant identity;
+  identity.body = memoryBody(text);
+  identity.etag = etagFor(tag, Encoding::kIdentity);
+  r->variants.push_back(std::move(identity));
+  for (Variant& v : makeEncodedVariants(bytes, tag, VariantStorage::kMemory, nullptr)) r->variants.push_back(std::move(v));
+  return r;
+}
+
+}  // namespace
+
+LightLibrary::LightLibrary(RootDir root, std::chrono::milliseconds recheck) : root_(std::move(root)), recheck_(recheck) {
+  std::lock_guard lock(mutex_);
+  refreshLocked();
+  nextCheck_ = std::chrono::steady_clock::now() + recheck_;
+}
+
+std::size_t LightLibrary::count() {
+  std::lock_guard lock(mutex_);
+  return lights_.size();
+}
+
+void LightLibrary::refreshLocked() {
+  std::vector<ScannedFile> listing = scanDirectory(root_, kExtensions);
+  if (listing == listing_) return;
+  std::map<std::string, std::shared_ptr<Light>, std::less<>> previous;
+  for (const auto& l : lights_) previous.emplace(l->scanned.relPath, l);
+  std::vector<std::shared_ptr<Light>> lights;
+  for (const ScannedFile& f : listing) {
+    const auto it = previous.find(f.relPath);
+    if (it != previous.end() && it->second->scanned == f) {
+      lights.push_back(it->second);
+      continue;
+    }
+    auto l = std::make_shared<Light>();
+    l->scanned = f;
+    if (!f.problem.empty()) {
+      l->error = f.problem;
+      l->loaded = true;
+    }
+    lights.push_back(std::move(l));
+  }
+  lights_ = std::move(lights);
+  listing_ = std::move(listing);
+  documents_.clear();
+  previews_.clear();
+  for (const auto& l : lights_) {
+    if (l->previewResource) previews_.emplace(l->previewPath, l->previewResource);
+  }
+}
+
+void LightLibrary::ensureProjected(Light& light, int order) {
+  if (!light.error.empty() || light.coefficients.count(order)) return;
+  RgbImage image;
+  if (Status s = loadImage(light.scanned.absPath, &image); !s.isOk()) {
+    light.error = s.message();
+    light.loaded = true;
+    return;
+  }
+  if (!light.loaded) {
+    light.loaded = true;
+    light.format = imageFormatName(sniffFormat(light.scanned.absPath));
+    light.width = image.width;
+    light.height = image.height;
+    const char* aspect = nullptr;
+    const std::optional<EnvLayout> layout = guessLayout(image.width, image.height, &aspect);
+    if (!layout) {
+      light.error = "its size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    " matches no layout (2:1 equirect, 1:1 angular map, 4:3 or 3:4 cross)";
+      return;
+    }
+    light.layout = *layout;
+    std::string png;
+    if (makePreviewPng(image, kPreviewWidth, &png).isOk()) {
+      auto r = std::make_shared<Resource>();
+      r->contentType = "image/png";
+      r->cacheControl = "public, max-age=31536000, immutable";
+      const std::string tag = hashHex(xxh64({reinterpret_cast<const std::uint8_t*>(png.data()), png.size()}));
+      Variant v;
+      v.body = memoryBody(std::move(png));
+      v.etag = etagFor(tag, Encoding::kIdentity);
+      r->variants.push_back(std::move(v));
+      light.previewPath = "/api/lights/preview/" + tag + ".png";
+      light.previewResource = r;
+      previews_.emplace(light.previewPath, r);
+    }
+  }
+  std::vector<Rgb> coeffs;
+  if (Status s = projectLayout(light.layout, order, image, &coeffs); !s.isOk()) {
+    light.error = s.message();
+    return;
+  }
+  light.coefficients.emplace(order, std::move(coeffs));
+}
+
+std::shared_ptr<const Resource> LightLibrary::document(int order) {
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  if (now >= nextCheck_) {
+    refreshLocked();
+    nextCheck_ = now + recheck_;
+  }
+  if (const auto it = documents_.find(order); it != documents_.end()) return it->second;
+  std::string j = "{\"order\":" + std::to_string(order) + ",\"lights\":[";
+  for (std::size_t i = 0; i < lights_.size(); ++i) {
+    Light& l = *lights_[i];
+    ensureProjected(l, order);
+    j += std::string(i ? "," : "") + "\n{\"name\":" + jsonString(stemOf(l.scanned.relPath)) +
+         ",\"file\":" + jsonString(l.scanned.relPath) + ",\"usable\":" + (l.error.empty() ? "true" : "false");
+    if (!l.error.empty()) {
+      j += ",\"error\":" + jsonString(l.error) + "}";
+      continue;
+    }
+    j += ",\"format\":" + jsonString(l.format) + ",\"width\":" + std::to_string(l.width) +
+         ",\"height\":" + std::to_string(l.height) + ",\"layout\":" + jsonString(layoutName(l.layout));
+    if (!l.previewPath.empty()) j += ",\"preview\":" + jsonString(l.previewPath);
+    j += ",\"coefficients\":[";
+    const std::vector<Rgb>& c = l.coefficients.at(order);
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      j += std::string(k ? "," : "") + "[" + jsonNumber(c[k].r) + "," + jsonNumber(c[k].g) + "," + jsonNumber(c[k].b) + "]";
+    }
+    j += "]}";
+  }
+  j += "\n]}\n";
+  auto doc = jsonResource(j);
+  documents_.emplace(order, doc);
+  return doc;
+}
+
+std::shared_ptr<const Resource> LightLibrary::preview(std::string_view path) {
+  std::lock_guard lock(mutex_);
+  const auto it = previews_.find(path);
+  return it == previews_.end() ? nullptr : it->second;
+}
+
+}  // namespace prt::serve

@@ -1,0 +1,69 @@
+#include "listener.h"
+
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+
+#include <cstdio>
+
+namespace prt::serve {
+namespace {
+
+// Connections beyond the cap that may be waiting for their 503 at once; past this they
+// are closed without a word (a flood should not cost memory).
+constexpr std::size_t kMaxRefusing = 64;
+
+}  // namespace
+
+Listener::Listener(asio::io_context& ioc, tcp::acceptor acceptor, SessionContext& context, std::size_t maxConnections)
+    : ioc_(ioc),
+      strand_(asio::make_strand(ioc)),
+      acceptor_(std::move(acceptor)),
+      retry_(strand_),
+      context_(context),
+      maxConnections_(maxConnections) {}
+
+void Listener::start() {
+  asio::dispatch(strand_, [self = shared_from_this()] { self->accept(); });
+}
+
+void Listener::stop() {
+  asio::post(strand_, [self = shared_from_this()] {
+    self->stopped_ = true;
+    beast::error_code ec;
+    self->acceptor_.close(ec);
+    self->retry_.cancel();
+  });
+}
+
+void Listener::accept() {
+  if (stopped_) return;
+  // Each connection gets its own strand: its handlers never run concurrently, while
+  // different connections use every thread.
+  acceptor_.async_accept(asio::make_strand(ioc_), asio::bind_executor(strand_, [self = shared_from_this()](
+                                                                                  beast::error_code ec, tcp::socket s) {
+                           self->onAccept(ec, std::move(s));
+                         }));
+}
+
+void Listener::onAccept(beast::error_code ec, tcp::socket socket) {
+  if (stopped_ || ec == asio::error::operation_aborted) return;
+  if (ec) {
+    // Out of descriptors (EMFILE) or similar: pause instead of spinning on the error.
+    std::fprintf(stderr, "prt-serve: accept failed: %s; retrying in 100 ms\n", ec.message().c_str());
+    retry_.expires_after(std::chrono::milliseconds(100));
+    retry_.async_wait([self = shared_from_this()](beast::error_code tec) {
+      if (!tec) self->accept();
+    });
+    return;
+  }
+  const bool refuse = context_.registry.active() >= maxConnections_;
+  if (refuse && context_.registry.refusing() >= kMaxRefusing) {
+    beast::error_code ignored;
+    socket.close(ignored);
+  } else {
+    std::make_shared<Session>(std::move(socket), context_, refuse)->start();
+  }
+  accept();
+}
+
+}  // namespace prt::serve

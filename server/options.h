@@ -1,0 +1,38 @@
+// prt-serve's command line.
+#pragma once
+
+#include <span>
+#include <string>
+
+#include "prt/status.h"
+
+namespace prt::serve {
+
+// Process exit statuses.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;     // the environment: missing directory, busy port
+inline constexpr int kExitUsageError = 2;  // the command line
+
+struct ServeOptions {
+  std::string root;                 // --root: baked assets and environment maps
+  std::string web;                  // --web: the client's static files ("" = none)
+  std::string bind = "127.0.0.1";  // --bind
+  int port = 8080;                  // --port; 0 picks a free port (printed at start)
+  int threads = 0;                  // --threads; 0 = one per hardware thread
+  int maxConnections = 1024;        // --max-connections
+  double readTimeoutSeconds = 15;   // --read-timeout: to receive a request head
+  double writeTimeoutSeconds = 30;  // --write-timeout: without progress while sending
+  bool quiet = false;               // --quiet: no access log
+  bool help = false;
+  bool version = false;
+};
+
+// The text --help prints.
+const char* serveHelpText();
+
+// Parses `args` (without the program name) into *out. Errors (kInvalidArgument) name the
+// flag: unknown flags, missing values, values out of range, a missing --root. --help and
+// --version are ok without --root.
+Status parseServeOptions(std::span<const std::string> args, ServeOptions* out);
+
+}  // namespace prt::serve

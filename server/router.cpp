@@ -1,0 +1,78 @@
+#include "router.h"
+
+#include <charconv>
+#include <exception>
+
+#include "prt/sh_basis.h"
+#include "request_target.h"
+
+namespace prt::serve {
+namespace {
+
+constexpr std::string_view kAssetPrefix = "/assets/";
+constexpr std::string_view kPreviewPrefix = "/api/lights/preview/";
+
+}  // namespace
+
+Router::Router(Catalogue& catalogue, LightLibrary& lights, StaticFiles* web)
+    : catalogue_(catalogue), lights_(lights), web_(web) {}
+
+Reply Router::handle(const RequestHead& request) noexcept {
+  try {
+    return route(request);
+  } catch (const std::exception& e) {
+    return errorReply(request.version(), http::status::internal_server_error, e.what(), false, true);
+  } catch (...) {
+    return errorReply(request.version(), http::status::internal_server_error, "internal error", false, true);
+  }
+}
+
+Reply Router::route(const RequestHead& request) {
+  const unsigned version = request.version();
+  if (request.method() != http::verb::get && request.method() != http::verb::head) {
+    Reply r = errorReply(version, http::status::method_not_allowed, "only GET and HEAD are served", false);
+    r.head.set(http::field::allow, "GET, HEAD");
+    return r;
+  }
+  const std::string_view rawTarget = request.target();
+  RequestTarget target;
+  if (Status s = parseTarget(rawTarget, &target); !s.isOk()) {
+    return errorReply(version, http::status::bad_request, s.message(), false);
+  }
+  const std::string_view path = target.path;
+
+  if (path == "/api/scenes") return respond(request, *catalogue_.current()->json);
+  if (path == "/api/lights") return lightsDocument(request, target.query);
+  if (path.starts_with(kPreviewPrefix)) {
+    if (auto r = lights_.preview(path)) return respond(request, *r);
+    return errorReply(version, http::status::not_found, "no such preview", true);
+  }
+  if (path.starts_with("/api/") || path == "/api") {
+    return errorReply(version, http::status::not_found, "no such API endpoint (try /api/scenes or /api/lights)", true);
+  }
+  if (path.starts_with(kAssetPrefix)) {
+    if (auto e = catalogue_.findAsset(path)) return respond(request, *e->resource);
+    // Content-addressed: an old hash is gone for good; the catalogue has the current URL.
+    return errorReply(version, http::status::not_found, "no such asset version; see /api/scenes", false);
+  }
+  if (web_) return web_->serve(request, path, rawTarget.substr(0, rawTarget.find('?')));
+  return errorReply(version, http::status::not_found, "not found (no --web directory)", false);
+}
+
+Reply Router::lightsDocument(const RequestHead& request, std::string_view query) {
+  int order = 5;
+  std::string text;
+  if (queryValue(query, "order", &text)) {
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), order);
+    if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || order < kMinShOrder ||
+        order > kMaxShOrder) {
+      return errorReply(request.version(), http::status::bad_request,
+                        "order must be a whole number from " + std::to_string(kMinShOrder) + " to " +
+                            std::to_string(kMaxShOrder),
+                        true);
+    }
+  }
+  return respond(request, *lights_.document(order));
+}
+
+}  // namespace prt::serve

@@ -1,0 +1,306 @@
+#include "session.h"
+
+#include <sys/sendfile.h>
+
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/write.hpp>
+#include <boost/beast/core/bind_handler.hpp>
+#include <boost/beast/core/buffers_range.hpp>
+#include <boost/beast/http/error.hpp>
+#include <boost/beast/http/read.hpp>
+#include <boost/beast/http/serializer.hpp>
+
+#include <cerrno>
+
+#include "respond.h"
+
+namespace prt::serve {
+namespace {
+
+constexpr std::uint32_t kMaxHeadBytes = 8192;        // request line and header fields together
+constexpr std::size_t kReadBufferBytes = 16384;      // holds a head plus a pipelined next one
+constexpr std::size_t kMaxSendfileChunk = 1u << 30;  // below sendfile's 0x7ffff000 cap
+constexpr std::size_t kMaxDrainBytes = 1u << 20;
+constexpr auto kDrainTimeout = std::chrono::seconds(2);
+constexpr auto kStoppingDrainTimeout = std::chrono::milliseconds(300);
+
+// The head as bytes, written by Beast's serializer.
+std::string serializeHead(http::response<http::empty_body>& head) {
+  http::response_serializer<http::empty_body> sr{head};
+  sr.split(true);
+  std::string out;
+  beast::error_code ec;
+  while (!ec && !sr.is_header_done()) {
+    sr.next(ec, [&](beast::error_code& e, const auto& buffers) {
+      e = {};
+      for (const auto b : beast::buffers_range_ref(buffers)) out.append(static_cast<const char*>(b.data()), b.size());
+      sr.consume(beast::buffer_bytes(buffers));
+    });
+  }
+  return out;
+}
+
+bool isHttpParseError(const beast::error_code& ec) {
+  return ec.category() == beast::error_code(http::error::bad_method).category();
+}
+
+}  // namespace
+
+// ---- SessionRegistry ------------------------------------------------------------------
+
+void SessionRegistry::add(Session* session, const std::shared_ptr<Session>& shared, bool refusing) {
+  std::lock_guard lock(mutex_);
+  sessions_.emplace(session, shared);
+  if (refusing) ++refusing_;
+}
+
+void SessionRegistry::remove(Session* session, bool refusing) {
+  std::lock_guard lock(mutex_);
+  sessions_.erase(session);
+  if (refusing) --refusing_;
+  if (sessions_.empty()) empty_.notify_all();
+}
+
+std::size_t SessionRegistry::active() const {
+  std::lock_guard lock(mutex_);
+  return sessions_.size() - refusing_;
+}
+
+std::size_t SessionRegistry::refusing() const {
+  std::lock_guard lock(mutex_);
+  return refusing_;
+}
+
+void SessionRegistry::stopAll() {
+  std::vector<std::shared_ptr<Session>> live;
+  {
+    std::lock_guard lock(mutex_);
+    for (auto& [raw, weak] : sessions_) {
+      if (auto s = weak.lock()) live.push_back(std::move(s));
+    }
+  }
+  for (auto& s : live) s->stop();
+}
+
+bool SessionRegistry::waitEmpty(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  return empty_.wait_until(lock, deadline, [&] { return sessions_.empty(); });
+}
+
+// ---- Session --------------------------------------------------------------------------
+
+Session::Session(tcp::socket socket, SessionContext& context, bool refuse)
+    : stream_(std::move(socket)),
+      timer_(stream_.get_executor()),
+      context_(context),
+      refuse_(refuse),
+      buffer_(kReadBufferBytes) {
+  beast::error_code ec;
+  const tcp::endpoint remote = stream_.socket().remote_endpoint(ec);
+  peer_ = ec ? "-" : remote.address().to_string() + ":" + std::to_string(remote.port());
+  // Heads and small bodies go out at once rather than waiting for the previous ACK.
+  stream_.socket().set_option(tcp::no_delay(true), ec);
+  // sendfile must never block an I/O thread: with O_NONBLOCK it returns EAGAIN instead.
+  stream_.socket().native_non_blocking(true, ec);
+}
+
+Session::~Session() {
+  if (registered_) context_.registry.remove(this, refuse_);
+}
+
+void Session::start() {
+  context_.registry.add(this, shared_from_this(), refuse_);
+  registered_ = true;
+  asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
+    if (self->refuse_) {
+      self->method_ = "-";
+      self->target_ = "-";
+      self->started_ = std::chrono::steady_clock::now();
+      self->send(errorReply(11, http::status::service_unavailable, "too many connections; try again", false, true),
+                 false);
+    } else {
+      self->readHead();
+    }
+  });
+}
+
+void Session::stop() {
+  asio::post(stream_.get_executor(), [self = shared_from_this()] {
+    self->stopping_ = true;
+    // A response being written finishes (onSent then closes); a wait for the next
+    // request, or a lingering close, ends now.
+    if (self->state_ == State::kReading || self->state_ == State::kClosing) self->closeNow();
+  });
+}
+
+void Session::readHead() {
+  if (stopping_) return closeGracefully();
+  state_ = State::kReading;
+  parser_.emplace();
+  parser_->header_limit(kMaxHeadBytes);
+  stream_.expires_after(context_.readTimeout);
+  http::async_read_header(stream_, buffer_, *parser_,
+                          [self = shared_from_this()](beast::error_code ec, std::size_t) { self->onHead(ec); });
+}
+
+void Session::onHead(beast::error_code ec) {
+  if (state_ == State::kClosed) return;
+  started_ = std::chrono::steady_clock::now();
+  if (ec) {
+    method_ = "-";
+    target_ = "-";
+    if (ec == http::error::header_limit || ec == http::error::buffer_overflow) {
+      return send(errorReply(11, http::status::request_header_fields_too_large,
+                             "request line and header fields may hold at most 8192 bytes", false, true),
+                  false);
+    }
+    if (ec == beast::error::timeout) {
+      // Beast has closed the socket already; a slow client that sent part of a request is
+      // logged, one that merely idled between requests is not.
+      if (buffer_.size() > 0 || parser_->got_some()) logRequest(408, 0);
+      return closeNow();
+    }
+    if (ec != http::error::partial_message && ec != http::error::end_of_stream && isHttpParseError(ec)) {
+      return send(errorReply(11, http::status::bad_request, "malformed request: " + ec.message(), false, true), false);
+    }
+    return closeNow();  // the client went away (cleanly or not) or the server is stopping
+  }
+  stream_.expires_never();
+  const auto& request = parser_->get();
+  method_ = std::string(request.method_string());
+  target_ = std::string(request.target());
+  Reply reply;
+  const bool getOrHead = request.method() == http::verb::get || request.method() == http::verb::head;
+  if (request.version() != 10 && request.version() != 11) {
+    reply = errorReply(11, http::status::http_version_not_supported, "only HTTP/1.0 and HTTP/1.1 are served", false,
+                       true);
+  } else if (!parser_->is_done() && getOrHead) {
+    // A body on GET/HEAD has no meaning here, and not reading it leaves no way to find
+    // the next request: refuse and close.
+    reply = errorReply(request.version(), http::status::bad_request, "GET and HEAD requests take no body", false, true);
+  } else if (request.version() == 11 && request.find(http::field::host) == request.end()) {
+    reply = errorReply(request.version(), http::status::bad_request, "HTTP/1.1 requests need a Host field", false, true);
+  } else {
+    reply = context_.router.handle(request);
+    // Any other method with a body: 405, and the unread body makes the connection unusable.
+    if (!parser_->is_done()) reply.close = true;
+  }
+  if (request.method() == http::verb::head) reply.length = 0;
+  send(std::move(reply), request.keep_alive() && !stopping_);
+}
+
+void Session::send(Reply reply, bool keepAlive) {
+  state_ = State::kWriting;
+  reply_ = std::move(reply);
+  keepAlive_ = keepAlive && !reply_.close;
+  reply_.head.keep_alive(keepAlive_);
+  head_ = serializeHead(reply_.head);
+  bodySent_ = 0;
+  stream_.expires_after(context_.writeTimeout);
+  auto self = shared_from_this();
+  if (reply_.length > 0 && reply_.body.memory) {
+    const std::array<asio::const_buffer, 2> buffers{
+        asio::buffer(head_), asio::buffer(reply_.body.memory->data() + reply_.offset, reply_.length)};
+    asio::async_write(stream_, buffers, [self](beast::error_code ec, std::size_t n) {
+      self->onSent(ec, n > self->head_.size() ? n - self->head_.size() : 0);
+    });
+  } else if (reply_.length > 0 && reply_.body.file) {
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onHeadSent(ec); });
+  } else {
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onSent(ec, 0); });
+  }
+}
+
+void Session::onHeadSent(beast::error_code ec) {
+  if (ec) return onSent(ec, 0);
+  stream_.expires_never();
+  fileOffset_ = reply_.offset;
+  remaining_ = reply_.length;
+  sendFileSome();
+}
+
+void Session::sendFileSome() {
+  const int sock = stream_.socket().native_handle();
+  const int fd = reply_.body.file->fd();
+  while (remaining_ > 0) {
+    off_t offset = static_cast<off_t>(fileOffset_);
+    const std::size_t chunk = remaining_ < kMaxSendfileChunk ? static_cast<std::size_t>(remaining_) : kMaxSendfileChunk;
+    const ssize_t n = ::sendfile(sock, fd, &offset, chunk);
+    if (n > 0) {
+      fileOffset_ += static_cast<std::uint64_t>(n);
+      remaining_ -= static_cast<std::uint64_t>(n);
+      bodySent_ += static_cast<std::uint64_t>(n);
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      // The socket buffer is full: wait until the client reads, but not forever.
+      timer_.expires_after(context_.writeTimeout);
+      timer_.async_wait([self = shared_from_this()](beast::error_code tec) {
+        if (!tec && self->timer_.expiry() <= std::chrono::steady_clock::now()) {
+          beast::error_code ignored;
+          self->stream_.socket().cancel(ignored);
+        }
+      });
+      stream_.socket().async_wait(tcp::socket::wait_write, [self = shared_from_this()](beast::error_code wec) {
+        self->timer_.cancel();
+        if (wec) return self->onSent(wec, self->bodySent_);
+        self->sendFileSome();
+      });
+      return;
+    }
+    // n == 0: the file ended early (truncated on disk after the head went out). The
+    // client was promised more bytes; closing is the only honest signal left.
+    return onSent(n == 0 ? beast::error_code(asio::error::eof) : beast::error_code(errno, beast::system_category()),
+                  bodySent_);
+  }
+  onSent({}, bodySent_);
+}
+
+void Session::onSent(beast::error_code ec, std::uint64_t bodyBytes) {
+  stream_.expires_never();
+  logRequest(reply_.head.result_int(), bodyBytes);
+  reply_ = Reply{};  // drop the file reference now, not at the next request
+  if (ec) return closeNow();
+  if (keepAlive_ && !stopping_) return readHead();
+  closeGracefully();
+}
+
+void Session::closeGracefully() {
+  // Half-close, then read and discard until the client closes too: closing with unread
+  // input makes the kernel send RST, which can destroy the response before the client
+  // has read it (the "lingering close" of RFC 9112 §9.6).
+  state_ = State::kClosing;
+  beast::error_code ec;
+  stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+  if (ec) return closeNow();
+  drained_ = 0;
+  // While the server stops, a client that keeps its end open must not delay the exit long.
+  stream_.expires_after(stopping_ ? kStoppingDrainTimeout : kDrainTimeout);
+  drain();
+}
+
+void Session::drain() {
+  stream_.async_read_some(asio::buffer(drainBuffer_), [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+    self->drained_ += n;
+    if (ec || self->drained_ > kMaxDrainBytes || self->state_ != State::kClosing) return self->closeNow();
+    self->drain();
+  });
+}
+
+void Session::closeNow() {
+  if (state_ == State::kClosed) return;
+  state_ = State::kClosed;
+  timer_.cancel();
+  stream_.close();
+}
+
+void Session::logRequest(unsigned status, std::uint64_t bytes) {
+  if (!context_.log.enabled()) return;
+  const auto micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - started_).count();
+  context_.log.write({peer_, method_, target_, status, bytes, static_cast<std::int64_t>(micros)});
+}
+
+}  // namespace prt::serve

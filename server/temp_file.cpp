@@ -1,0 +1,41 @@
+#include "temp_file.h"
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+namespace prt::serve {
+
+Status writeTempFile(std::string_view bytes, FileRef* out) {
+  const char* env = std::getenv("TMPDIR");
+  const std::string dir = env && *env ? env : "/tmp";
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    std::string pattern = dir + "/prt-serve-XXXXXX";
+    fd = ::mkostemp(pattern.data(), O_CLOEXEC);
+    if (fd >= 0) ::unlink(pattern.c_str());
+  }
+  if (fd < 0) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "cannot create a temporary file in '" + dir + "': " + std::strerror(errno));
+  }
+  auto file = std::make_shared<const OpenFile>(fd);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           "cannot write a temporary file in '" + dir + "': " + std::strerror(errno));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  *out = std::move(file);
+  return Status::ok();
+}
+
+}  // namespace prt::serve

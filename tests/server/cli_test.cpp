@@ -1,0 +1,77 @@
+// prt-serve's command line: help, usage errors, and clear failures for a missing
+// directory or a busy port.
+#include <gtest/gtest.h>
+
+#include "serve_env.h"
+
+namespace prt::serve::test {
+namespace {
+
+constexpr auto kQuick = std::chrono::seconds(30);
+
+TEST(Cli, HelpAndVersion) {
+  const ExitResult help = runServe({"--help"}, kQuick);
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.out.find("Usage: prt-serve --root DIR"), std::string::npos);
+  for (const char* flag : {"--web", "--bind", "--port", "--threads", "--max-connections", "--read-timeout", "--quiet"}) {
+    EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+  }
+  EXPECT_EQ(runServe({"-h"}, kQuick).exitCode, 0);
+  const ExitResult version = runServe({"--version"}, kQuick);
+  EXPECT_EQ(version.exitCode, 0);
+  EXPECT_TRUE(version.out.starts_with("prt-serve "));
+}
+
+TEST(Cli, UsageErrors) {
+  const TestTree tree = makeTestTree(workDir());
+  struct Case {
+    std::vector<std::string> args;
+    const char* message;
+  };
+  for (const Case& c : {Case{{}, "--root DIR is required"}, Case{{"--root"}, "--root needs a value"},
+                        Case{{"--root", tree.root, "--bogus"}, "unknown option '--bogus'"},
+                        Case{{"--root", tree.root, "extra"}, "unexpected argument 'extra'"},
+                        Case{{"--root", tree.root, "--port", "70000"}, "--port must be a whole number from 0 to 65535"},
+                        Case{{"--root", tree.root, "--port", "http"}, "--port must be"},
+                        Case{{"--root", tree.root, "--threads", "0"}, "--threads must be"},
+                        Case{{"--root", tree.root, "--read-timeout", "-1"}, "--read-timeout must be"},
+                        Case{{"--root", tree.root, "--quiet=yes"}, "--quiet takes no value"}}) {
+    const ExitResult r = runServe(c.args, kQuick);
+    EXPECT_EQ(r.exitCode, 2) << c.message;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Try 'prt-serve --help'"), std::string::npos);
+  }
+}
+
+TEST(Cli, MissingDirectoriesAreClearErrors) {
+  const TestTree tree = makeTestTree(workDir());
+  ExitResult r = runServe({"--root", tree.dir + "/nope", "--port", "0"}, kQuick);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--root '" + tree.dir + "/nope' is not a directory: No such file or directory"), std::string::npos)
+      << r.err;
+  r = runServe({"--root", tree.root + "/room.prt", "--port", "0"}, kQuick);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
+  r = runServe({"--root", tree.root, "--web", tree.dir + "/missing-web", "--port", "0"}, kQuick);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--web '" + tree.dir + "/missing-web' is not a directory"), std::string::npos) << r.err;
+  r = runServe({"--root", tree.root, "--bind", "not-an-address", "--port", "0"}, kQuick);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--bind 'not-an-address' is not an IP address"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BusyPortIsAClearError) {
+  const TestTree tree = makeTestTree(workDir());
+  auto first = startServer(tree, {}, "first.log");
+  ASSERT_TRUE(first);
+  const std::string port = std::to_string(first->port());
+  const ExitResult second = runServe({"--root", tree.root, "--port", port}, kQuick);
+  EXPECT_EQ(second.exitCode, 1);
+  EXPECT_NE(second.err.find("cannot listen on 127.0.0.1:" + port), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find("in use"), std::string::npos) << second.err;
+  EXPECT_TRUE(healthy(first->port()));  // the first server is unaffected
+  EXPECT_EQ(first->stop(SIGINT, std::chrono::seconds(20)), 0);  // SIGINT stops it like SIGTERM
+}
+
+}  // namespace
+}  // namespace prt::serve::test

@@ -1,0 +1,209 @@
+// Requests a hostile client sends, each followed by a check that the server still
+// answers ordinary requests: traversal in every spelling, symlinks out of the roots,
+// unsupported methods, oversized and malformed requests, slow clients, connection floods.
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "serve_env.h"
+
+namespace prt::serve::test {
+namespace {
+
+// A raw request line for `target` (sent as is, no client-side normalisation).
+std::string rawGet(const std::string& target, const std::string& extra = "") {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n" + extra + "Connection: close\r\n\r\n";
+}
+
+void expectNoSecret(const std::string& received, const std::string& what) {
+  EXPECT_EQ(received.find("top secret"), std::string::npos) << what;
+  EXPECT_EQ(received.find("root:x:0"), std::string::npos) << what;
+  EXPECT_EQ(received.find("PASSWORD"), std::string::npos) << what;
+}
+
+TEST(Hostile, TraversalInEverySpellingNeverLeavesTheRoots) {
+  SharedServer& s = sharedServer();
+  const std::string secretAsset = "/assets/" + hexHash(s.tree.small);
+  for (const std::string& target : std::vector<std::string>{"/../../../../etc/passwd", "/..%2f..%2f..%2fetc%2fpasswd", "/%2e%2e/%2e%2e/%2e%2e/etc/passwd",
+        "/%2E%2E/%2E%2E/etc/passwd", "/.%2e/.%2e/etc/passwd", "/docs/../../outside/secret.txt",
+        "/docs/%2e%2e/%2e%2e/outside/secret.txt", "/..\\..\\..\\etc\\passwd", "/..%5c..%5c..%5cetc%5cpasswd",
+        "/%5c..%5c..%5coutside%5csecret.txt", "/%00", "/index.html%00.png", "/%00../../etc/passwd",
+        "//etc/passwd", "/%2fetc%2fpasswd", "/%2F%2Fetc/passwd", "/etc/passwd", "/leak.txt", "/leakdir/secret.txt",
+        "/.env", "/docs/.env", "/%2eenv", "/assets/../../outside/secret.prt", "/assets/%2e%2e/outside/secret.prt",
+        secretAsset + "/escape.prt", secretAsset + "/secret.prt", "/api/../../etc/passwd",
+        "/api/lights/preview/../../../etc/passwd", "http://127.0.0.1/etc/passwd", "/%252e%252e/%252e%252e/etc/passwd",
+        "/\xc0\xae\xc0\xae/etc/passwd", "/%c0%ae%c0%ae/etc/passwd"}) {
+    const RawResult r = rawExchange(s.port, rawGet(target), std::chrono::seconds(5));
+    const int status = rawStatus(r.received);
+    EXPECT_TRUE(status == 400 || status == 404) << target << " -> " << r.received.substr(0, 200);
+    expectNoSecret(r.received, target);
+    EXPECT_TRUE(healthy(s.port)) << "after " << target;
+  }
+  // The same through the client library, and a symlink that stays inside is fine.
+  EXPECT_EQ(fetch(s.port, "/leak.txt").status, 404);
+  EXPECT_EQ(fetch(s.port, "/alias.html").status, 200);
+}
+
+TEST(Hostile, NulByteInTheRequestLine) {
+  SharedServer& s = sharedServer();
+  using namespace std::string_literals;
+  const RawResult r = rawExchange(s.port, "GET /index.html\0/../../etc/passwd HTTP/1.1\r\nHost: x\r\n\r\n"s,
+                                  std::chrono::seconds(5));
+  EXPECT_EQ(rawStatus(r.received), 400);
+  EXPECT_TRUE(r.closedByServer);
+  expectNoSecret(r.received, "NUL");
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Hostile, OtherMethodsAre405) {
+  SharedServer& s = sharedServer();
+  for (const char* method : {"POST", "PUT", "DELETE", "PATCH", "OPTIONS", "TRACE", "PROPFIND", "BREW"}) {
+    const RawResult r = rawExchange(s.port, std::string(method) + " /api/scenes HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+                                    std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(r.received), 405) << method << ": " << r.received.substr(0, 100);
+    EXPECT_NE(r.received.find("Allow: GET, HEAD"), std::string::npos) << method;
+    EXPECT_TRUE(healthy(s.port)) << method;
+  }
+  // With a body the server will not read: 405, then the connection closes.
+  const RawResult post = rawExchange(
+      s.port, "POST /api/scenes HTTP/1.1\r\nHost: x\r\nContent-Length: 11\r\n\r\nhello world", std::chrono::seconds(5));
+  EXPECT_EQ(rawStatus(post.received), 405);
+  EXPECT_TRUE(post.closedByServer);
+  const RawResult chunked = rawExchange(
+      s.port, "PUT /x HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n", std::chrono::seconds(5));
+  EXPECT_EQ(rawStatus(chunked.received), 405);
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Hostile, OversizedRequestLineAndHeaders) {
+  SharedServer& s = sharedServer();
+  const std::vector<std::string> requests{
+      rawGet("/" + std::string(20000, 'a')),
+      rawGet("/", "X-Big: " + std::string(20000, 'b') + "\r\n"),
+      [] {
+        std::string many;
+        for (int i = 0; i < 2000; ++i) many += "X-H" + std::to_string(i) + ": v\r\n";
+        return rawGet("/", many);
+      }(),
+      "GET /" + std::string(1 << 20, 'c'),  // a megabyte of request line, never finished
+  };
+  for (const std::string& req : requests) {
+    const RawResult r = rawExchange(s.port, req, std::chrono::seconds(10));
+    const int status = rawStatus(r.received);
+    EXPECT_TRUE(status == 431 || status == 400) << status << " for a " << req.size() << "-byte request";
+    EXPECT_TRUE(r.closedByServer);
+    EXPECT_TRUE(healthy(s.port));
+  }
+}
+
+TEST(Hostile, MalformedRequestsGet400AndClose) {
+  SharedServer& s = sharedServer();
+  std::string junk;
+  for (int i = 0; i < 1000; ++i) junk += static_cast<char>((i * 7919) % 251 + 1);
+  const std::vector<std::string> requests{
+      "GARBAGE\r\n\r\n",
+      "GET\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: x\r\nBad Header\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: x\r\n: no name\r\n\r\n",
+      "GET / HTTP/1.1\nHost: x\n\n",
+      "GET / HTTP/1.1\r\n\r\n",  // HTTP/1.1 without Host
+      "GET / HTTP/2.0\r\nHost: x\r\n\r\n",
+      "GET / HTTX/1.1\r\nHost: x\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: x\r\nContent-Length: abc\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: x\r\nContent-Length: 1\r\nContent-Length: 2\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n\r\nhello",  // a body on GET
+      "GET / HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n0\r\n\r\n",
+      "GET /\xff\xfe HTTP/1.1\r\nHost: x\r\n\r\n",
+      "GET /a b HTTP/1.1\r\nHost: x\r\n\r\n",
+      junk + "\r\n\r\n",
+  };
+  for (const std::string& req : requests) {
+    const RawResult r = rawExchange(s.port, req, std::chrono::seconds(10));
+    const int status = rawStatus(r.received);
+    EXPECT_TRUE(status == 400 || status == 505) << status << " for " << testing::PrintToString(req.substr(0, 60));
+    EXPECT_TRUE(r.closedByServer) << testing::PrintToString(req.substr(0, 60));
+    EXPECT_TRUE(healthy(s.port)) << "after " << testing::PrintToString(req.substr(0, 60));
+  }
+}
+
+TEST(Hostile, SlowClientsAreCutOffAndDoNotHoldTheServer) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--read-timeout", "1", "--threads", "2"}, "slow.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  // Slowloris: many connections, each trickling a request head a byte at a time.
+  constexpr int kSlow = 40;
+  std::vector<std::thread> slow;
+  std::vector<RawResult> results(kSlow);
+  std::atomic<bool> done{false};
+  for (int i = 0; i < kSlow; ++i) {
+    slow.emplace_back([&, i] {
+      boost::asio::io_context ioc;
+      boost::asio::ip::tcp::socket sock(ioc);
+      boost::system::error_code ec;
+      sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)}, ec);
+      if (ec) return;
+      const std::string head = "GET / HTTP/1.1\r\nHost: x\r\nX-Slow: " + std::string(200, 'z');
+      const auto start = std::chrono::steady_clock::now();
+      for (std::size_t k = 0; k < head.size() && !done; ++k) {
+        if (::send(sock.native_handle(), head.data() + k, 1, MSG_NOSIGNAL) != 1) {
+          results[static_cast<std::size_t>(i)].closedByServer = true;
+          break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+      results[static_cast<std::size_t>(i)].elapsed =
+          std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+    });
+  }
+  // An idle connection that never sends anything is dropped too.
+  const RawResult silent = rawExchange(port, "", std::chrono::seconds(5));
+  EXPECT_TRUE(silent.closedByServer);
+  EXPECT_LT(silent.elapsed.count(), 3000);
+  // Meanwhile ordinary requests are answered promptly.
+  for (int i = 0; i < 10; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_TRUE(healthy(port));
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(1));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  done = true;
+  for (std::thread& t : slow) t.join();
+  for (int i = 0; i < kSlow; ++i) {
+    // Cut off after about the read timeout, long before the 21 s the trickle would take.
+    EXPECT_TRUE(results[static_cast<std::size_t>(i)].closedByServer) << i;
+    EXPECT_LT(results[static_cast<std::size_t>(i)].elapsed.count(), 4000) << i;
+  }
+  EXPECT_TRUE(healthy(port));
+  EXPECT_NE(server->log().find(" 408 0 "), std::string::npos);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Hostile, ConnectionCapAnswers503AndRecovers) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--max-connections", "8", "--read-timeout", "30"}, "cap.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  std::vector<std::unique_ptr<HttpConnection>> held;
+  for (int i = 0; i < 8; ++i) {
+    held.push_back(std::make_unique<HttpConnection>(port));
+    ASSERT_EQ(held.back()->request("GET", "/api/scenes").status, 200);  // registered and served
+  }
+  for (int i = 0; i < 5; ++i) {
+    const RawResult over = rawExchange(port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(over.received), 503) << over.received.substr(0, 100);
+    EXPECT_TRUE(over.closedByServer);
+  }
+  held.clear();  // the held connections close; their slots free up
+  bool recovered = false;
+  for (int i = 0; i < 50 && !recovered; ++i) {
+    recovered = healthy(port);
+    if (!recovered) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(recovered);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+}  // namespace
+}  // namespace prt::serve::test

@@ -1,0 +1,476 @@
+// Every endpoint of a real prt-serve through a real HTTP client: the catalogue, assets at
+// content-addressed URLs, lights, previews and static files, with validators, ranges,
+// HEAD and each content coding.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "mini_json.h"
+#include "serve_env.h"
+
+namespace prt::serve::test {
+namespace {
+
+std::string asString(const std::vector<std::uint8_t>& v) { return std::string(v.begin(), v.end()); }
+
+Json getJson(int port, const std::string& target, int* status = nullptr) {
+  const HttpResponse r = fetch(port, target);
+  if (status) *status = r.status;
+  Json j;
+  std::string error;
+  EXPECT_TRUE(parseJson(r.body, &j, &error)) << target << ": " << error << "\n" << r.body;
+  return j;
+}
+
+const Json* findByFile(const Json& list, const std::string& file) {
+  for (const Json& e : list.array) {
+    if (e["file"].string == file) return &e;
+  }
+  return nullptr;
+}
+
+std::string roomUrl(int port) {
+  const Json cat = getJson(port, "/api/scenes");
+  const Json* room = findByFile(cat["scenes"], "room.prt");
+  return room ? (*room)["url"].string : std::string();
+}
+
+TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
+  SharedServer& s = sharedServer();
+  const HttpResponse r = fetch(s.port, "/api/scenes");
+  ASSERT_EQ(r.status, 200) << r.error;
+  EXPECT_EQ(r.header("content-type"), "application/json");
+  EXPECT_EQ(r.header("content-length"), std::to_string(r.body.size()));
+  EXPECT_EQ(r.header("cache-control"), "no-cache");
+  EXPECT_FALSE(r.header("etag").empty());
+  Json cat;
+  std::string error;
+  ASSERT_TRUE(parseJson(r.body, &cat, &error)) << error;
+  const Json& scenes = cat["scenes"];
+  ASSERT_EQ(scenes.type, Json::Type::kArray);
+
+  const Json* room = findByFile(scenes, "room.prt");
+  ASSERT_NE(room, nullptr) << r.body;
+  EXPECT_TRUE((*room)["usable"].boolean);
+  EXPECT_EQ((*room)["name"].string, "test room");
+  EXPECT_EQ((*room)["vertices"].number, 6000);
+  EXPECT_EQ((*room)["triangles"].number, 5998);
+  EXPECT_EQ((*room)["shOrder"].number, 4);
+  EXPECT_EQ((*room)["bytes"].number, static_cast<double>(s.tree.room.size()));
+  EXPECT_EQ((*room)["hash"].string, hexHash(s.tree.room));
+  EXPECT_EQ((*room)["url"].string, "/assets/" + hexHash(s.tree.room) + "/room.prt");
+  ASSERT_EQ((*room)["passes"].array.size(), 2u);
+  EXPECT_EQ((*room)["passes"][0]["kind"].string, "unshadowed");
+  EXPECT_EQ((*room)["passes"][1]["kind"].string, "interreflected");
+  EXPECT_EQ((*room)["passes"][1]["channels"].number, 3);
+  EXPECT_EQ((*room)["passes"][1]["bounces"].number, 2);
+  EXPECT_EQ((*room)["samples"].number, 64);
+
+  const Json* small = findByFile(scenes, "sub/small.prt");
+  ASSERT_NE(small, nullptr);
+  EXPECT_TRUE((*small)["usable"].boolean);
+  EXPECT_EQ((*small)["url"].string, "/assets/" + hexHash(s.tree.small) + "/small.prt");
+
+  const Json* corrupt = findByFile(scenes, "corrupt.prt");
+  ASSERT_NE(corrupt, nullptr);
+  EXPECT_FALSE((*corrupt)["usable"].boolean);
+  EXPECT_NE((*corrupt)["error"].string.find("checksum"), std::string::npos) << (*corrupt)["error"].string;
+  EXPECT_FALSE(corrupt->has("url"));
+  const Json* truncated = findByFile(scenes, "truncated.prt");
+  ASSERT_NE(truncated, nullptr);
+  EXPECT_FALSE((*truncated)["usable"].boolean);
+  EXPECT_NE((*truncated)["error"].string.find("truncated"), std::string::npos);
+  const Json* escape = findByFile(scenes, "escape.prt");
+  ASSERT_NE(escape, nullptr);
+  EXPECT_FALSE((*escape)["usable"].boolean);
+  EXPECT_NE((*escape)["error"].string.find("outside the root"), std::string::npos);
+
+  EXPECT_EQ(findByFile(scenes, "notes.txt"), nullptr);
+  EXPECT_EQ(findByFile(scenes, "outdir/secret.prt"), nullptr);  // a directory symlink out is not walked
+  EXPECT_EQ(cat["usable"].number, 2);
+  EXPECT_EQ(cat["unusable"].number, 3);
+}
+
+TEST(Assets, ServedByteExactWithImmutableCaching) {
+  SharedServer& s = sharedServer();
+  const std::string url = roomUrl(s.port);
+  const HttpResponse r = fetch(s.port, url);
+  ASSERT_EQ(r.status, 200) << r.error;
+  EXPECT_EQ(r.body, asString(s.tree.room));
+  EXPECT_EQ(r.header("content-type"), "application/octet-stream");
+  EXPECT_EQ(r.header("content-length"), std::to_string(s.tree.room.size()));
+  EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+  EXPECT_EQ(r.header("etag"), "\"" + hexHash(s.tree.room) + "\"");
+  EXPECT_EQ(r.header("accept-ranges"), "bytes");
+  EXPECT_EQ(r.header("vary"), "Accept-Encoding");
+  EXPECT_FALSE(r.has("content-encoding"));
+  EXPECT_EQ(r.header("x-content-type-options"), "nosniff");
+  EXPECT_FALSE(r.header("date").empty());
+
+  const HttpResponse small = fetch(s.port, "/assets/" + hexHash(s.tree.small) + "/small.prt");
+  ASSERT_EQ(small.status, 200);
+  EXPECT_EQ(small.body, asString(s.tree.small));
+}
+
+TEST(Assets, UnknownVersionsAndBadAssetsAre404) {
+  SharedServer& s = sharedServer();
+  const std::string hash = hexHash(s.tree.room);
+  EXPECT_EQ(fetch(s.port, "/assets/0000000000000000/room.prt").status, 404);
+  EXPECT_EQ(fetch(s.port, "/assets/" + hash + "/other.prt").status, 404);
+  EXPECT_EQ(fetch(s.port, "/assets/" + hash).status, 404);
+  EXPECT_EQ(fetch(s.port, "/assets/room.prt").status, 404);
+  std::vector<std::uint8_t> corrupt = s.tree.room;
+  corrupt[corrupt.size() / 2] ^= 0x40;
+  EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(corrupt) + "/corrupt.prt").status, 404);
+  EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(s.tree.small) + "/escape.prt").status, 404);
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Assets, EachEncodingDecodesToTheSameBytes) {
+  SharedServer& s = sharedServer();
+  const std::string url = roomUrl(s.port);
+  const std::string original = asString(s.tree.room);
+  std::set<std::string> etags;
+  struct Case {
+    const char* accept;
+    const char* encoding;
+    std::string (*decode)(const std::string&);
+  };
+  for (const Case& c : {Case{"gzip", "gzip", gunzip}, Case{"zstd", "zstd", unzstd}, Case{"br", "br", unbrotli},
+                        Case{"gzip;q=1.0, br;q=0.5", "gzip", gunzip}, Case{"br;q=0, zstd;q=0.1", "zstd", unzstd},
+                        Case{"gzip, deflate, br, zstd", nullptr, nullptr}}) {
+    const HttpResponse r = fetch(s.port, url, {{"Accept-Encoding", c.accept}});
+    ASSERT_EQ(r.status, 200) << c.accept;
+    EXPECT_EQ(r.header("vary"), "Accept-Encoding");
+    EXPECT_EQ(r.header("content-length"), std::to_string(r.body.size()));
+    EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+    const std::string enc = r.header("content-encoding");
+    if (c.encoding) {
+      EXPECT_EQ(enc, c.encoding) << c.accept;
+    }
+    ASSERT_FALSE(enc.empty()) << c.accept;
+    EXPECT_LT(r.body.size(), original.size() * 95 / 100) << c.accept;
+    const std::string decoded = enc == "gzip" ? gunzip(r.body) : enc == "zstd" ? unzstd(r.body) : unbrotli(r.body);
+    EXPECT_TRUE(decoded == original) << c.accept << ": decoded " << decoded.size() << " bytes";
+    etags.insert(r.header("etag"));
+  }
+  etags.insert(fetch(s.port, url).header("etag"));
+  EXPECT_EQ(etags.size(), 4u);  // identity, gzip, zstd, br: each representation its own validator
+  // The identity stays available to anyone who refuses the others.
+  const HttpResponse plain = fetch(s.port, url, {{"Accept-Encoding", "compress, identity"}});
+  EXPECT_FALSE(plain.has("content-encoding"));
+  EXPECT_EQ(plain.body, original);
+}
+
+TEST(Conditional, MatchingETagGives304) {
+  SharedServer& s = sharedServer();
+  const std::string url = roomUrl(s.port);
+  const std::string etag = fetch(s.port, url).header("etag");
+  for (const std::string& inm : {etag, "W/" + etag, "\"other\", " + etag, std::string("*")}) {
+    const HttpResponse r = fetch(s.port, url, {{"If-None-Match", inm}});
+    EXPECT_EQ(r.status, 304) << inm;
+    EXPECT_TRUE(r.body.empty());
+    EXPECT_EQ(r.header("etag"), etag);
+    EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+    EXPECT_FALSE(r.has("content-length"));
+  }
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", "\"0000000000000000\""}}).status, 200);
+  // A gzip validator does not validate the identity representation, and vice versa.
+  const std::string gzTag = fetch(s.port, url, {{"Accept-Encoding", "gzip"}}).header("etag");
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", gzTag}}).status, 200);
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", gzTag}, {"Accept-Encoding", "gzip"}}).status, 304);
+  // The catalogue and static files revalidate the same way.
+  const std::string catTag = fetch(s.port, "/api/scenes").header("etag");
+  EXPECT_EQ(fetch(s.port, "/api/scenes", {{"If-None-Match", catTag}}).status, 304);
+  const std::string jsTag = fetch(s.port, "/app.js").header("etag");
+  EXPECT_EQ(fetch(s.port, "/app.js", {{"If-None-Match", jsTag}}).status, 304);
+}
+
+TEST(Ranges, SingleRangesGive206AndBadOnes416) {
+  SharedServer& s = sharedServer();
+  const std::string url = roomUrl(s.port);
+  const std::string original = asString(s.tree.room);
+  const std::string size = std::to_string(original.size());
+  HttpResponse r = fetch(s.port, url, {{"Range", "bytes=0-99"}});
+  ASSERT_EQ(r.status, 206);
+  EXPECT_EQ(r.body, original.substr(0, 100));
+  EXPECT_EQ(r.header("content-range"), "bytes 0-99/" + size);
+  EXPECT_EQ(r.header("content-length"), "100");
+  r = fetch(s.port, url, {{"Range", "bytes=-100"}});
+  ASSERT_EQ(r.status, 206);
+  EXPECT_EQ(r.body, original.substr(original.size() - 100));
+  r = fetch(s.port, url, {{"Range", "bytes=1000000-"}});
+  ASSERT_EQ(r.status, 206);
+  EXPECT_EQ(r.body, original.substr(1000000));
+  r = fetch(s.port, url, {{"Range", "bytes=" + size + "-"}});
+  EXPECT_EQ(r.status, 416);
+  EXPECT_EQ(r.header("content-range"), "bytes */" + size);
+  EXPECT_TRUE(r.body.empty());
+  EXPECT_EQ(fetch(s.port, url, {{"Range", "bytes=99999999-99999999"}}).status, 416);
+  // Several ranges: the whole representation (no multipart).
+  r = fetch(s.port, url, {{"Range", "bytes=0-1,5-6"}});
+  EXPECT_EQ(r.status, 200);
+  EXPECT_EQ(r.body.size(), original.size());
+  // If-Range: the range holds only for the version the client names.
+  const std::string etag = fetch(s.port, url, {{"Range", "bytes=0-0"}}).header("etag");
+  EXPECT_EQ(fetch(s.port, url, {{"Range", "bytes=10-19"}, {"If-Range", etag}}).status, 206);
+  EXPECT_EQ(fetch(s.port, url, {{"Range", "bytes=10-19"}, {"If-Range", "\"stale\""}}).status, 200);
+  // A range of a compressed variant is a range of its compressed bytes.
+  const std::string gz = fetch(s.port, url, {{"Accept-Encoding", "gzip"}}).body;
+  r = fetch(s.port, url, {{"Accept-Encoding", "gzip"}, {"Range", "bytes=100-199"}});
+  ASSERT_EQ(r.status, 206);
+  EXPECT_EQ(r.header("content-encoding"), "gzip");
+  EXPECT_EQ(r.body, gz.substr(100, 100));
+  EXPECT_EQ(r.header("content-range"), "bytes 100-199/" + std::to_string(gz.size()));
+}
+
+TEST(Head, SameHeadersNoBody) {
+  SharedServer& s = sharedServer();
+  const std::string url = roomUrl(s.port);
+  for (const std::string& target : {url, std::string("/api/scenes"), std::string("/index.html"), std::string("/nope")}) {
+    HttpConnection c(s.port);
+    const HttpResponse get = c.request("GET", target);
+    const HttpResponse head = c.request("HEAD", target);
+    ASSERT_EQ(head.status, get.status) << target;
+    EXPECT_TRUE(head.body.empty());
+    EXPECT_EQ(head.header("content-length"), get.header("content-length")) << target;
+    EXPECT_EQ(head.header("etag"), get.header("etag"));
+    EXPECT_EQ(head.header("content-type"), get.header("content-type"));
+    // The connection is still in step: another request on it works.
+    EXPECT_EQ(c.request("GET", "/api/scenes").status, 200);
+  }
+  const HttpResponse range = fetch(s.port, url, {{"Range", "bytes=0-9"}}, "HEAD");
+  EXPECT_EQ(range.status, 206);
+  EXPECT_EQ(range.header("content-length"), "10");
+}
+
+TEST(KeepAlive, ManyRequestsOnOneConnection) {
+  SharedServer& s = sharedServer();
+  HttpConnection c(s.port);
+  for (int i = 0; i < 20; ++i) {
+    const HttpResponse r = c.request("GET", i % 2 ? "/api/scenes" : "/app.js");
+    ASSERT_EQ(r.status, 200) << i << " " << r.error;
+    EXPECT_TRUE(r.keepAlive);
+  }
+  const HttpResponse last = c.request("GET", "/api/scenes", {{"Connection", "close"}});
+  EXPECT_EQ(last.status, 200);
+  EXPECT_FALSE(last.keepAlive);
+  // HTTP/1.0 without keep-alive: one response, then the server closes.
+  const RawResult raw = rawExchange(s.port, "GET /api/scenes HTTP/1.0\r\n\r\n", std::chrono::seconds(5));
+  EXPECT_EQ(rawStatus(raw.received), 200);
+  EXPECT_TRUE(raw.closedByServer);
+  // Pipelined requests are answered in order.
+  const RawResult piped = rawExchange(
+      s.port, "GET /app.js HTTP/1.1\r\nHost: x\r\n\r\nGET /style.css HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+      std::chrono::seconds(5));
+  EXPECT_NE(piped.received.find("answer = 42"), std::string::npos);
+  EXPECT_NE(piped.received.find("margin: 0"), std::string::npos);
+  EXPECT_LT(piped.received.find("answer = 42"), piped.received.find("margin: 0"));
+}
+
+TEST(StaticFiles, ContentTypesIndexesAndRedirects) {
+  SharedServer& s = sharedServer();
+  struct Case {
+    const char* path;
+    const char* type;
+  };
+  for (const Case& c : {Case{"/", "text/html; charset=utf-8"}, Case{"/index.html", "text/html; charset=utf-8"},
+                        Case{"/app.js", "text/javascript; charset=utf-8"},
+                        Case{"/module.mjs", "text/javascript; charset=utf-8"}, Case{"/core.wasm", "application/wasm"},
+                        Case{"/style.css", "text/css; charset=utf-8"}, Case{"/data.json", "application/json"},
+                        Case{"/logo.png", "image/png"}, Case{"/icon.svg", "image/svg+xml"},
+                        Case{"/blob.xyz", "application/octet-stream"}, Case{"/docs/", "text/html; charset=utf-8"},
+                        Case{"/alias.html", "text/html; charset=utf-8"}}) {
+    const HttpResponse r = fetch(s.port, c.path);
+    EXPECT_EQ(r.status, 200) << c.path;
+    EXPECT_EQ(r.header("content-type"), c.type) << c.path;
+    EXPECT_EQ(r.header("cache-control"), "no-cache") << c.path;
+    EXPECT_FALSE(r.header("etag").empty()) << c.path;
+  }
+  EXPECT_EQ(fetch(s.port, "/").body, readFile(s.tree.web + "/index.html"));
+  EXPECT_EQ(fetch(s.port, "/core.wasm").body, readFile(s.tree.web + "/core.wasm"));
+  const HttpResponse dir = fetch(s.port, "/docs");
+  EXPECT_EQ(dir.status, 301);
+  EXPECT_EQ(dir.header("location"), "/docs/");
+  EXPECT_EQ(fetch(s.port, "/missing.js").status, 404);
+  const HttpResponse big = fetch(s.port, "/big.js", {{"Accept-Encoding", "gzip"}});
+  ASSERT_EQ(big.status, 200);
+  EXPECT_EQ(big.header("content-encoding"), "gzip");
+  EXPECT_EQ(big.header("vary"), "Accept-Encoding");
+  EXPECT_EQ(gunzip(big.body), s.tree.bigJs);
+  EXPECT_EQ(unbrotli(fetch(s.port, "/big.js", {{"Accept-Encoding", "br"}}).body), s.tree.bigJs);
+  EXPECT_EQ(unzstd(fetch(s.port, "/big.js", {{"Accept-Encoding", "zstd"}}).body), s.tree.bigJs);
+}
+
+TEST(Lights, ProjectedAtTheRequestedOrder) {
+  SharedServer& s = sharedServer();
+  int status = 0;
+  const Json doc = getJson(s.port, "/api/lights", &status);
+  ASSERT_EQ(status, 200);
+  EXPECT_EQ(doc["order"].number, 5);
+  const Json* sky = findByFile(doc["lights"], "sky.hdr");
+  ASSERT_NE(sky, nullptr);
+  ASSERT_TRUE((*sky)["usable"].boolean) << (*sky)["error"].string;
+  EXPECT_EQ((*sky)["name"].string, "sky");
+  EXPECT_EQ((*sky)["format"].string, "Radiance HDR");
+  EXPECT_EQ((*sky)["layout"].string, "equirect");
+  ASSERT_EQ((*sky)["coefficients"].array.size(), 25u);
+  // Constant radiance L projects to L * sqrt(4 pi) on y00 and nothing else.
+  const double k = std::sqrt(4.0 * M_PI);
+  EXPECT_NEAR((*sky)["coefficients"][0][0].number, 0.5 * k, 1e-3);
+  EXPECT_NEAR((*sky)["coefficients"][0][1].number, 0.75 * k, 1e-3);
+  EXPECT_NEAR((*sky)["coefficients"][0][2].number, 1.0 * k, 1e-3);
+  // Higher bands vanish up to the quadrature error of a 64x32 image.
+  for (std::size_t i = 1; i < 25; ++i) EXPECT_NEAR((*sky)["coefficients"][i][2].number, 0.0, 1e-2) << i;
+  const Json* bad = findByFile(doc["lights"], "bad.hdr");
+  ASSERT_NE(bad, nullptr);
+  EXPECT_FALSE((*bad)["usable"].boolean);
+  EXPECT_FALSE((*bad)["error"].string.empty());
+  if (s.tree.hasExr) {
+    const Json* studio = findByFile(doc["lights"], "studio.exr");
+    ASSERT_NE(studio, nullptr);
+    EXPECT_TRUE((*studio)["usable"].boolean) << (*studio)["error"].string;
+    EXPECT_EQ((*studio)["format"].string, "OpenEXR");
+    EXPECT_GT((*studio)["coefficients"][0][0].number, 0.0);
+  }
+
+  for (int order : {1, 2, 8, 16}) {
+    const Json d = getJson(s.port, "/api/lights?order=" + std::to_string(order));
+    const Json* l = findByFile(d["lights"], "sky.hdr");
+    ASSERT_NE(l, nullptr);
+    EXPECT_EQ((*l)["coefficients"].array.size(), static_cast<std::size_t>(order * order));
+    EXPECT_NEAR((*l)["coefficients"][0][0].number, 0.5 * k, 1e-3);
+  }
+  for (const char* order : {"0", "17", "-1", "x", "", "2.5", "5abc", "99999999999"}) {
+    const HttpResponse r = fetch(s.port, std::string("/api/lights?order=") + order);
+    EXPECT_EQ(r.status, 400) << order;
+    EXPECT_EQ(r.header("content-type"), "application/json");
+    EXPECT_NE(r.body.find("order must be"), std::string::npos);
+  }
+  // Cached: the same document (and validator) the second time.
+  const HttpResponse a = fetch(s.port, "/api/lights?order=3"), b = fetch(s.port, "/api/lights?order=3");
+  EXPECT_EQ(a.body, b.body);
+  EXPECT_EQ(a.header("etag"), b.header("etag"));
+  EXPECT_EQ(fetch(s.port, "/api/lights?order=3", {{"If-None-Match", a.header("etag")}}).status, 304);
+}
+
+TEST(Lights, PreviewImages) {
+  SharedServer& s = sharedServer();
+  const Json doc = getJson(s.port, "/api/lights?order=2");
+  const Json* sky = findByFile(doc["lights"], "sky.hdr");
+  ASSERT_NE(sky, nullptr);
+  const std::string url = (*sky)["preview"].string;
+  ASSERT_TRUE(url.starts_with("/api/lights/preview/")) << url;
+  const HttpResponse r = fetch(s.port, url);
+  ASSERT_EQ(r.status, 200);
+  EXPECT_EQ(r.header("content-type"), "image/png");
+  EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+  EXPECT_TRUE(r.body.starts_with("\x89PNG\r\n\x1a\n"));
+  EXPECT_EQ(fetch(s.port, "/api/lights/preview/0000000000000000.png").status, 404);
+}
+
+TEST(Api, UnknownEndpointsAre404Json) {
+  SharedServer& s = sharedServer();
+  for (const char* t : {"/api", "/api/", "/api/nothing", "/api/scenes/extra"}) {
+    const HttpResponse r = fetch(s.port, t);
+    EXPECT_EQ(r.status, 404) << t;
+    EXPECT_EQ(r.header("content-type"), "application/json") << t;
+  }
+}
+
+TEST(AccessLog, OneLinePerRequest) {
+  SharedServer& s = sharedServer();
+  const std::string marker = "/api/scenes?log-marker=" + std::to_string(::getpid());
+  ASSERT_EQ(fetch(s.port, marker).status, 200);
+  ASSERT_EQ(fetch(s.port, "/definitely-missing").status, 404);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const std::string log = s.server->log();
+  // "127.0.0.1:PORT METHOD TARGET STATUS BYTES MICROSus", one per line.
+  auto hasLine = [&](const std::string& target, const std::string& status, bool bodyBytes) {
+    std::istringstream lines(log);
+    std::string l;
+    while (std::getline(lines, l)) {
+      std::istringstream fields(l);
+      std::string peer, method, t, st, bytes, micros, extra;
+      fields >> peer >> method >> t >> st >> bytes >> micros;
+      if (fields >> extra || !peer.starts_with("127.0.0.1:") || method != "GET" || t != target || st != status) continue;
+      const bool digits = !bytes.empty() && bytes.find_first_not_of("0123456789") == std::string::npos;
+      const bool timed = micros.size() > 2 && micros.ends_with("us") &&
+                         micros.find_first_not_of("0123456789") == micros.size() - 2;
+      if (digits && timed && (!bodyBytes || bytes != "0")) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(hasLine(marker, "200", true)) << log.substr(log.size() > 2000 ? log.size() - 2000 : 0);
+  EXPECT_TRUE(hasLine("/definitely-missing", "404", true));
+}
+
+TEST(AccessLog, QuietSilencesIt) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--quiet"}, "quiet.log");
+  ASSERT_TRUE(server);
+  ASSERT_EQ(fetch(server->port(), "/api/scenes").status, 200);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+  EXPECT_EQ(server->log().find("GET /api/scenes"), std::string::npos) << server->log();
+}
+
+TEST(Rescan, CatalogueFollowsTheDirectory) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "rescan.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  const std::string oldUrl = roomUrl(port);
+  ASSERT_EQ(fetch(port, oldUrl).status, 200);
+
+  auto waitFor = [&](auto predicate) {
+    for (int i = 0; i < 100; ++i) {
+      if (predicate(getJson(port, "/api/scenes"))) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+  };
+  // A new asset appears.
+  const std::vector<std::uint8_t> extra = makeAssetBytes(50, 2, 9, "extra");
+  writeFile(tree.root + "/extra.prt", extra);
+  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c["scenes"], "extra.prt") != nullptr; }));
+  EXPECT_EQ(fetch(port, "/assets/" + hexHash(extra) + "/extra.prt").body, std::string(extra.begin(), extra.end()));
+
+  // The room is replaced by a new version (a rename over it, as the baker writes): the new
+  // hash is listed and served, the old URL is gone.
+  const std::vector<std::uint8_t> room2 = makeAssetBytes(700, 3, 5, "test room v2");
+  writeFile(tree.root + "/room.prt.tmp", room2);
+  ASSERT_EQ(std::rename((tree.root + "/room.prt.tmp").c_str(), (tree.root + "/room.prt").c_str()), 0);
+  EXPECT_TRUE(waitFor([&](const Json& c) {
+    const Json* r = findByFile(c["scenes"], "room.prt");
+    return r && (*r)["hash"].string == hexHash(room2);
+  }));
+  EXPECT_EQ(fetch(port, "/assets/" + hexHash(room2) + "/room.prt").body, std::string(room2.begin(), room2.end()));
+  EXPECT_EQ(fetch(port, oldUrl).status, 404);
+
+  // Damaged in place: listed unusable, and the old URL stops serving at once.
+  const std::string extraUrl = "/assets/" + hexHash(extra) + "/extra.prt";
+  std::vector<std::uint8_t> damaged = extra;
+  damaged[damaged.size() - 5] ^= 1;
+  {
+    std::FILE* f = std::fopen((tree.root + "/extra.prt").c_str(), "r+b");
+    ASSERT_NE(f, nullptr);
+    std::fwrite(damaged.data(), 1, damaged.size(), f);
+    std::fclose(f);
+  }
+  EXPECT_TRUE(waitFor([](const Json& c) {
+    const Json* e = findByFile(c["scenes"], "extra.prt");
+    return e && !(*e)["usable"].boolean;
+  }));
+  EXPECT_EQ(fetch(port, extraUrl).status, 404);
+
+  // Removed: gone from the listing.
+  ASSERT_EQ(std::remove((tree.root + "/sub/small.prt").c_str()), 0);
+  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c["scenes"], "sub/small.prt") == nullptr; }));
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+}  // namespace
+}  // namespace prt::serve::test

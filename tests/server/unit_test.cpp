@@ -1,0 +1,164 @@
+// The server's pure pieces, checked directly: content hash, request-target parsing,
+// content negotiation, ranges, log escaping, media types.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "access_log.h"
+#include "content_hash.h"
+#include "mime_types.h"
+#include "negotiation.h"
+#include "request_target.h"
+
+namespace prt::serve {
+namespace {
+
+std::uint64_t hashOf(std::string_view s) {
+  return xxh64({reinterpret_cast<const std::uint8_t*>(s.data()), s.size()});
+}
+
+TEST(ContentHash, MatchesXxh64ReferenceValues) {
+  // From the xxHash reference implementation (xxhsum, python-xxhash).
+  EXPECT_EQ(hashOf(""), 0xef46db3751d8e999ULL);
+  EXPECT_EQ(hashOf("a"), 0xd24ec4f1a98c6e5bULL);
+  EXPECT_EQ(hashOf("abc"), 0x44bc2cf5ad770999ULL);
+  EXPECT_EQ(hashOf("Nobody inspects the spammish repetition"), 0xfbcea83c8a378bf1ULL);
+  EXPECT_EQ(hashHex(0x0123456789abcdefULL), "0123456789abcdef");
+  EXPECT_EQ(hashHex(0), "0000000000000000");
+}
+
+TEST(ContentHash, EveryTailLengthAndStripeChangesTheHash) {
+  std::string s;
+  std::uint64_t previous = hashOf(s);
+  for (int i = 0; i < 100; ++i) {
+    s.push_back(static_cast<char>('a' + i % 26));
+    const std::uint64_t h = hashOf(s);
+    EXPECT_NE(h, previous) << i;
+    previous = h;
+  }
+}
+
+TEST(RequestTarget, AcceptsOrdinaryPaths) {
+  RequestTarget t;
+  ASSERT_TRUE(parseTarget("/", &t).isOk());
+  EXPECT_EQ(t.path, "/");
+  ASSERT_TRUE(parseTarget("/a/b%20c.html?x=1&y", &t).isOk());
+  EXPECT_EQ(t.path, "/a/b c.html");
+  EXPECT_EQ(t.query, "x=1&y");
+  ASSERT_TRUE(parseTarget("/docs/", &t).isOk());
+  EXPECT_EQ(t.path, "/docs/");
+  ASSERT_TRUE(parseTarget("/%252e%252e/x", &t).isOk());  // double-encoded: a literal "%2e%2e" name
+  EXPECT_EQ(t.path, "/%2e%2e/x");
+  ASSERT_TRUE(parseTarget("/a..b/...", &t).isOk());  // dots inside names are fine
+  ASSERT_TRUE(parseTarget("/caf%C3%A9", &t).isOk());   // UTF-8 arrives %-encoded
+  EXPECT_EQ(t.path, "/caf\xC3\xA9");
+}
+
+TEST(RequestTarget, RejectsEverythingThatCouldEscape) {
+  for (const char* bad : {"", "*", "http://host/x", "x/y", "/..", "/../etc/passwd", "/a/../../b", "/.", "/./x",
+                          "/%2e%2e/etc", "/%2E%2E/etc", "/.%2e/x", "/%2e./x", "/..%2fetc", "/..%2Fetc",
+                          "/a/%2e%2e%2f%2e%2e/b", "//etc/passwd", "/%2fetc/passwd", "/a//b", "/a\\b",
+                          "/..%5c..%5cetc", "/%5c", "/%00", "/index.html%00.png", "/%0a", "/%7f", "/%", "/%2",
+                          "/%zz", "/a#frag", "/caf\xC3\xA9", "/a b", "/\x7f", "/\t"}) {
+    RequestTarget t;
+    EXPECT_FALSE(parseTarget(bad, &t).isOk()) << bad;
+  }
+}
+
+TEST(RequestTarget, QueryValues) {
+  std::string v;
+  EXPECT_TRUE(queryValue("order=3", "order", &v));
+  EXPECT_EQ(v, "3");
+  EXPECT_TRUE(queryValue("a=1&order=%33&order=4", "order", &v));
+  EXPECT_EQ(v, "3");
+  EXPECT_TRUE(queryValue("order", "order", &v));
+  EXPECT_EQ(v, "");
+  EXPECT_FALSE(queryValue("orders=3", "order", &v));
+  EXPECT_FALSE(queryValue("", "order", &v));
+  EXPECT_EQ(encodePathSegment("a b/c%d.prt"), "a%20b%2Fc%25d.prt");
+}
+
+TEST(Negotiation, PicksTheBestAcceptableEncoding) {
+  const EncodingOffer offers[] = {{Encoding::kIdentity, 1000}, {Encoding::kBrotli, 300}, {Encoding::kZstd, 320},
+                                  {Encoding::kGzip, 400}};
+  EXPECT_EQ(chooseEncoding("", offers), 0u);
+  EXPECT_EQ(chooseEncoding("gzip", offers), 3u);
+  EXPECT_EQ(chooseEncoding("gzip, deflate, br, zstd", offers), 1u);  // all q=1: the smallest
+  EXPECT_EQ(chooseEncoding("gzip;q=1, br;q=0.5", offers), 3u);
+  EXPECT_EQ(chooseEncoding("br;q=0, zstd", offers), 2u);
+  EXPECT_EQ(chooseEncoding("*", offers), 1u);
+  EXPECT_EQ(chooseEncoding("*;q=0.5, gzip", offers), 3u);
+  EXPECT_EQ(chooseEncoding("ZSTD", offers), 2u);
+  EXPECT_EQ(chooseEncoding("compress, deflate", offers), 0u);
+  EXPECT_EQ(chooseEncoding("identity;q=0", offers), 0u);  // nothing else acceptable: identity anyway
+  EXPECT_EQ(chooseEncoding("gzip;q=0.5, identity;q=0.9", offers), 0u);  // identity named and preferred
+  EXPECT_EQ(chooseEncoding("zstd;q=0.1", offers), 2u);  // unnamed identity is only the fallback
+  EXPECT_EQ(chooseEncoding("gzip;q=bogus", offers), 0u);
+  EXPECT_EQ(chooseEncoding(" gzip ; q=0.8 ,br;q=0.9", offers), 1u);
+}
+
+TEST(Negotiation, IfNoneMatch) {
+  EXPECT_TRUE(ifNoneMatchHits("\"abc\"", "\"abc\""));
+  EXPECT_TRUE(ifNoneMatchHits("W/\"abc\"", "\"abc\""));
+  EXPECT_TRUE(ifNoneMatchHits("\"x\", \"abc\"", "\"abc\""));
+  EXPECT_TRUE(ifNoneMatchHits(" * ", "\"abc\""));
+  EXPECT_FALSE(ifNoneMatchHits("\"abcd\"", "\"abc\""));
+  EXPECT_FALSE(ifNoneMatchHits("abc", "\"abc\""));
+  EXPECT_FALSE(ifNoneMatchHits("", "\"abc\""));
+  EXPECT_FALSE(ifNoneMatchHits("\"abc", "\"abc\""));
+}
+
+TEST(Negotiation, Ranges) {
+  ByteRange r;
+  EXPECT_EQ(parseRange("bytes=0-99", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.first, 0u);
+  EXPECT_EQ(r.length, 100u);
+  EXPECT_EQ(parseRange("bytes=900-", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.first, 900u);
+  EXPECT_EQ(r.length, 100u);
+  EXPECT_EQ(parseRange("bytes=-10", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.first, 990u);
+  EXPECT_EQ(parseRange("bytes=-5000", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.first, 0u);
+  EXPECT_EQ(r.length, 1000u);
+  EXPECT_EQ(parseRange("bytes=500-99999", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.length, 500u);
+  EXPECT_EQ(parseRange("bytes=999-999", 1000, &r), RangeOutcome::kPartial);
+  EXPECT_EQ(r.length, 1u);
+  EXPECT_EQ(parseRange("bytes=1000-", 1000, &r), RangeOutcome::kUnsatisfiable);
+  EXPECT_EQ(parseRange("bytes=5000-6000", 1000, &r), RangeOutcome::kUnsatisfiable);
+  EXPECT_EQ(parseRange("bytes=-0", 1000, &r), RangeOutcome::kUnsatisfiable);
+  EXPECT_EQ(parseRange("bytes=0-", 0, &r), RangeOutcome::kUnsatisfiable);
+  for (const char* whole : {"", "bytes=", "bytes=a-b", "bytes=5-1", "items=0-1", "bytes=0-1,5-6", "bytes 0-1",
+                            "bytes=--1", "bytes=99999999999999999999999-"}) {
+    EXPECT_EQ(parseRange(whole, 1000, &r), RangeOutcome::kWhole) << whole;
+  }
+}
+
+TEST(AccessLog, EscapesWhatCouldForgeALine) {
+  const std::string line = formatAccessLine({"127.0.0.1:5", "GET", "/a b\"\n\\\x01\xff", 200, 12, 34});
+  EXPECT_EQ(line, "127.0.0.1:5 GET /a\\x20b\\x22\\x0a\\x5c\\x01\\xff 200 12 34us\n");
+  EXPECT_EQ(formatAccessLine({"", "", "", 400, 0, 1}), "- - - 400 0 1us\n");
+  const std::string longLine = formatAccessLine({"p", "GET", std::string(2000, 'a'), 200, 0, 0});
+  EXPECT_LT(longLine.size(), 600u);
+  EXPECT_NE(longLine.find("..."), std::string::npos);
+}
+
+TEST(MimeTypes, CoverTheClientsFiles) {
+  EXPECT_EQ(contentTypeFor("index.html"), "text/html; charset=utf-8");
+  EXPECT_EQ(contentTypeFor("a/app.js"), "text/javascript; charset=utf-8");
+  EXPECT_EQ(contentTypeFor("m.MJS"), "text/javascript; charset=utf-8");
+  EXPECT_EQ(contentTypeFor("core.wasm"), "application/wasm");
+  EXPECT_EQ(contentTypeFor("s.css"), "text/css; charset=utf-8");
+  EXPECT_EQ(contentTypeFor("d.json"), "application/json");
+  EXPECT_EQ(contentTypeFor("i.png"), "image/png");
+  EXPECT_EQ(contentTypeFor("i.jpeg"), "image/jpeg");
+  EXPECT_EQ(contentTypeFor("i.svg"), "image/svg+xml");
+  EXPECT_EQ(contentTypeFor("noext"), "application/octet-stream");
+  EXPECT_EQ(contentTypeFor("dir.d/noext"), "application/octet-stream");
+  EXPECT_TRUE(isCompressibleType("application/wasm"));
+  EXPECT_FALSE(isCompressibleType("image/png"));
+}
+
+}  // namespace
+}  // namespace prt::serve
