@@ -1,13 +1,14 @@
-// Minimal JSON text helpers for the CLI's --json outputs.
+// JSON text helpers for prt-bake's --json outputs and prt-serve's documents.
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace prt {
 
-// A JSON string literal; bytes that are not valid UTF-8 are escaped as Latin-1 code points
-// so the output always parses, whatever bytes a file name holds.
-std::string jsonString(const std::string& s);
+// A JSON string literal. Bytes that are not well-formed UTF-8 (file names may hold any
+// bytes) become \u00XX escapes of their Latin-1 reading, so the document always parses.
+std::string jsonString(std::string_view s);
 
 // A number with 9 significant digits (round-trips a float); non-finite values as null.
 std::string jsonNumber(double v);
