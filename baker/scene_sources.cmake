@@ -10,15 +10,7 @@
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
 
-# The same imported stb target baker/CMakeLists.txt defines (whichever runs first wins).
-if(NOT TARGET prt_stb)
-  find_path(PRT_STB_INCLUDE_DIR stb_image.h PATH_SUFFIXES stb REQUIRED)
-  find_library(PRT_STB_LIBRARY stb REQUIRED)
-  add_library(prt_stb UNKNOWN IMPORTED GLOBAL)
-  set_target_properties(prt_stb PROPERTIES
-    IMPORTED_LOCATION "${PRT_STB_LIBRARY}"
-    INTERFACE_INCLUDE_DIRECTORIES "${PRT_STB_INCLUDE_DIR}")
-endif()
+# prt_stb (Debian's prebuilt stb_image) is defined by baker/CMakeLists.txt before this file.
 
 add_library(prt_scene STATIC
   ${CMAKE_CURRENT_LIST_DIR}/gltf_loader.cpp
