@@ -41,7 +41,8 @@ std::string prefixed(const std::string& path, const Status& s) { return "'" + pa
 constexpr const char* kInfoHelp =
     "Usage: prt-bake info ASSET [--json]\n"
     "\n"
-    "Verifies a baked asset (every checksum and value) and prints its contents.\n";
+    "Verifies a baked asset (every checksum and value) and prints its contents, the lighting\n"
+    "model its transfer was baked for included (distant, or a local sphere's centre and radius).\n";
 
 constexpr const char* kShadeHelp =
     "Usage: prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--order N] [--json]\n"
@@ -78,7 +79,14 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "  \"triangles\": " + std::to_string(sum.triangleCount) + ",\n";
     s += "  \"samples\": " + std::to_string(sum.samples) + ",\n";
     s += "  \"seed\": " + std::to_string(sum.seed) + ",\n";
-    s += "  \"sampling\": " + jsonString(sum.sampling) + ",\n  \"passes\": [";
+    s += "  \"sampling\": " + jsonString(sum.sampling) + ",\n";
+    s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(sum.lighting.model));
+    if (isLocalLighting(sum.lighting.model)) {
+      const Vec3 c = sum.lighting.center;
+      s += ", \"center\": [" + jsonNumber(c.x) + ", " + jsonNumber(c.y) + ", " + jsonNumber(c.z) +
+           "], \"radius\": " + jsonNumber(sum.lighting.radius);
+    }
+    s += "},\n  \"passes\": [";
     for (std::size_t i = 0; i < sum.passes.size(); ++i) {
       const auto& ps = sum.passes[i];
       s += std::string(i ? ", " : "") + "{\"kind\": \"" + transferKindName(ps.kind) +
@@ -93,6 +101,14 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                  sum.vertexCount, sum.triangleCount, sum.shOrder, shCoeffCount(sum.shOrder));
     std::fprintf(out, "bake: %llu samples (%s), seed %llu\n", static_cast<unsigned long long>(sum.samples),
                  sum.sampling.c_str(), static_cast<unsigned long long>(sum.seed));
+    if (isLocalLighting(sum.lighting.model)) {
+      const Vec3 c = sum.lighting.center;
+      std::fprintf(out, "lighting: %s, centre (%.9g, %.9g, %.9g), radius %.9g\n", lightingModelName(sum.lighting.model),
+                   static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z),
+                   static_cast<double>(sum.lighting.radius));
+    } else {
+      std::fprintf(out, "lighting: %s\n", lightingModelName(sum.lighting.model));
+    }
     for (const auto& ps : sum.passes) {
       std::fprintf(out, "pass: %s, %s", transferKindName(ps.kind), ps.channels == 3 ? "RGB" : "scalar (x albedo)");
       if (ps.kind == TransferKind::kInterreflected) std::fprintf(out, ", %d bounces", ps.bounces);

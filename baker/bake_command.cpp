@@ -3,6 +3,9 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,9 +14,12 @@
 #include "file_io.h"
 #include "gltf_loader.h"
 #include "json_text.h"
+#include "local_sphere.h"
 #include "progress_bar.h"
 #include "prt/asset.h"
 #include "prt/sh_basis.h"
+#include "mesh_order.h"
+#include "prt/transfer_codec.h"
 #include "transfer_bake.h"
 
 namespace prt {
@@ -23,7 +29,8 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--default", false}, {"-o", true},        {"--output", true},  {"--order", true},
     {"--samples", true},  {"--bounces", true}, {"--bounce-threshold", true}, {"--sampling", true},
     {"--seed", true},     {"--threads", true}, {"--passes", true},  {"--quiet", false},
-    {"--json", false},
+    {"--json", false},    {"--lighting", true}, {"--light-center", true}, {"--light-radius", true},
+    {"--name", true},     {"--compress", true},
 };
 
 constexpr const char* kHelp =
@@ -45,18 +52,104 @@ constexpr const char* kHelp =
     "  --passes LIST             comma-separated subset of unshadowed,shadowed,interreflected\n"
     "                            (default: all three)\n"
     "  --threads N               worker threads (default: all cores); results do not depend on it\n"
+    "  --lighting MODEL          what the transfer is lit by (docs/spatially-varying.md):\n"
+    "                              distant      lighting at infinity, one direction set (default)\n"
+    "                              local        radiance on a sphere around the scene, emitted\n"
+    "                                           inward (spatially varying; area form)\n"
+    "                              local-paper  the same sphere, Fujita & Kanai 2004's weighting\n"
+    "  --light-center X,Y,Z      centre of the lighting sphere, where the client renders its\n"
+    "                            light cube map (local only; default: the scene's bounds centre)\n"
+    "  --light-radius R          its radius, > 0 (local only; default: half the bounds diagonal,\n"
+    "                            so every vertex is inside)\n"
+    "  --name NAME               the asset's name in catalogues (default: the scene's)\n"
+    "  --compress SETTING        store the transfer with the transfer codec (docs/transfer-codec.md):\n"
+    "                            f16, q16, q8, cpca8 or cpca16, CPCA with an optional target\n"
+    "                            relative error, e.g. cpca8@0.02 (default: float32, uncompressed)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
 struct BakeCli {
   std::string scene;  // empty with --default
   std::string output;
+  std::optional<std::string> name;
+  std::optional<TransferCodecSettings> compress;
   bake::BakeOptions options;
+  // Local lighting's centre and radius when given; the scene's bounds supply the others.
+  std::optional<Vec3> lightCenter;
+  std::optional<float> lightRadius;
   bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
   bool quiet = false, json = false;
 };
 
 Status usage(std::string m) { return Status::error(StatusCode::kInvalidArgument, std::move(m)); }
+
+// "X,Y,Z": exactly three finite numbers.
+Status parseTriple(std::string_view flag, const std::string& text, Vec3* out) {
+  float v[3] = {};
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos)) {
+      return usage(std::string(flag) + " expects X,Y,Z (three numbers separated by commas), got '" + text + "'");
+    }
+    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
+    const float big = std::numeric_limits<float>::max();
+    if (Status s = parseFloatArg(flag, part, -big, big, &v[i]); !s.isOk()) {
+      return usage(std::string(flag) + " expects X,Y,Z of finite numbers; component " + std::to_string(i + 1) + " '" + part +
+                   "' is not one");
+    }
+    start = comma + 1;
+  }
+  *out = {v[0], v[1], v[2]};
+  return Status::ok();
+}
+
+Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
+  LightingModel model = LightingModel::kDistant;
+  if (const std::string* s = p.value("--lighting")) {
+    if (*s == "distant") model = LightingModel::kDistant;
+    else if (*s == "local") model = LightingModel::kLocalSphere;
+    else if (*s == "local-paper") model = LightingModel::kLocalSpherePaper;
+    else return usage("unknown --lighting '" + *s + "' (expected distant, local or local-paper)");
+  }
+  c->options.lighting.model = model;
+  const bool local = isLocalLighting(model);
+  for (const char* flag : {"--light-center", "--light-radius"}) {
+    if (p.has(flag) && !local) return usage(std::string(flag) + " needs --lighting local or local-paper");
+  }
+  if (const std::string* s = p.value("--light-center")) {
+    Vec3 centre;
+    if (Status st = parseTriple("--light-center", *s, &centre); !st.isOk()) return st;
+    c->lightCenter = centre;
+  }
+  if (const std::string* s = p.value("--light-radius")) {
+    const float big = std::numeric_limits<float>::max();
+    float r = 0.0f;
+    if (!parseFloatArg("--light-radius", *s, -big, big, &r).isOk() || !(r > 0.0f)) {
+      return usage("--light-radius expects a finite number > 0, got '" + *s + "'");
+    }
+    c->lightRadius = r;
+  }
+  return Status::ok();
+}
+
+// Local lighting's defaults from the scene (defaultLightingSphere) where not given.
+void completeLighting(const bake::Scene& scene, BakeCli* c) {
+  LightingInfo& l = c->options.lighting;
+  if (!isLocalLighting(l.model)) return;
+  const LightingInfo fallback = bake::defaultLightingSphere(scene, l.model);
+  l.center = c->lightCenter.value_or(fallback.center);
+  l.radius = c->lightRadius.value_or(fallback.radius);
+}
+
+std::string describeLighting(const LightingInfo& l) {
+  if (!isLocalLighting(l.model)) return lightingModelName(l.model);
+  char text[200];
+  std::snprintf(text, sizeof text, "%s, centre (%.6g, %.6g, %.6g), radius %.6g", lightingModelName(l.model),
+                static_cast<double>(l.center.x), static_cast<double>(l.center.y), static_cast<double>(l.center.z),
+                static_cast<double>(l.radius));
+  return text;
+}
 
 Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
   ParsedArgs p;
@@ -132,6 +225,20 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
     }
   }
   c->options.interreflection = c->storeInterreflected;
+  if (Status st = parseLightingArgs(p, c); !st.isOk()) return st;
+  if (const std::string* s = p.value("--name")) {
+    if (!isValidAssetName(*s)) {
+      return usage("--name must be at most " + std::to_string(kMaxAssetNameBytes) + " bytes of UTF-8 without control characters");
+    }
+    c->name = *s;
+  }
+  if (const std::string* s = p.value("--compress")) {
+    TransferCodecSettings settings;
+    if (Status st = parseTransferSetting(*s, TransferCodecSettings{}, &settings); !st.isOk()) {
+      return usage("--compress: " + st.message());
+    }
+    c->compress = settings;
+  }
   c->quiet = p.has("--quiet");
   c->json = p.has("--json");
   return Status::ok();
@@ -144,14 +251,33 @@ BakedAsset makeAsset(bake::Scene&& scene, bake::BakeResult&& r, const BakeCli& c
   a.normals = std::move(scene.normals);
   a.albedo = std::move(scene.albedo);
   a.indices = std::move(scene.indices);
-  a.name = scene.name;
+  a.name = c.name.value_or(scene.name);
+  a.lighting = c.options.lighting;
   a.samples = c.options.samples;
   a.seed = c.options.seed;
   a.sampling = c.options.sampling == bake::Sampling::kStratified ? "stratified" : "hammersley";
-  if (c.storeUnshadowed) a.passes.push_back({TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed)});
-  if (c.storeShadowed) a.passes.push_back({TransferKind::kShadowed, 1, 0, std::move(r.shadowed)});
-  if (c.storeInterreflected) a.passes.push_back({TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected)});
+  if (c.storeUnshadowed) a.passes.push_back({TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed), {}});
+  if (c.storeShadowed) a.passes.push_back({TransferKind::kShadowed, 1, 0, std::move(r.shadowed), {}});
+  if (c.storeInterreflected) a.passes.push_back({TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected), {}});
   return a;
+}
+
+// Encodes every pass of `a` with the codec; the floats are dropped once encoded.
+Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std::string* summary) {
+  for (TransferPass& pass : a->passes) {
+    TransferEncodeReport report;
+    if (Status s = encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &report); !s.isOk()) {
+      return Status::error(s.code(), std::string(transferKindName(pass.kind)) + " transfer: " + s.message());
+    }
+    char line[200];
+    std::snprintf(line, sizeof line, "%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary->empty() ? "" : "; ",
+                  transferKindName(pass.kind), pass.coeffs.size() * 4, pass.encoded.size(), report.relativeError,
+                  report.clusters > 0 ? (", " + std::to_string(report.clusters) + " clusters").c_str() : "");
+    *summary += line;
+    pass.coeffs.clear();
+    pass.coeffs.shrink_to_fit();
+  }
+  return Status::ok();
 }
 
 double peakMemoryMiB() {
@@ -188,11 +314,13 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!c.quiet)
       for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
   }
+  bake::optimizeMeshOrder(&scene);
   const std::size_t vertexCount = scene.positions.size(), triangleCount = scene.indices.size() / 3;
+  completeLighting(scene, &c);
   if (!c.quiet) {
-    std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples\n",
+    std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples; lighting %s\n",
                  c.scene.empty() ? "default scene" : c.scene.c_str(), vertexCount, triangleCount, c.options.order,
-                 c.options.samples);
+                 c.options.samples, describeLighting(c.options.lighting).c_str());
   }
 
   bake::ProgressBar bar(err, !c.quiet);
@@ -201,13 +329,27 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   const Status baked = bake::bakeTransfer(scene, c.options, &result);
   bar.finish();
   if (!baked.isOk()) return fail(err, kExitInputError, baked.message());
+  const std::size_t outsideLight = result.verticesOutsideLight;
+  if (outsideLight > 0 && !c.quiet) {
+    std::fprintf(err,
+                 "prt-bake: warning: %zu of %zu vertices lie outside the lighting sphere (%s); their rays that "
+                 "miss it receive no light\n",
+                 outsideLight, vertexCount, describeLighting(c.options.lighting).c_str());
+  }
 
   const int bounces = result.bounces;
   const std::vector<bake::PassStats> passes = result.passes;
   const std::vector<double> energy = result.bounceEnergy;
   std::vector<std::uint8_t> bytes;
   {
-    const BakedAsset asset = makeAsset(std::move(scene), std::move(result), c);
+    BakedAsset asset = makeAsset(std::move(scene), std::move(result), c);
+    if (c.compress) {
+      std::string summary;
+      if (Status s = compressPasses(*c.compress, &asset, &summary); !s.isOk()) {
+        return fail(err, kExitInputError, "cannot compress: " + s.message());
+      }
+      if (!c.quiet) std::fprintf(err, "prt-bake: %s: %s\n", transferSettingName(*c.compress).c_str(), summary.c_str());
+    }
     if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return fail(err, kExitInputError, "cannot encode asset: " + s.message());
   }
   if (Status s = writeFileAtomically(c.output, bytes); !s.isOk()) return fail(err, kExitInputError, s.message());
@@ -225,6 +367,13 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "  \"order\": " + std::to_string(c.options.order) + ",\n";
     s += "  \"samples\": " + std::to_string(c.options.samples) + ",\n";
     s += "  \"bounces\": " + std::to_string(bounces) + ",\n";
+    const LightingInfo& l = c.options.lighting;
+    s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(l.model));
+    if (isLocalLighting(l.model)) {
+      s += ", \"center\": [" + jsonNumber(l.center.x) + ", " + jsonNumber(l.center.y) + ", " + jsonNumber(l.center.z) +
+           "], \"radius\": " + jsonNumber(l.radius) + ", \"vertices_outside\": " + std::to_string(outsideLight);
+    }
+    s += "},\n";
     s += "  \"bounce_energy\": [";
     for (std::size_t i = 0; i < energy.size(); ++i) s += (i ? ", " : "") + jsonNumber(energy[i]);
     s += "],\n  \"passes\": [\n";

@@ -11,6 +11,7 @@
 #include "asset_commands.h"
 #include "bake_command.h"
 #include "cli_args.h"
+#include "compress_command.h"
 #include "probe_command.h"
 
 #ifndef PRT_VERSION
@@ -30,6 +31,7 @@ constexpr const char* kHelp =
     "  probe      project an environment map (EXR, HDR, PNG, JPEG) onto spherical harmonics\n"
     "  info       verify a baked asset and print what it holds\n"
     "  shade      print every vertex's exit radiance under a light, from an asset\n"
+    "  compress-report  size and exit-radiance error of every codec setting on an asset\n"
     "\n"
     "Bake options: 'prt-bake --default --help'.\n"
     "\n"
@@ -57,12 +59,13 @@ int run(const std::vector<std::string>& args) {
   if (command == "probe") return prt::runProbeCommand(rest, stdout, stderr);
   if (command == "info") return prt::runInfoCommand(rest, stdout, stderr);
   if (command == "shade") return prt::runShadeCommand(rest, stdout, stderr);
+  if (command == "compress-report") return prt::runCompressReportCommand(rest, stdout, stderr);
   // Anything else is a bake: `prt-bake SCENE -o ASSET ...` or `prt-bake --default ...`,
   // except a bare word that is neither a file nor a glTF name: most likely a mistyped command.
   const bool looksLikeScene = command[0] == '-' || command.find('.') != std::string::npos ||
                               command.find('/') != std::string::npos || access(command.c_str(), F_OK) == 0;
   if (!looksLikeScene) {
-    return usageError("unknown command '" + command + "' (commands: probe, info, shade; or a SCENE.gltf/.glb to bake)");
+    return usageError("unknown command '" + command + "' (commands: probe, info, shade, compress-report; or a SCENE.gltf/.glb to bake)");
   }
   return prt::runBakeCommand(args, stdout, stderr);
 }

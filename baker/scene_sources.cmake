@@ -9,6 +9,7 @@
 # (gltf_texture.cpp) by stb_image from libstb-dev.
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
 
 # prt_stb (Debian's prebuilt stb_image) is defined by baker/CMakeLists.txt before this file.
 
@@ -19,9 +20,10 @@ add_library(prt_scene STATIC
   ${CMAKE_CURRENT_LIST_DIR}/mesh_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_cleanup.cpp
   ${CMAKE_CURRENT_LIST_DIR}/default_scene.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/mesh_order.cpp
 )
 target_include_directories(prt_scene PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 # tiny_gltf.h, GLM and stb live under /usr/include, which GCC and Clang treat as system
 # headers, so their warnings stay out of -Werror.
-target_link_libraries(prt_scene PUBLIC prt_shared PRIVATE TinyGLTF::TinyGLTF glm::glm prt_stb)
+target_link_libraries(prt_scene PUBLIC prt_shared PRIVATE TinyGLTF::TinyGLTF glm::glm prt_stb meshoptimizer::meshoptimizer)
 target_compile_options(prt_scene PRIVATE ${PRT_STRICT_WARNINGS})

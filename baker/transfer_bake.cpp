@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "embree_scene.h"
+#include "local_sphere.h"
 #include "parallel_for.h"
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
@@ -150,6 +151,7 @@ Status checkOptions(const Scene& scene, const BakeOptions& o) {
   if (o.maxBounces < 0 || o.maxBounces > 64) {
     return Status::error(StatusCode::kInvalidArgument, "bounce count must be in [0, 64]");
   }
+  if (Status s = checkLightingInfo(o.lighting); !s.isOk()) return Status::error(s.code(), "bake " + s.message());
   const std::size_t vertexCount = scene.positions.size();
   if (scene.normals.size() != vertexCount || scene.albedo.size() != vertexCount) {
     return Status::error(StatusCode::kSizeMismatch, "scene normals/albedo do not match its positions");
@@ -184,6 +186,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   out->bounceEnergy.clear();
   out->passes.clear();
   out->bounces = 0;
+  out->verticesOutsideLight = 0;
 
   // Geometric (winding) normals decide whether a ray hit the front of a triangle.
   std::vector<Vec3> faceNormal(scene.indices.size() / 3);
@@ -195,13 +198,18 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
 
   // ---- direct pass: unshadowed + shadowed, recording front-face hits for the bounces
   std::vector<Block> blocks(o.interreflection ? blockCount : 0);
+  std::vector<std::uint8_t> outside(vertexCount, 0);
   {
     const auto t0 = std::chrono::steady_clock::now();
     ProgressReporter progress(o, "direct", vertexCount);
+    const bool local = isLocalLighting(o.lighting.model);
     struct Scratch {
       std::vector<RTCRayHit> rays;
       std::vector<std::uint32_t> sample;
-      std::vector<float> unshadowedW, shadowedW;
+      std::vector<float> unshadowedW, shadowedW;  // per sample k; solid-angle weights w max(0, n.w)/pi
+      // Local lighting, per ray j: w'_j, the lit weights (solid angle x remap weight, 0 for rays
+      // that never reach S) and the basis at w'_j, [coefficient][ray].
+      std::vector<float> lightX, lightY, lightZ, litUnshadowed, litShadowed, basis;
     };
     std::vector<Scratch> scratch(threads);
     for (auto& s : scratch) {
@@ -209,6 +217,10 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
       s.sample.resize(sampleCount);
       s.unshadowedW.resize(sampleCount);
       s.shadowedW.resize(sampleCount);
+      if (local) {
+        for (auto* a : {&s.lightX, &s.lightY, &s.lightZ, &s.litUnshadowed, &s.litShadowed}) a->resize(sampleCount);
+        s.basis.resize(static_cast<std::size_t>(n2) * sampleCount);
+      }
     }
     parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
       Scratch& s = scratch[thread];
@@ -223,7 +235,21 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
         const Vec3 n = scene.normals[v];
         const Vec3 origin = scene.positions[v] + n * eps;
         const unsigned count = fillRays(table, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
-        std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
+        if (local) {
+          const SpherePoint sp = locateOnSphere(scene.positions[v], o.lighting.center, o.lighting.radius);
+          outside[v] = sp.outside;
+          for (unsigned j = 0; j < count; ++j) {
+            RTCRay& ray = s.rays[j].ray;
+            const RemappedRay m = remapRay(sp, Vec3{ray.dir_x, ray.dir_y, ray.dir_z}, o.lighting.model);
+            ray.tfar = m.tFar;  // occluders beyond S are part of the lighting, not the scene
+            s.lightX[j] = m.lightDir.x;
+            s.lightY[j] = m.lightDir.y;
+            s.lightZ[j] = m.lightDir.z;
+            s.litUnshadowed[j] = s.litShadowed[j] = s.unshadowedW[s.sample[j]] * m.weight;
+          }
+        } else {
+          std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
+        }
         if (rec) {
           rtcIntersect1M(embree.handle(), &context, s.rays.data(), count, sizeof(RTCRayHit));
         } else {
@@ -236,20 +262,35 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
           const bool blocked = rec ? r.hit.geomID != RTC_INVALID_GEOMETRY_ID : r.ray.tfar < 0.0f;
           if (!blocked) continue;
           const std::uint32_t k = s.sample[j];
-          s.shadowedW[k] = 0.0f;
+          if (local) {
+            s.litShadowed[j] = 0.0f;
+          } else {
+            s.shadowedW[k] = 0.0f;
+          }
+          // Hits keep the solid-angle weight in both models: a bounce gathers radiance over
+          // directions at x from surfaces inside S, which does not involve the remapping.
           if (rec && dot(faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
             auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
             rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
           }
         }
         if (rec) rec->hitStart.push_back(static_cast<std::uint32_t>(rec->hits.size()));
-        projectWeights(n2, sampleCount, s.unshadowedW.data(), table.basis.data(), &out->unshadowed[v * n2]);
-        projectWeights(n2, sampleCount, s.shadowedW.data(), table.basis.data(), &out->shadowed[v * n2]);
+        if (local) {
+          // One basis evaluation per ray, batched over the vertex's rays (the distant bake
+          // evaluates each sample's basis once for all vertices).
+          evalShBasisBatchUnchecked(o.order, count, s.lightX.data(), s.lightY.data(), s.lightZ.data(), s.basis.data());
+          projectWeights(n2, count, s.litUnshadowed.data(), s.basis.data(), &out->unshadowed[v * n2]);
+          projectWeights(n2, count, s.litShadowed.data(), s.basis.data(), &out->shadowed[v * n2]);
+        } else {
+          projectWeights(n2, sampleCount, s.unshadowedW.data(), table.basis.data(), &out->unshadowed[v * n2]);
+          projectWeights(n2, sampleCount, s.shadowedW.data(), table.basis.data(), &out->shadowed[v * n2]);
+        }
       }
       progress.add(end - begin, rays);
     });
     out->passes.push_back({"direct", secondsSince(t0), progress.rays()});
   }
+  for (std::uint8_t x : outside) out->verticesOutsideLight += x;
   if (!o.interreflection) return Status::ok();
 
   // ---- interreflection: bounce 0 is the shadowed transfer times albedo, RGB

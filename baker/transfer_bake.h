@@ -12,6 +12,13 @@
 // from the hit triangle's vertices with the hit's barycentrics (Fujita & Kanai's gather
 // from interpolated hit points). Exit radiance under lighting L is rho_c * sum_i U_i L_ci
 // (or S_i), and sum_i T_ci L_ci for interreflection, whose albedo is folded in.
+//
+// Spatially-varying lighting (BakeOptions::lighting local; Fujita & Kanai §3.1,
+// docs/spatially-varying.md): L is radiance on a sphere S (c, r) indexed by direction from
+// c. The direct pass shoots the same w_k, stops visibility at t*, where the ray leaves S,
+// and projects onto y_i(w'_k) with w'_k = (x - c + t* w_k)/r instead of y_i(w_k), one basis
+// evaluation per ray; the paper variant also divides by cos(theta') = w_k.w'_k. Bounces
+// gather exactly as for distant lighting.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/asset.h"
 #include "prt/status.h"
 #include "scene.h"
 
@@ -41,6 +49,7 @@ struct BakeOptions {
   int maxBounces = 8;             // hard cap on interreflection bounces
   double bounceThreshold = 1e-3;  // stop once a bounce adds less than this fraction of bounce 0's energy
   unsigned threads = 0;           // 0: all hardware threads; results do not depend on it
+  LightingInfo lighting;          // distant (default) or a local sphere (checkLightingInfo rules)
   std::function<void(const BakeProgress&)> progress;  // called from worker threads, serialised
 };
 
@@ -58,6 +67,8 @@ struct BakeResult {
   int bounces = 0;                    // bounces actually gathered
   std::vector<double> bounceEnergy;   // per bounce: sum over vertices of area x DC term, all channels
   std::vector<PassStats> passes;
+  // Local lighting: vertices outside the sphere S, whose rays that miss S carry no light.
+  std::size_t verticesOutsideLight = 0;
 };
 
 // Bakes all passes for `scene` (normals unit length, albedo in [0, 1)). Deterministic for

@@ -12,6 +12,8 @@ packages=(
   emscripten nodejs
   # the baker: ray tracing, image loading for `prt-bake probe`
   libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
+  # vertex and index order for cache and compression locality
+  libmeshoptimizer-dev
   # the server: Boost.Beast/Asio (header-only), and the encoders of its precompressed
   # variants (gzip, zstd, brotli)
   libboost-dev zlib1g-dev libzstd-dev libbrotli-dev

@@ -53,9 +53,9 @@ bool urlSafeName(std::string_view name) {
   return true;
 }
 
-// Examines one listed file: open, read, verify, hash, make the variants.
+// Examines one listed file: open, read, verify, hash, make the variants and the parts.
 std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const ScannedFile& scanned,
-                                              const CatalogueOptions& options, bool* unstable) {
+                                              const CatalogueOptions& options, PartPool* pool, bool* unstable) {
   auto e = std::make_shared<CatalogueEntry>();
   e->file = scanned.relPath;
   const std::string fileName = baseName(scanned.relPath);
@@ -119,8 +119,24 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
     }
   }
   e->resource = std::move(resource);
+  if (e->bytes <= options.maxPartsBytes) {
+    // On failure (never for a verified file, short of an XXH64 collision) the entry has
+    // no parts and clients fetch the whole asset.
+    pool->makeParts(bytes, e->summary, options.compress && e->bytes <= options.maxCompressBytes, &e->parts);
+  }
   e->usable = true;
   return e;
+}
+
+// {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P][,"band":l]}
+std::string partJson(const ServedPart& p) {
+  const AssetPart& r = p.range;
+  std::string j = "{\"offset\":" + std::to_string(r.offset) + ",\"size\":" + std::to_string(r.size) +
+                  ",\"url\":" + jsonString(p.url) + ",\"kind\":\"" + assetPartKindName(r.kind) + "\"";
+  if (r.section >= 0) j += ",\"section\":" + std::to_string(r.section);
+  if (r.hasPass) j += ",\"pass\":" + jsonString(transferKindName(r.pass));
+  if (r.band >= 0) j += ",\"band\":" + std::to_string(r.band);
+  return j + "}";
 }
 
 std::string entryJson(const CatalogueEntry& e) {
@@ -137,11 +153,29 @@ std::string entryJson(const CatalogueEntry& e) {
     j += std::string(i ? "," : "") + "{\"kind\":" + jsonString(transferKindName(p.kind)) +
          ",\"channels\":" + std::to_string(p.channels) + ",\"bounces\":" + std::to_string(p.bounces) + "}";
   }
-  j += "],\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling) + ",\"encodings\":[";
+  j += "],\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling);
+  // The client needs the lighting model to light the transfer correctly, and for the local
+  // models where to render its light cube map from (docs/spatially-varying.md).
+  j += ",\"lighting\":" + jsonString(lightingModelName(s.lighting.model));
+  if (isLocalLighting(s.lighting.model)) {
+    const Vec3 c = s.lighting.center;
+    j += ",\"lightCenter\":[" + jsonNumber(c.x) + "," + jsonNumber(c.y) + "," + jsonNumber(c.z) +
+         "],\"lightRadius\":" + jsonNumber(s.lighting.radius);
+  }
+  j += ",\"encodings\":[";
   for (std::size_t i = 1; i < e.resource->variants.size(); ++i) {
     j += std::string(i > 1 ? "," : "") + "\"" + encodingToken(e.resource->variants[i].encoding) + "\"";
   }
-  return j + "]}";
+  j += "]";
+  if (!e.parts.empty()) {
+    j += ",\"parts\":[";
+    for (std::size_t i = 0; i < e.parts.size(); ++i) {
+      if (i > 0) j += ",";
+      j += partJson(e.parts[i]);
+    }
+    j += "]";
+  }
+  return j + "}";
 }
 
 // The /api/scenes document as a resource: revalidated on every use (no-cache), with an
@@ -195,6 +229,12 @@ std::shared_ptr<const CatalogueEntry> Catalogue::findAsset(std::string_view path
   return it->second;
 }
 
+std::shared_ptr<const Resource> Catalogue::findPart(std::string_view path) {
+  const std::shared_ptr<const CatalogueSnapshot> snap = current();
+  const auto it = snap->parts.find(path);
+  return it == snap->parts.end() ? nullptr : it->second;
+}
+
 void Catalogue::refresh() {
   std::vector<ScannedFile> listing = scanDirectory(root_, kExtensions);
   std::shared_ptr<const CatalogueSnapshot> old;
@@ -209,14 +249,16 @@ void Catalogue::refresh() {
     for (const auto& e : old->entries) previous.emplace(e->file, e);
   }
   auto snap = std::make_shared<CatalogueSnapshot>();
+  PartPool pool(old ? old->parts : PartMap{});
   for (const ScannedFile& f : listing) {
     const auto it = previous.find(f.relPath);
     const bool same = it != previous.end() && f.problem.empty() && !(it->second->stamp == FileStamp{}) &&
                       it->second->stamp == f.stamp;
-    std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &snap->retry);
+    std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &pool, &snap->retry);
     if (entry->usable) {
       ++snap->usableCount;
       snap->byPath.emplace("/assets/" + entry->hash + "/" + baseName(entry->file), entry);
+      for (const ServedPart& p : entry->parts) snap->parts.emplace(p.url, p.resource);
     }
     snap->entries.push_back(std::move(entry));
   }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dir_scan.h"
+#include "part_store.h"
 #include "prt/asset.h"
 #include "resource.h"
 #include "root_dir.h"
@@ -32,6 +33,7 @@ struct CatalogueEntry {
   std::string hash;  // 16 hex digits of XXH64 over the file, when usable
   std::string url;   // /assets/<hash>/<file name, percent-encoded>
   std::shared_ptr<const Resource> resource;  // identity from the verified descriptor + variants
+  std::vector<ServedPart> parts;  // the file cut into parts, in file order; empty: served whole only
 };
 
 struct CatalogueSnapshot {
@@ -39,6 +41,7 @@ struct CatalogueSnapshot {
   std::vector<std::shared_ptr<const CatalogueEntry>> entries;  // sorted by file
   // Decoded URL path ("/assets/<hash>/<name>") to its usable entry.
   std::map<std::string, std::shared_ptr<const CatalogueEntry>, std::less<>> byPath;
+  PartMap parts;  // every part of every usable entry, by URL path (shared parts once)
   std::shared_ptr<const Resource> json;  // the /api/scenes document
   bool retry = false;  // some file changed while it was read: look again next time
   int usableCount = 0;
@@ -51,6 +54,9 @@ struct CatalogueOptions {
   // ...for assets up to this size: ~0.1 s per MB of scan time for the three, which would
   // hold the catalogue of a 250 MB asset for half a minute. Larger ones go out as they are.
   std::uint64_t maxCompressBytes = std::uint64_t{64} << 20;
+  // Assets up to this size are also cut into parts (/parts/<hash>), which are held in
+  // memory with their br/zstd/gzip variants: about 3x the asset's size. 0: no parts at all.
+  std::uint64_t maxPartsBytes = std::uint64_t{64} << 20;
 };
 
 class Catalogue {
@@ -65,6 +71,10 @@ class Catalogue {
   // The usable entry at decoded URL `path`, provided its file still is the verified version
   // (an in-place rewrite is noticed here, and triggers a rescan); null otherwise.
   std::shared_ptr<const CatalogueEntry> findAsset(std::string_view path);
+
+  // The part at decoded URL path ("/parts/<hash>") in the current snapshot; null otherwise.
+  // Parts are copies of verified bytes, so a later change to the file cannot reach them.
+  std::shared_ptr<const Resource> findPart(std::string_view path);
 
  private:
   void refresh();

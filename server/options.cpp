@@ -42,6 +42,7 @@ const char* serveHelpText() {
          "Endpoints:\n"
          "  GET /api/scenes                 JSON catalogue of the assets under --root (each verified)\n"
          "  GET /assets/<hash>/<name>.prt   an asset at its content-addressed, immutable URL\n"
+         "  GET /parts/<hash>               one piece of an asset (the catalogue lists them), immutable\n"
          "  GET /api/lights[?order=N]       the EXR/HDR maps under --root as SH coefficients (order 1..16, default 5)\n"
          "  GET /api/lights/preview/<hash>.png   a small tone-mapped preview of a map\n"
          "  GET /...                        the files under --web (index.html for directories)\n"
@@ -56,6 +57,8 @@ const char* serveHelpText() {
          "  --read-timeout S       seconds a client has to send a request head, idle time\n"
          "                         between keep-alive requests included (default 15)\n"
          "  --write-timeout S      seconds a client may stall a response before it is dropped (default 30)\n"
+         "  --max-parts-mib N      assets up to N MiB are also served as parts, held in memory\n"
+         "                         (about 3x their size); 0: none (default 64)\n"
          "  --quiet                no access log (one line per request on stderr otherwise)\n"
          "  -h, --help             show this help\n"
          "  --version              print the version\n"
@@ -88,7 +91,8 @@ Status parseServeOptions(std::span<const std::string> args, ServeOptions* out) {
       continue;
     }
     static constexpr std::string_view kValued[] = {"--root", "--web", "--bind", "--port", "--threads",
-                                                   "--max-connections", "--read-timeout", "--write-timeout"};
+                                                   "--max-connections", "--read-timeout", "--write-timeout",
+                                                   "--max-parts-mib"};
     bool known = false;
     for (std::string_view k : kValued) known = known || flag == k;
     if (!known) {
@@ -107,6 +111,7 @@ Status parseServeOptions(std::span<const std::string> args, ServeOptions* out) {
     else if (flag == "--max-connections") s = parseInt(flag, value, 1, 1000000, &out->maxConnections);
     else if (flag == "--read-timeout") s = parseSeconds(flag, value, &out->readTimeoutSeconds);
     else if (flag == "--write-timeout") s = parseSeconds(flag, value, &out->writeTimeoutSeconds);
+    else if (flag == "--max-parts-mib") s = parseInt(flag, value, 0, 1024, &out->maxPartsMiB);
     if (!s.isOk()) return s;
   }
   if (out->help || out->version) return Status::ok();

@@ -22,6 +22,7 @@ struct ServeOptions {
   int maxConnections = 1024;        // --max-connections
   double readTimeoutSeconds = 15;   // --read-timeout: to receive a request head
   double writeTimeoutSeconds = 30;  // --write-timeout: without progress while sending
+  int maxPartsMiB = 64;             // --max-parts-mib: larger assets are served whole only
   bool quiet = false;               // --quiet: no access log
   bool help = false;
   bool version = false;

@@ -55,6 +55,11 @@ Reply Router::route(const RequestHead& request) {
     // Content-addressed: an old hash is gone for good; the catalogue has the current URL.
     return errorReply(version, http::status::not_found, "no such asset version; see /api/scenes", false);
   }
+  if (path.starts_with(kPartPrefix)) {
+    // Only the exact URLs the catalogue lists exist; anything else under /parts/ is 404.
+    if (auto r = catalogue_.findPart(path)) return respond(request, *r);
+    return errorReply(version, http::status::not_found, "no such part; see /api/scenes", false);
+  }
   if (web_) return web_->serve(request, path, rawTarget.substr(0, rawTarget.find('?')));
   return errorReply(version, http::status::not_found, "not found (no --web directory)", false);
 }

@@ -1,5 +1,5 @@
 // Which part of the server answers a request: the API documents, the content-addressed
-// assets, the light previews, or the web client's files.
+// assets and their parts, the light previews, or the web client's files.
 #pragma once
 
 #include <memory>

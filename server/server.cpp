@@ -110,7 +110,10 @@ int run(const ServeOptions& options) {
   if (Status s = openAcceptor(ioc, options, &acceptor); !s.isOk()) return fail(s.message());
   const unsigned short port = acceptor.local_endpoint().port();
 
-  catalogue.emplace(root, CatalogueOptions{kRecheck});
+  CatalogueOptions catalogueOptions;
+  catalogueOptions.recheck = kRecheck;
+  catalogueOptions.maxPartsBytes = static_cast<std::uint64_t>(options.maxPartsMiB) << 20;
+  catalogue.emplace(root, catalogueOptions);
   lights.emplace(root, kRecheck);
   if (web) staticFiles.emplace(*web);
   router.emplace(*catalogue, *lights, staticFiles ? &*staticFiles : nullptr);

@@ -35,7 +35,40 @@ struct TransferPass {
   int bounces = 0;  // interreflection bounces actually gathered; 0 for the other kinds
   // vertexCount * channels * order*order floats, layout [vertex][channel][coefficient].
   std::vector<float> coeffs;
+  // When non-empty: the pass as a transfer-codec blob (prt/transfer_codec.h), which the
+  // writer stores as a kEncodedTransfer section instead of the floats (coeffs are then
+  // ignored by checkAsset/encodeAsset). decodeAsset fills both: coeffs with the blob's
+  // full decode, encoded with the blob's bytes.
+  std::vector<std::uint8_t> encoded;
 };
+
+// How the transfer is parameterised by the lighting it is multiplied with
+// (docs/spatially-varying.md). Every model takes the same lighting vector: the SH of the
+// radiance seen from `center`, as a cube map rendered there captures it.
+enum class LightingModel : std::uint32_t {
+  kDistant = 0,      // lighting at infinity, indexed by direction (Sloan 2002); center/radius unused
+  kLocalSphere = 1,  // radiance on the sphere (center, radius), emitted inward as a Lambertian
+                     // surface: the area form with cos(theta') (our reading of Fujita & Kanai §3.1)
+  kLocalSpherePaper = 2,  // Fujita & Kanai 2004 §3.1 as printed: cos(theta') left out
+};
+
+// "distant" | "local-sphere" | "local-sphere-paper", or "unknown" for other values.
+const char* lightingModelName(LightingModel model);
+
+struct LightingInfo {
+  LightingModel model = LightingModel::kDistant;
+  Vec3 center{};       // world units; the point c the client renders its light cube map from
+  float radius = 0.0f; // r > 0 for the local models, 0 for distant
+};
+
+// True for the local models (kLocalSphere, kLocalSpherePaper).
+bool isLocalLighting(LightingModel model);
+
+// Ok when `lighting` is valid in an asset: a known model; for the local models a finite
+// centre and a finite radius > 0; for distant, centre and radius +0.0 (they mean nothing
+// there, and one encoding per meaning keeps files comparable). Errors:
+// kInvalidArgument, or kNotFinite for NaN/infinity; the message starts with "lighting".
+Status checkLightingInfo(const LightingInfo& lighting);
 
 struct BakedAsset {
   int shOrder = 0;  // kMinShOrder..kMaxShOrder (the baker uses 2..8)
@@ -50,6 +83,7 @@ struct BakedAsset {
   std::uint64_t seed = 0;
   std::string sampling;  // "hammersley" | "stratified" (any isValidAssetSamplingName string)
   std::string name;      // for catalogues and logs (isValidAssetName)
+  LightingInfo lighting;  // files without a lighting section decode as distant
 };
 
 // Returns the pass of `kind`, or nullptr if the asset has none.
@@ -59,7 +93,7 @@ const TransferPass* findPass(const BakedAsset& asset, TransferKind kind);
 
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
-inline constexpr std::uint16_t kAssetVersionMinor = 0;  // new section types bump this
+inline constexpr std::uint16_t kAssetVersionMinor = 2;  // new section types bump this (1: lighting, 2: encoded transfer)
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -72,8 +106,8 @@ inline constexpr std::uint32_t kMaxAssetSections = 1024;
 inline constexpr std::uint32_t kMaxAssetBounces = 1024;
 inline constexpr std::size_t kMaxAssetNameBytes = 4096;
 inline constexpr std::size_t kMaxAssetSamplingBytes = 32;
-// A prefix this long always holds the header, table and metadata of files encodeAsset
-// writes (it places the metadata section first), which is all peekAssetHeader reads.
+// A prefix this long always holds the header, table, metadata and lighting of files
+// encodeAsset writes (it places those two sections first), which is all peekAssetHeader reads.
 inline constexpr std::size_t kAssetPeekPrefixSize = 64 * 1024;
 
 enum class AssetSectionType : std::uint32_t {
@@ -84,7 +118,20 @@ enum class AssetSectionType : std::uint32_t {
   kAlbedo = 4,     // float32 r,g,b per vertex
   kTransfer = 5,   // float32 coefficients; arg0 kind, arg1 channels, arg2 bounces
   kMetadata = 6,   // bytes: samples, seed, sampling, name
+  kLighting = 7,   // bytes: lighting model, centre, radius (since 1.1; absent = distant)
+  kEncodedTransfer = 8,  // bytes: a transfer codec blob (prt/transfer_codec.h, docs/transfer-codec.md);
+                         // arg0 kind, arg1 channels, arg2 bounces, as kTransfer (since 1.2)
 };
+
+// Size and field offsets of the lighting section's payload (docs/asset-format.md).
+inline constexpr std::size_t kAssetLightingBytes = 20;
+namespace asset_lighting_layout {
+inline constexpr std::size_t kModel = 0;    // u32 LightingModel
+inline constexpr std::size_t kCenterX = 4;  // f32
+inline constexpr std::size_t kCenterY = 8;  // f32
+inline constexpr std::size_t kCenterZ = 12; // f32
+inline constexpr std::size_t kRadius = 16;  // f32
+}  // namespace asset_lighting_layout
 
 enum class AssetElementFormat : std::uint32_t {
   kFloat32 = 1,  // IEEE-754 binary32, little-endian
@@ -129,7 +176,8 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // Ok when `asset` can be encoded: order in range, 1..kMaxAssetVertices vertices with as
 // many normals and albedos, 1..kMaxAssetTriangles triangles with every index in range,
 // every float finite, 1..3 passes of distinct valid kinds with channels 1 or 3, bounces 0
-// except for interreflection, coefficient counts matching, and valid name and sampling.
+// except for interreflection, coefficient counts matching, valid name and sampling, and
+// valid lighting (checkLightingInfo).
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.
@@ -139,6 +187,18 @@ struct AssetPassInfo {
   TransferKind kind = TransferKind::kUnshadowed;
   int channels = 0;
   int bounces = 0;
+  bool encoded = false;       // a kEncodedTransfer section (codec blob) rather than float32
+  std::uint64_t bytes = 0;    // the section's payload size
+  std::uint32_t section = 0;  // its index in the section table
+};
+
+// One entry of the section table, as validated by the reader (offsets from the file start).
+struct AssetSectionInfo {
+  std::uint32_t type = 0;    // AssetSectionType value (unknown types included)
+  std::uint32_t format = 0;  // AssetElementFormat value
+  std::uint64_t offset = 0, size = 0;
+  std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0;
+  std::uint32_t crc = 0;     // CRC-32C of the payload
 };
 
 // What a catalogue needs to list an asset without decoding it.
@@ -155,14 +215,17 @@ struct AssetSummary {
   std::uint64_t seed = 0;
   std::string sampling;
   std::string name;
+  LightingInfo lighting;  // distant when the file has no lighting section
+  std::vector<AssetSectionInfo> sections;  // the whole table, in table order
+  std::uint64_t tableEnd = 0;  // end of header + table (before padding): where payloads may start
 };
 
-// Reads the header, section table and metadata section and validates them (magic,
-// version, checksums of header, table and metadata, every table entry's bounds against
-// the declared file size, alignment, overlaps, required sections, sizes against counts)
-// without touching the other sections. `bytes` is the whole file or any prefix of it
-// holding those parts (kAssetPeekPrefixSize suffices for files encodeAsset wrote);
-// kTruncated when it is too short. Does not check the other sections' checksums or
+// Reads the header, section table, metadata and (if present) lighting sections and
+// validates them (magic, version, checksums of header, table, metadata and lighting, every
+// table entry's bounds against the declared file size, alignment, overlaps, required
+// sections, sizes against counts) without touching the other sections. `bytes` is the
+// whole file or any prefix of it holding those parts (kAssetPeekPrefixSize suffices for
+// files encodeAsset wrote); kTruncated when it is too short. Does not check the other sections' checksums or
 // contents: use verifyAsset for that.
 Status peekAssetHeader(std::span<const std::uint8_t> bytes, AssetSummary* out);
 
@@ -176,5 +239,23 @@ Status verifyAsset(std::span<const std::uint8_t> bytes, AssetSummary* out);
 // (anything else; the message names the section and the problem). Never reads outside
 // `bytes`, and allocates no more than about the file's size.
 Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out);
+
+// ---- Progressive decoding (a client that fetches the file piece by piece) ---------------
+//
+// `file` is a buffer of the declared file size (summary.fileSize, from peekAssetHeader on
+// its first bytes) in which only some byte ranges have arrived; the functions below read
+// only the ranges they name, check those ranges' checksums and values, and never read
+// outside `file`. Safe on untrusted input, like decodeAsset.
+
+// Decodes positions, normals, albedo, indices, metadata and lighting (their sections must
+// have arrived) into *out with no passes; out->shOrder is the header's order.
+Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out);
+
+// Decodes transfer pass `pass` (an index into AssetSummary::passes, table order) into *out, using only the
+// bytes of that pass's section. A float32 section must have arrived whole; an encoded one
+// may hold only the codec's header and the parts of its first `bands` bands (the bands the
+// caller knows have arrived; 0 = all of them), and decodes as an order-`bands` pass (out->coeffs has
+// channels * bands^2 floats per vertex; *bandsDecoded says how many). out->encoded is left empty.
+Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded);
 
 }  // namespace prt

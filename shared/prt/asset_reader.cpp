@@ -15,6 +15,7 @@
 
 #include "prt/asset.h"
 #include "prt/checksum.h"
+#include "prt/transfer_codec.h"
 #include "prt/sh_basis.h"
 
 namespace prt {
@@ -55,12 +56,15 @@ struct Parsed {
   std::uint64_t fileSize = 0;
   std::vector<Entry> entries;  // table order
   int positions = -1, normals = -1, indices = -1, albedo = -1, metadata = -1;
+  int lighting = -1;  // optional (format 1.1); absent means distant
   std::vector<int> transfer;  // entry indices, table order
 };
 
+// What the small sections hold: the metadata and the lighting.
 struct Metadata {
   std::uint64_t samples = 0, seed = 0;
   std::string sampling, name;
+  LightingInfo lighting;
 };
 
 constexpr std::uint32_t kTypePositions = static_cast<std::uint32_t>(AssetSectionType::kPositions);
@@ -69,6 +73,8 @@ constexpr std::uint32_t kTypeIndices = static_cast<std::uint32_t>(AssetSectionTy
 constexpr std::uint32_t kTypeAlbedo = static_cast<std::uint32_t>(AssetSectionType::kAlbedo);
 constexpr std::uint32_t kTypeTransfer = static_cast<std::uint32_t>(AssetSectionType::kTransfer);
 constexpr std::uint32_t kTypeMetadata = static_cast<std::uint32_t>(AssetSectionType::kMetadata);
+constexpr std::uint32_t kTypeLighting = static_cast<std::uint32_t>(AssetSectionType::kLighting);
+constexpr std::uint32_t kTypeEncodedTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer);
 constexpr std::uint32_t kFormatFloat32 = static_cast<std::uint32_t>(AssetElementFormat::kFloat32);
 constexpr std::uint32_t kFormatUint32 = static_cast<std::uint32_t>(AssetElementFormat::kUint32);
 constexpr std::uint32_t kFormatBytes = static_cast<std::uint32_t>(AssetElementFormat::kBytes);
@@ -84,10 +90,13 @@ std::string sectionLabel(const Entry& e) {
     case kTypeIndices: s += "indices"; break;
     case kTypeAlbedo: s += "albedo"; break;
     case kTypeTransfer:
+    case kTypeEncodedTransfer:
+      s += e.type == kTypeEncodedTransfer ? "encoded " : "";
       s += e.arg0 <= 2 ? std::string("transfer ") + transferKindName(static_cast<TransferKind>(e.arg0))
                        : "transfer kind " + num(e.arg0);
       break;
     case kTypeMetadata: s += "metadata"; break;
+    case kTypeLighting: s += "lighting"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -216,8 +225,16 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
                        num(kMetadataFixedBytes + kMaxAssetSamplingBytes + kMaxAssetNameBytes) + " expected");
       }
       return once(&p->metadata);
-    case kTypeTransfer: {
-      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk()) return s;
+    case kTypeLighting:
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(kAssetLightingBytes, "model, centre and radius")).isOk()) {
+        return s;
+      }
+      return once(&p->lighting);
+    case kTypeTransfer:
+    case kTypeEncodedTransfer: {
+      const bool encoded = e.type == kTypeEncodedTransfer;
+      if (!(s = encoded ? expectFormat(kFormatBytes, "bytes") : expectFormat(kFormatFloat32, "float32")).isOk()) return s;
       if (e.arg0 > 2) return corrupt(label + " has unknown transfer kind " + num(e.arg0));
       if (e.arg1 != 1 && e.arg1 != 3) return corrupt(label + " has " + num(e.arg1) + " channels; 1 or 3 expected");
       const bool interreflected = e.arg0 == static_cast<std::uint32_t>(TransferKind::kInterreflected);
@@ -225,8 +242,9 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
         return corrupt(label + " has " + num(e.arg2) + " bounces; " +
                        (interreflected ? "at most " + num(kMaxAssetBounces) : std::string("0")) + " expected");
       }
-      // v <= 2^28, channels <= 3, order^2 <= 256: the product stays below 2^40.
-      if (!(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
+      // v <= 2^28, channels <= 3, order^2 <= 256: the product stays below 2^40. An encoded
+      // section's size is its blob's, checked with its contents.
+      if (!encoded && !(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
                            "4 bytes per vertex, channel and coefficient"))
                .isOk()) {
         return s;
@@ -372,6 +390,27 @@ Status parseMetadata(std::span<const std::uint8_t> payload, const Entry& e, Meta
   return Status::ok();
 }
 
+// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks.
+float floatFromBits(std::uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+Status parseLighting(std::span<const std::uint8_t> payload, const Entry& e, LightingInfo* out) {
+  namespace LL = asset_lighting_layout;
+  // The entry check guaranteed the size.
+  const std::uint8_t* b = payload.data();
+  LightingInfo l;
+  l.model = static_cast<LightingModel>(getU32(b + LL::kModel));
+  l.center = {floatFromBits(getU32(b + LL::kCenterX)), floatFromBits(getU32(b + LL::kCenterY)),
+              floatFromBits(getU32(b + LL::kCenterZ))};
+  l.radius = floatFromBits(getU32(b + LL::kRadius));
+  if (Status s = checkLightingInfo(l); !s.isOk()) return corrupt(sectionLabel(e) + ": " + s.message());
+  *out = l;
+  return Status::ok();
+}
+
 // Finite means the exponent bits are not all ones (which is what NaN and infinity share).
 Status checkFloats(std::span<const std::uint8_t> payload, const Entry& e) {
   const std::size_t count = payload.size() / 4;
@@ -398,7 +437,39 @@ Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::
 }
 
 // Everything decodeAsset checks; afterwards every section may be read without checks.
-Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m) {
+// An encoded transfer section's blob: its header must describe the asset's pass, and it must
+// decode in full (every part's checksum and value). `decoded` (may be null) receives the floats.
+Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& e, const Parsed& p, int bands,
+                            std::vector<float>* decoded, int* bandsDecoded) {
+  TransferBlobInfo info;
+  if (Status s = readTransferBlobInfo(payload, &info); !s.isOk()) {
+    return Status::error(s.code() == StatusCode::kTruncated ? StatusCode::kTruncated : StatusCode::kCorrupt,
+                         sectionLabel(e) + ": " + s.message());
+  }
+  if (info.order != static_cast<int>(p.order) || info.channels != static_cast<int>(e.arg1) ||
+      info.vertexCount != p.vertexCount) {
+    return corrupt(sectionLabel(e) + ": its blob is order " + num(static_cast<std::uint64_t>(info.order)) + ", " +
+                   num(static_cast<std::uint64_t>(info.channels)) + " channels, " + num(info.vertexCount) +
+                   " vertices; the asset says order " + num(p.order) + ", " + num(e.arg1) + " channels, " +
+                   num(p.vertexCount) + " vertices");
+  }
+  const int available = info.bandsAvailable;
+  const int want = bands <= 0 ? available : std::min(bands, available);
+  if (want < 1) {
+    return Status::error(StatusCode::kTruncated, sectionLabel(e) + ": no complete band has arrived");
+  }
+  std::vector<float> scratch;
+  std::vector<float>* out = decoded != nullptr ? decoded : &scratch;
+  if (Status s = decodeTransfer(payload, want, out); !s.isOk()) {
+    return Status::error(s.code() == StatusCode::kChecksumMismatch ? s.code() : StatusCode::kCorrupt,
+                         sectionLabel(e) + ": " + s.message());
+  }
+  if (bandsDecoded != nullptr) *bandsDecoded = want;
+  return Status::ok();
+}
+
+Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
+                   std::vector<std::vector<float>>* decoded = nullptr) {
   if (Status s = parseHeader(bytes, p); !s.isOk()) return s;
   if (Status s = checkWholeFileSize(bytes, *p); !s.isOk()) return s;
   if (Status s = parseTable(bytes, p); !s.isOk()) return s;
@@ -418,6 +489,23 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m) 
       case kTypeTransfer: s = checkFloats(payload, e); break;
       case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
       case kTypeMetadata: s = parseMetadata(payload, e, m); break;
+      case kTypeLighting: s = parseLighting(payload, e, &m->lighting); break;
+      case kTypeEncodedTransfer: {
+        const std::size_t slot = static_cast<std::size_t>(
+            std::find(p->transfer.begin(), p->transfer.end(), static_cast<int>(e.index)) - p->transfer.begin());
+        if (payload.size() != e.size) return corrupt(sectionLabel(e) + ": size mismatch");
+        s = checkEncodedTransfer(payload, e, *p, static_cast<int>(p->order),
+                                 decoded != nullptr ? &(*decoded)[slot] : nullptr, nullptr);
+        // The whole section is here: its blob must be exactly the section.
+        if (s.isOk()) {
+          TransferBlobInfo info;
+          if (Status t = readTransferBlobInfo(payload, &info); t.isOk() && info.blobSize != payload.size()) {
+            s = corrupt(sectionLabel(e) + ": its blob declares " + num(info.blobSize) + " bytes in a " +
+                        num(payload.size()) + "-byte section");
+          }
+        }
+        break;
+      }
       default: break;
     }
     if (!s.isOk()) return s;
@@ -436,21 +524,19 @@ void fillSummary(const Parsed& p, Metadata&& m, AssetSummary* out) {
   s.fileSize = p.fileSize;
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
-    s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2)});
+    s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2),
+                        e.type == kTypeEncodedTransfer, e.size, e.index});
   }
   s.samples = m.samples;
   s.seed = m.seed;
   s.sampling = std::move(m.sampling);
   s.name = std::move(m.name);
+  s.lighting = m.lighting;
+  for (const Entry& e : p.entries) {
+    s.sections.push_back({e.type, e.format, e.offset, e.size, e.arg0, e.arg1, e.arg2, e.crc});
+  }
+  s.tableEnd = kAssetHeaderSize + std::uint64_t{p.sectionCount} * kAssetSectionEntrySize;
   *out = std::move(s);
-}
-
-// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks. Only the big-endian
-// branches use it, hence maybe_unused.
-[[maybe_unused]] float floatFromBits(std::uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
 }
 
 // Copies a validated float payload; memcpy on little-endian hosts, per value otherwise.
@@ -544,15 +630,24 @@ Status peekAssetHeader(std::span<const std::uint8_t> bytes, AssetSummary* out) {
   Parsed p;
   if (Status s = parseHeader(bytes, &p); !s.isOk()) return s;
   if (Status s = parseTable(bytes, &p); !s.isOk()) return s;
-  const Entry& e = p.entries[static_cast<std::size_t>(p.metadata)];
-  if (e.offset + e.size > bytes.size()) {  // both bounded by the declared file size: no overflow
-    return Status::error(StatusCode::kTruncated, "asset prefix is " + num(bytes.size()) + " bytes; its metadata section needs " +
-                                                     num(e.offset + e.size));
-  }
-  const auto payload = payloadOf(bytes, e);
-  if (Status s = checkSectionCrc(bytes, e); !s.isOk()) return s;
+  // The prefix must hold each small section read here; entries are bounded by the declared
+  // file size, so offset + size cannot overflow.
+  auto inPrefix = [&](const Entry& e, const char* what) -> Status {
+    if (e.offset + e.size > bytes.size()) {
+      return Status::error(StatusCode::kTruncated, "asset prefix is " + num(bytes.size()) + " bytes; its " + what +
+                                                       " section needs " + num(e.offset + e.size));
+    }
+    return checkSectionCrc(bytes, e);
+  };
   Metadata m;
-  if (Status s = parseMetadata(payload, e, &m); !s.isOk()) return s;
+  const Entry& meta = p.entries[static_cast<std::size_t>(p.metadata)];
+  if (Status s = inPrefix(meta, "metadata"); !s.isOk()) return s;
+  if (Status s = parseMetadata(payloadOf(bytes, meta), meta, &m); !s.isOk()) return s;
+  if (p.lighting >= 0) {
+    const Entry& light = p.entries[static_cast<std::size_t>(p.lighting)];
+    if (Status s = inPrefix(light, "lighting"); !s.isOk()) return s;
+    if (Status s = parseLighting(payloadOf(bytes, light), light, &m.lighting); !s.isOk()) return s;
+  }
   fillSummary(p, std::move(m), out);
   return Status::ok();
 }
@@ -569,7 +664,8 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
   if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAsset: out is null");
   Parsed p;
   Metadata m;
-  if (Status s = validateAll(bytes, &p, &m); !s.isOk()) return s;
+  std::vector<std::vector<float>> decoded(3);  // per transfer slot (one per kind), encoded ones only
+  if (Status s = validateAll(bytes, &p, &m, &decoded); !s.isOk()) return s;
   BakedAsset a;
   a.shOrder = static_cast<int>(p.order);
   auto payload = [&](int entry) { return payloadOf(bytes, p.entries[static_cast<std::size_t>(entry)]); };
@@ -591,15 +687,102 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     pass.kind = static_cast<TransferKind>(e.arg0);
     pass.channels = static_cast<int>(e.arg1);
     pass.bounces = static_cast<int>(e.arg2);
-    pass.coeffs.resize(static_cast<std::size_t>(e.size / 4));
-    readFloats(payload(t), pass.coeffs.data());
+    if (e.type == kTypeEncodedTransfer) {
+      const std::size_t slot = a.passes.size();
+      pass.coeffs = std::move(decoded[slot]);
+      const auto blob = payload(t);
+      pass.encoded.assign(blob.begin(), blob.end());
+    } else {
+      pass.coeffs.resize(static_cast<std::size_t>(e.size / 4));
+      readFloats(payload(t), pass.coeffs.data());
+    }
     a.passes.push_back(std::move(pass));
   }
   a.samples = m.samples;
   a.seed = m.seed;
   a.sampling = std::move(m.sampling);
   a.name = std::move(m.name);
+  a.lighting = m.lighting;
   *out = std::move(a);
+  return Status::ok();
+}
+
+Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetGeometry: out is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  Metadata m;
+  for (int slot : {p.positions, p.normals, p.albedo, p.indices, p.metadata, p.lighting}) {
+    if (slot < 0) continue;  // only lighting is optional; parseTable required the rest
+    const Entry& e = p.entries[static_cast<std::size_t>(slot)];
+    if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
+    const auto payload = payloadOf(file, e);
+    Status s;
+    switch (e.type) {
+      case kTypeIndices: s = checkIndices(payload, e, p.vertexCount); break;
+      case kTypeMetadata: s = parseMetadata(payload, e, &m); break;
+      case kTypeLighting: s = parseLighting(payload, e, &m.lighting); break;
+      default: s = checkFloats(payload, e); break;
+    }
+    if (!s.isOk()) return s;
+  }
+  BakedAsset a;
+  a.shOrder = static_cast<int>(p.order);
+  auto payload = [&](int entry) { return payloadOf(file, p.entries[static_cast<std::size_t>(entry)]); };
+  readTriples(payload(p.positions), &a.positions);
+  readTriples(payload(p.normals), &a.normals);
+  readTriples(payload(p.albedo), &a.albedo);
+  const auto b = payload(p.indices);
+  a.indices.resize(b.size() / 4);
+  for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = getU32(b.data() + 4 * i);
+  a.samples = m.samples;
+  a.seed = m.seed;
+  a.sampling = std::move(m.sampling);
+  a.name = std::move(m.name);
+  a.lighting = m.lighting;
+  *out = std::move(a);
+  return Status::ok();
+}
+
+Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetPass: out is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  if (pass < 0 || static_cast<std::size_t>(pass) >= p.transfer.size()) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "decodeAssetPass: pass " + std::to_string(pass) + " of " + std::to_string(p.transfer.size()));
+  }
+  if (bands < 0 || bands > static_cast<int>(p.order)) {
+    return Status::error(StatusCode::kInvalidArgument, "decodeAssetPass: bands " + std::to_string(bands) +
+                                                           " outside 0.." + std::to_string(p.order));
+  }
+  const Entry& e = p.entries[static_cast<std::size_t>(p.transfer[static_cast<std::size_t>(pass)])];
+  const auto payload = payloadOf(file, e);
+  TransferPass t;
+  t.kind = static_cast<TransferKind>(e.arg0);
+  t.channels = static_cast<int>(e.arg1);
+  t.bounces = static_cast<int>(e.arg2);
+  int decodedBands = static_cast<int>(p.order);
+  if (e.type == kTypeEncodedTransfer) {
+    // The blob's own header and part checksums protect a prefix; the section checksum
+    // needs the whole section, which a progressive client does not have yet.
+    if (Status s = checkEncodedTransfer(payload, e, p, bands, &t.coeffs, &decodedBands); !s.isOk()) return s;
+  } else {
+    if (bands != 0 && bands != static_cast<int>(p.order)) {
+      // A float32 section is coefficient-interleaved: it cannot be cut into bands.
+      return Status::error(StatusCode::kInvalidArgument, sectionLabel(e) + " is float32: only all bands decode");
+    }
+    if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
+    if (Status s = checkFloats(payload, e); !s.isOk()) return s;
+    t.coeffs.resize(static_cast<std::size_t>(e.size / 4));
+    readFloats(payload, t.coeffs.data());
+  }
+  *out = std::move(t);
+  if (bandsDecoded != nullptr) *bandsDecoded = decodedBands;
   return Status::ok();
 }
 

@@ -10,6 +10,7 @@
 #include "prt/asset.h"
 #include "prt/checksum.h"
 #include "prt/sh_basis.h"
+#include "prt/transfer_codec.h"
 
 namespace prt {
 namespace {
@@ -84,7 +85,7 @@ struct PlannedSection {
   std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0;
   std::uint64_t size = 0;
   std::uint64_t offset = 0;
-  const TransferPass* pass = nullptr;  // for kTransfer
+  const TransferPass* pass = nullptr;  // for kTransfer and kEncodedTransfer
 };
 
 std::uint64_t alignUp(std::uint64_t v) { return (v + (kAssetAlignment - 1)) & ~static_cast<std::uint64_t>(kAssetAlignment - 1); }
@@ -148,6 +149,25 @@ Status checkAsset(const BakedAsset& asset) {
                                (interreflected ? "; 0 to " + std::to_string(kMaxAssetBounces) + " are allowed"
                                                : "; only interreflection has bounces"));
     }
+    if (!pass.encoded.empty()) {
+      // The blob is the pass: its header must describe this asset's pass. Its payload was
+      // produced by encodeTransfer and is checked in full by every reader.
+      TransferBlobInfo info;
+      if (Status s = readTransferBlobInfo(pass.encoded, &info); !s.isOk()) {
+        return Status::error(StatusCode::kInvalidArgument, named + " encoded blob: " + s.message());
+      }
+      if (info.order != asset.shOrder || info.channels != pass.channels || info.vertexCount != vertexCount ||
+          info.blobSize != pass.encoded.size()) {
+        return Status::error(StatusCode::kSizeMismatch,
+                             named + " encoded blob is order " + std::to_string(info.order) + ", " +
+                                 std::to_string(info.channels) + " channels, " + std::to_string(info.vertexCount) +
+                                 " vertices, " + std::to_string(info.blobSize) + " bytes declared of " +
+                                 std::to_string(pass.encoded.size()) + "; the asset needs order " +
+                                 std::to_string(asset.shOrder) + ", " + std::to_string(pass.channels) + " channels, " +
+                                 std::to_string(vertexCount) + " vertices");
+      }
+      continue;
+    }
     const std::uint64_t expected = static_cast<std::uint64_t>(vertexCount) * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel;
     if (pass.coeffs.size() != expected) {
       return Status::error(StatusCode::kSizeMismatch, named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " +
@@ -168,7 +188,7 @@ Status checkAsset(const BakedAsset& asset) {
     return Status::error(StatusCode::kInvalidArgument, "asset sampling '" + asset.sampling + "' must be at most " +
                                                            std::to_string(kMaxAssetSamplingBytes) + " characters of [a-z0-9_-]");
   }
-  return Status::ok();
+  return checkLightingInfo(asset.lighting);
 }
 
 Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
@@ -179,15 +199,24 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
   const std::uint64_t triangleCount = asset.indices.size() / 3;
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
 
-  // Metadata first: it is tiny and holds the name, so a catalogue can read a short prefix.
+  // Metadata and lighting first: they are tiny and hold what a catalogue lists, so it can
+  // read a short prefix. Lighting is written even when distant, so every file says which
+  // model its transfer belongs to.
   std::vector<PlannedSection> sections;
   sections.push_back({AssetSectionType::kMetadata, AssetElementFormat::kBytes, 0, 0, 0,
                       24 + asset.sampling.size() + asset.name.size(), 0, nullptr});
+  sections.push_back({AssetSectionType::kLighting, AssetElementFormat::kBytes, 0, 0, 0, kAssetLightingBytes, 0, nullptr});
   sections.push_back({AssetSectionType::kPositions, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
   sections.push_back({AssetSectionType::kNormals, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
   sections.push_back({AssetSectionType::kIndices, AssetElementFormat::kUint32, 0, 0, 0, triangleCount * 12, 0, nullptr});
   sections.push_back({AssetSectionType::kAlbedo, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
   for (const TransferPass& pass : asset.passes) {
+    if (!pass.encoded.empty()) {
+      sections.push_back({AssetSectionType::kEncodedTransfer, AssetElementFormat::kBytes, static_cast<std::uint32_t>(pass.kind),
+                          static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
+                          pass.encoded.size(), 0, &pass});
+      continue;
+    }
     sections.push_back({AssetSectionType::kTransfer, AssetElementFormat::kFloat32, static_cast<std::uint32_t>(pass.kind),
                         static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
                         vertexCount * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel * 4, 0, &pass});
@@ -220,6 +249,16 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         if (!asset.sampling.empty()) std::memcpy(p + 24, asset.sampling.data(), asset.sampling.size());
         if (!asset.name.empty()) std::memcpy(p + 24 + asset.sampling.size(), asset.name.data(), asset.name.size());
         break;
+      case AssetSectionType::kLighting: {
+        namespace LL = asset_lighting_layout;
+        putU32(p + LL::kModel, static_cast<std::uint32_t>(asset.lighting.model));
+        static_assert(LL::kCenterY == LL::kCenterX + 4 && LL::kCenterZ == LL::kCenterX + 8 && LL::kRadius == LL::kCenterX + 12,
+                      "centre and radius are four consecutive floats");
+        const float fields[4] = {asset.lighting.center.x, asset.lighting.center.y, asset.lighting.center.z,
+                                 asset.lighting.radius};
+        putFloats(p + LL::kCenterX, fields, 4);
+        break;
+      }
       case AssetSectionType::kPositions: putTriples(p, asset.positions); break;
       case AssetSectionType::kNormals: putTriples(p, asset.normals); break;
       case AssetSectionType::kAlbedo: putTriples(p, asset.albedo); break;
@@ -231,6 +270,7 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         }
         break;
       case AssetSectionType::kTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
+      case AssetSectionType::kEncodedTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
     }
     std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
     putU32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
@@ -245,7 +285,11 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
 
   std::memcpy(base + L::kMagic, kAssetMagic, 4);
   putU16(base + L::kVersionMajor, kAssetVersionMajor);
-  putU16(base + L::kVersionMinor, kAssetVersionMinor);
+  // The lowest minor version that has every section written: a file without encoded
+  // transfer stays readable, and byte-identical, for 1.1 readers.
+  bool anyEncoded = false;
+  for (const TransferPass& pass : asset.passes) anyEncoded = anyEncoded || !pass.encoded.empty();
+  putU16(base + L::kVersionMinor, anyEncoded ? kAssetVersionMinor : std::uint16_t{1});
   putU32(base + L::kFlags, 0);
   putU32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));
   putU32(base + L::kVertexCount, static_cast<std::uint32_t>(vertexCount));

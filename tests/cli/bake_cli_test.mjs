@@ -133,6 +133,81 @@ const cases = {
     check(!fs.existsSync(work('x.prt')), 'a usage error wrote an asset');
   },
 
+  local_lighting() {
+    // The default room with spatially-varying lighting: the sphere defaults to the bounds'
+    // centre and half their diagonal (room x, z in [-2, 2], y in [0, 3]).
+    const { out, r } = bakeDefault('local.prt', ['--lighting', 'local', '--json', '--name', 'default-room-local']);
+    const stats = json(r);
+    const radius = 0.5 * Math.sqrt(16 + 9 + 16);
+    if (stats) {
+      check(stats.lighting?.model === 'local-sphere', `bake --json lighting: ${JSON.stringify(stats.lighting)}`);
+      check(JSON.stringify(stats.lighting?.center) === '[0,1.5,0]', `default centre: ${JSON.stringify(stats.lighting)}`);
+      check(Math.abs(stats.lighting?.radius - radius) < 1e-5, `default radius: ${stats.lighting?.radius}, expected ${radius}`);
+      check(stats.lighting?.vertices_outside === 0, `no vertex lies outside the default sphere: ${JSON.stringify(stats.lighting)}`);
+    }
+    const info = json(expectExit(['info', out, '--json'], 0));
+    if (info) {
+      check(info.version === '1.1' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
+      check(info.lighting?.model === 'local-sphere' && Math.abs(info.lighting.radius - radius) < 1e-5,
+            `info lighting: ${JSON.stringify(info.lighting)}`);
+    }
+    const text = expectExit(['info', out], 0).stdout;
+    check(/^lighting: local-sphere, centre \(0, 1\.5, 0\), radius 3\.2015/m.test(text), `info text: ${text}`);
+
+    // Under uniform light the DC basis function is constant, so the local unshadowed transfer
+    // lights every vertex exactly as the distant one does (same samples): the area form's
+    // white furnace. The paper's weighting brightens vertices away from the centre.
+    const { out: distant } = bakeDefault('distant.prt', ['--passes', 'unshadowed']);
+    const { out: paper } = bakeDefault('paper.prt', ['--passes', 'unshadowed', '--lighting', 'local-paper']);
+    const shade = (file) => json(expectExit(['shade', file, '--light', 'constant', '--pass', 'unshadowed', '--json'], 0));
+    const l = shade(out), d = shade(distant), p = shade(paper);
+    if (l && d && p) {
+      let worst = 0, brighter = 0;
+      for (let v = 0; v < d.vertices.length; v++) {
+        for (let c = 0; c < 3; c++) {
+          worst = Math.max(worst, Math.abs(l.vertices[v].radiance[c] - d.vertices[v].radiance[c]));
+          if (p.vertices[v].radiance[c] > 1.05 * d.vertices[v].radiance[c]) brighter++;
+        }
+      }
+      check(worst < 1e-5, `local unshadowed differs from distant under uniform light by ${worst}`);
+      check(brighter > 1000, `the paper variant brightened only ${brighter} vertex channels`);
+    }
+
+    // An explicit sphere is recorded as given; one too small for the room warns with the count.
+    const small = expectExit(['--default', '-o', work('small.prt'), ...quick.filter((a) => a !== '--quiet'),
+                              '--passes', 'shadowed', '--lighting', 'local-paper', '--light-center', '0.5,1,-0.25',
+                              '--light-radius', '1.5'], 0,
+                             /warning: \d+ of \d+ vertices lie outside the lighting sphere/);
+    const count = Number(/warning: (\d+) of/.exec(small.stderr)?.[1]);
+    check(count > 1000 && count < 20000, `outside count ${count}`);
+    const smallInfo = json(expectExit(['info', work('small.prt'), '--json'], 0));
+    check(JSON.stringify(smallInfo?.lighting) === '{"model":"local-sphere-paper","center":[0.5,1,-0.25],"radius":1.5}',
+          `explicit sphere: ${JSON.stringify(smallInfo?.lighting)}`);
+    const distantInfo = json(expectExit(['info', distant, '--json'], 0));
+    check(JSON.stringify(distantInfo?.lighting) === '{"model":"distant"}', `distant: ${JSON.stringify(distantInfo?.lighting)}`);
+  },
+
+  lighting_usage_errors() {
+    const bakeArgs = (...extra) => ['--default', '-o', work('x.prt'), ...quick, ...extra];
+    expectExit(bakeArgs('--lighting', 'nearby'), 2, /unknown --lighting 'nearby' \(expected distant, local or local-paper\)/);
+    expectExit(bakeArgs('--light-radius', '2'), 2, /--light-radius needs --lighting local or local-paper/);
+    expectExit(bakeArgs('--lighting', 'distant', '--light-center', '0,0,0'), 2, /--light-center needs --lighting local/);
+    for (const r of ['0', '-1', 'nan', 'inf', '1e99', 'two', '']) {
+      expectExit(bakeArgs('--lighting', 'local', `--light-radius=${r}`), 2, r === '' ? /needs a value/ : /--light-radius expects a finite number > 0/);
+    }
+    for (const c of ['1,2', '1,2,3,4', '1;2;3', '1 2 3']) {
+      expectExit(bakeArgs('--lighting', 'local', '--light-center', c), 2, /--light-center expects X,Y,Z \(three numbers/);
+    }
+    for (const [c, k] of [['nan,0,0', 1], ['0,inf,0', 2], ['0,0,x', 3], ['0,1e39,0', 2], ['1,,3', 2], [',1,2', 1]]) {
+      expectExit(bakeArgs('--lighting', 'local', '--light-center', c), 2, new RegExp(`component ${k} '[^']*' is not one`));
+    }
+    expectExit(bakeArgs('--name', 'tab\there'), 2, /--name must be/);
+    const help = expectExit(['--default', '--help'], 0);
+    check(/--lighting MODEL/.test(help.stdout) && /--light-center/.test(help.stdout) && /--light-radius/.test(help.stdout),
+          'bake --help documents the lighting options');
+    check(!fs.existsSync(work('x.prt')), 'a usage error wrote an asset');
+  },
+
   async interrupted() {
     // SIGINT in the middle of a long bake leaves neither the asset nor a temporary file.
     const out = work('interrupted.prt');

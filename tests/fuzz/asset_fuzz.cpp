@@ -60,10 +60,16 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
+bool sameLighting(const prt::LightingInfo& a, const prt::LightingInfo& b) {
+  return a.model == b.model && std::memcmp(&a.center, &b.center, sizeof a.center) == 0 &&
+         std::memcmp(&a.radius, &b.radius, sizeof a.radius) == 0;
+}
+
 bool sameAsset(const prt::BakedAsset& a, const prt::BakedAsset& b) {
   if (a.shOrder != b.shOrder || !sameBits(a.positions, b.positions) || !sameBits(a.normals, b.normals) ||
       !sameBits(a.albedo, b.albedo) || a.indices != b.indices || a.passes.size() != b.passes.size() ||
-      a.samples != b.samples || a.seed != b.seed || a.sampling != b.sampling || a.name != b.name) {
+      a.samples != b.samples || a.seed != b.seed || a.sampling != b.sampling || a.name != b.name ||
+      !sameLighting(a.lighting, b.lighting)) {
     return false;
   }
   for (std::size_t i = 0; i < a.passes.size(); ++i) {
@@ -98,7 +104,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check(peekedStatus.isOk());
   check(peeked.shOrder == verified.shOrder && peeked.vertexCount == verified.vertexCount &&
         peeked.triangleCount == verified.triangleCount && peeked.passes.size() == verified.passes.size() &&
-        peeked.name == verified.name && peeked.fileSize == bytes.size());
+        peeked.name == verified.name && peeked.fileSize == bytes.size() &&
+        sameLighting(peeked.lighting, verified.lighting) && sameLighting(asset.lighting, verified.lighting));
   check(asset.positions.size() == verified.vertexCount && asset.indices.size() == 3u * verified.triangleCount);
 
   std::vector<std::uint8_t> again;

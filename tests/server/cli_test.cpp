@@ -13,7 +13,8 @@ TEST(Cli, HelpAndVersion) {
   const ExitResult help = runServe({"--help"}, kQuick);
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("Usage: prt-serve --root DIR"), std::string::npos);
-  for (const char* flag : {"--web", "--bind", "--port", "--threads", "--max-connections", "--read-timeout", "--quiet"}) {
+  for (const char* flag : {"--web", "--bind", "--port", "--threads", "--max-connections", "--read-timeout", "--quiet",
+                           "--max-parts-mib"}) {
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   }
   EXPECT_EQ(runServe({"-h"}, kQuick).exitCode, 0);
@@ -35,6 +36,8 @@ TEST(Cli, UsageErrors) {
                         Case{{"--root", tree.root, "--port", "http"}, "--port must be"},
                         Case{{"--root", tree.root, "--threads", "0"}, "--threads must be"},
                         Case{{"--root", tree.root, "--read-timeout", "-1"}, "--read-timeout must be"},
+                        Case{{"--root", tree.root, "--max-parts-mib", "-1"}, "--max-parts-mib must be a whole number from 0 to 1024"},
+                        Case{{"--root", tree.root, "--max-parts-mib", "2048"}, "--max-parts-mib must be"},
                         Case{{"--root", tree.root, "--quiet=yes"}, "--quiet takes no value"}}) {
     const ExitResult r = runServe(c.args, kQuick);
     EXPECT_EQ(r.exitCode, 2) << c.message;

@@ -68,11 +68,21 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   EXPECT_EQ((*room)["passes"][1]["channels"].number, 3);
   EXPECT_EQ((*room)["passes"][1]["bounces"].number, 2);
   EXPECT_EQ((*room)["samples"].number, 64);
+  EXPECT_EQ((*room)["lighting"].string, "distant");
+  EXPECT_FALSE(room->has("lightCenter"));
+  EXPECT_FALSE(room->has("lightRadius"));
 
   const Json* small = findByFile(scenes, "sub/small.prt");
   ASSERT_NE(small, nullptr);
   EXPECT_TRUE((*small)["usable"].boolean);
   EXPECT_EQ((*small)["url"].string, "/assets/" + hexHash(s.tree.small) + "/small.prt");
+  EXPECT_EQ((*small)["version"].string, "1.1");
+  EXPECT_EQ((*small)["lighting"].string, "local-sphere");
+  ASSERT_EQ((*small)["lightCenter"].array.size(), 3u);
+  EXPECT_EQ((*small)["lightCenter"][0].number, 0.5);
+  EXPECT_EQ((*small)["lightCenter"][1].number, 1.25);
+  EXPECT_EQ((*small)["lightCenter"][2].number, -2.0);
+  EXPECT_EQ((*small)["lightRadius"].number, 3.5);
 
   const Json* corrupt = findByFile(scenes, "corrupt.prt");
   ASSERT_NE(corrupt, nullptr);

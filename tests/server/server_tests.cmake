@@ -10,6 +10,7 @@ set(PRT_BLENDER_STUDIO_EXR /usr/share/blender/datafiles/studiolights/world/studi
     CACHE FILEPATH "blender-data EXR the server tests copy in as an environment map (used when present)")
 
 add_library(prt_serve_test_support STATIC
+  ${PRT_SERVE_TEST_DIR}/encoded_asset.cpp
   ${PRT_SERVE_TEST_DIR}/http_client.cpp
   ${PRT_SERVE_TEST_DIR}/mini_json.cpp
   ${PRT_SERVE_TEST_DIR}/serve_env.cpp
@@ -27,7 +28,9 @@ target_compile_options(prt_serve_test_support PRIVATE ${PRT_STRICT_WARNINGS})
 
 add_executable(prt_server_tests
   ${PRT_SERVE_TEST_DIR}/unit_test.cpp
+  ${PRT_SERVE_TEST_DIR}/asset_parts_test.cpp
   ${PRT_SERVE_TEST_DIR}/http_test.cpp
+  ${PRT_SERVE_TEST_DIR}/parts_test.cpp
   ${PRT_SERVE_TEST_DIR}/hostile_test.cpp
   ${PRT_SERVE_TEST_DIR}/load_test.cpp
   ${PRT_SERVE_TEST_DIR}/cli_test.cpp
@@ -37,9 +40,11 @@ target_compile_options(prt_server_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_dependencies(prt_server_tests prt-serve)
 
 # One ctest test per group, each its own process with its own servers.
-foreach(group IN ITEMS unit http hostile load cli)
+foreach(group IN ITEMS unit http parts hostile load cli)
   if(group STREQUAL "unit")
-    set(filter "ContentHash.*:RequestTarget.*:Negotiation.*:AccessLog.Escapes*:MimeTypes.*")
+    set(filter "ContentHash.*:RequestTarget.*:Negotiation.*:AccessLog.Escapes*:MimeTypes.*:AssetParts.*")
+  elseif(group STREQUAL "parts")
+    set(filter "Parts.*")
   elseif(group STREQUAL "http")
     set(filter "Scenes.*:Assets.*:Conditional.*:Ranges.*:Head.*:KeepAlive.*:StaticFiles.*:Lights.*:Api.*:AccessLog.OneLine*:AccessLog.Quiet*:Rescan.*")
   elseif(group STREQUAL "hostile")

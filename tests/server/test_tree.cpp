@@ -16,10 +16,12 @@ namespace prt::serve::test {
 
 namespace fs = std::filesystem;
 
-std::vector<std::uint8_t> makeAssetBytes(int vertices, int order, std::uint32_t seed, const std::string& name) {
+std::vector<std::uint8_t> makeAssetBytes(int vertices, int order, std::uint32_t seed, const std::string& name,
+                                         const LightingInfo& lighting) {
   BakedAsset a;
   a.shOrder = order;
   a.name = name;
+  a.lighting = lighting;
   a.samples = 64;
   a.seed = seed;
   a.sampling = "hammersley";
@@ -116,7 +118,7 @@ TestTree makeTestTree(const std::string& parent) {
   t.outside = t.dir + "/outside";
 
   t.room = makeAssetBytes(6000, 4, 1, "test room");
-  t.small = makeAssetBytes(3, 1, 2, "tiny");
+  t.small = makeAssetBytes(3, 1, 2, "tiny", {LightingModel::kLocalSphere, {0.5f, 1.25f, -2.0f}, 3.5f});
   writeFile(t.root + "/room.prt", t.room);
   writeFile(t.root + "/sub/small.prt", t.small);
   std::vector<std::uint8_t> corrupt = t.room;

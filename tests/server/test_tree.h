@@ -6,11 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "prt/asset.h"
+
 namespace prt::serve::test {
 
 // A valid encoded asset: `vertices` vertices in a strip, order `order`, an unshadowed and
-// an interreflected pass with smooth (compressible) coefficients that depend on `seed`.
-std::vector<std::uint8_t> makeAssetBytes(int vertices, int order, std::uint32_t seed, const std::string& name);
+// an interreflected pass with smooth (compressible) coefficients that depend on `seed`,
+// baked (nominally) for `lighting`.
+std::vector<std::uint8_t> makeAssetBytes(int vertices, int order, std::uint32_t seed, const std::string& name,
+                                         const LightingInfo& lighting = {});
 
 // A Radiance RGBE (.hdr) image of width x height holding one colour.
 std::string makeRgbeImage(int width, int height, float r, float g, float b);
@@ -26,7 +30,7 @@ struct TestTree {
   std::string web;      // --web: index.html, app.js, module.mjs, core.wasm, ...
   std::string outside;  // next to the roots: secret.txt and secret.prt
   std::vector<std::uint8_t> room;   // the bytes of root/room.prt (about 1.8 MB)
-  std::vector<std::uint8_t> small;  // the bytes of root/sub/small.prt
+  std::vector<std::uint8_t> small;  // the bytes of root/sub/small.prt (local-sphere lighting)
   std::string bigJs;                // web/big.js
   std::string huge;                 // web/huge.bin: 24 MB of noise, more than socket buffers hold
   bool hasExr = false;              // blender-data's studio.exr was found and copied

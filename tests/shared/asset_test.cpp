@@ -64,7 +64,10 @@ constexpr std::size_t kHdrVersionMajor = 4, kHdrVersionMinor = 6, kHdrFlags = 8,
                       kHdrFileSize = 32, kHdrReserved = 40, kHdrCrc = 60, kHeaderBytes = 64, kEntryBytes = 40;
 constexpr std::size_t kEType = 0, kEFormat = 4, kEOffset = 8, kESize = 16, kEArg0 = 24, kEArg1 = 28, kEArg2 = 32,
                       kECrc = 36;
-constexpr std::uint32_t kPositions = 1, kNormals = 2, kIndices = 3, kAlbedo = 4, kTransfer = 5, kMetadata = 6;
+constexpr std::uint32_t kPositions = 1, kNormals = 2, kIndices = 3, kAlbedo = 4, kTransfer = 5, kMetadata = 6,
+                        kLighting = 7;
+// Lighting payload: u32 model, f32 centre x, y, z, f32 radius.
+constexpr std::size_t kLightModel = 0, kLightCenter = 4, kLightRadius = 16, kLightBytes = 20;
 constexpr std::uint32_t kF32 = 1, kU32 = 2, kRawBytes = 3;
 
 std::size_t entryAt(std::size_t i) { return kHeaderBytes + i * kEntryBytes; }
@@ -192,6 +195,8 @@ BakedAsset makeAsset(int order, std::size_t vertexCount, std::size_t triangleCou
   a.seed = 0xFEDCBA9876543210ULL;
   a.sampling = "stratified";
   a.name = "Cornell box \xC3\xA9t\xC3\xA9 \xE6\x97\xA5\xE6\x9C\xAC \xF0\x9F\x99\x82";  // "été 日本 🙂"
+  // Local lighting with awkward values too: negative zero, a denormal, a huge radius.
+  a.lighting = {LightingModel::kLocalSpherePaper, {-0.0f, 1e-40f, -3.25f}, 1e30f};
   return a;
 }
 
@@ -224,6 +229,11 @@ void expectBitEqual(const BakedAsset& a, const BakedAsset& b) {
   EXPECT_EQ(a.seed, b.seed);
   EXPECT_EQ(a.sampling, b.sampling);
   EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.lighting.model, b.lighting.model);
+  EXPECT_EQ(bitsOf(a.lighting.center.x), bitsOf(b.lighting.center.x));
+  EXPECT_EQ(bitsOf(a.lighting.center.y), bitsOf(b.lighting.center.y));
+  EXPECT_EQ(bitsOf(a.lighting.center.z), bitsOf(b.lighting.center.z));
+  EXPECT_EQ(bitsOf(a.lighting.radius), bitsOf(b.lighting.radius));
 }
 
 Status decode(const Bytes& b, BakedAsset* out = nullptr) {
@@ -307,6 +317,33 @@ TEST(Asset, RoundTripIsBitExact) {
   }
 }
 
+TEST(Asset, EveryLightingModelRoundTrips) {
+  for (const LightingInfo& l : {LightingInfo{}, LightingInfo{LightingModel::kLocalSphere, {0.0f, 1.5f, 0.0f}, 3.2f},
+                                LightingInfo{LightingModel::kLocalSpherePaper, {-1e6f, 2.5e-3f, 7.0f}, 1e-20f}}) {
+    BakedAsset a = makeAsset(3, 5, 4);
+    a.lighting = l;
+    const Bytes bytes = encodeOrDie(a);
+    BakedAsset back;
+    ASSERT_TRUE(decode(bytes, &back).isOk()) << lightingModelName(l.model);
+    expectBitEqual(a, back);
+    AssetSummary peeked, verified;
+    ASSERT_TRUE(peekAssetHeader(bytes, &peeked).isOk());
+    ASSERT_TRUE(verifyAsset(bytes, &verified).isOk());
+    for (const AssetSummary* s : {&peeked, &verified}) {
+      EXPECT_EQ(s->lighting.model, l.model);
+      EXPECT_EQ(bitsOf(s->lighting.center.y), bitsOf(l.center.y));
+      EXPECT_EQ(bitsOf(s->lighting.radius), bitsOf(l.radius));
+    }
+  }
+  EXPECT_STREQ(lightingModelName(LightingModel::kDistant), "distant");
+  EXPECT_STREQ(lightingModelName(LightingModel::kLocalSphere), "local-sphere");
+  EXPECT_STREQ(lightingModelName(LightingModel::kLocalSpherePaper), "local-sphere-paper");
+  EXPECT_STREQ(lightingModelName(static_cast<LightingModel>(3)), "unknown");
+  EXPECT_FALSE(isLocalLighting(LightingModel::kDistant));
+  EXPECT_TRUE(isLocalLighting(LightingModel::kLocalSphere));
+  EXPECT_TRUE(isLocalLighting(LightingModel::kLocalSpherePaper));
+}
+
 TEST(Asset, EmptyStringsRoundTrip) {
   BakedAsset a = makeAsset(3, 5, 4);
   a.name.clear();
@@ -325,21 +362,22 @@ TEST(Asset, LayoutMatchesTheDocument) {
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "PRTA");
   EXPECT_EQ(b[kHdrVersionMajor], 1);
   EXPECT_EQ(b[kHdrVersionMajor + 1], 0);
-  EXPECT_EQ(rd32(b, kHdrVersionMinor) & 0xFFFFu, 0u);
+  EXPECT_EQ(rd32(b, kHdrVersionMinor) & 0xFFFFu, 1u);
   EXPECT_EQ(rd32(b, kHdrFlags), 0u);
   EXPECT_EQ(rd32(b, kHdrOrder), 3u);
   EXPECT_EQ(rd32(b, kHdrVertices), 5u);
   EXPECT_EQ(rd32(b, kHdrTriangles), 4u);
-  EXPECT_EQ(rd32(b, kHdrSections), 8u);  // metadata, positions, normals, indices, albedo, 3 passes
+  // metadata, lighting, positions, normals, indices, albedo, 3 passes
+  EXPECT_EQ(rd32(b, kHdrSections), 9u);
   EXPECT_EQ(rd64(b, kHdrFileSize), b.size());
   for (std::size_t i = kHdrReserved; i < kHdrCrc; ++i) EXPECT_EQ(b[i], 0) << i;
   EXPECT_EQ(rd32(b, kHdrCrc), crc32c({b.data(), 60}));
-  EXPECT_EQ(rd32(b, kHdrTableCrc), crc32c({b.data() + 64, 8 * kEntryBytes}));
+  EXPECT_EQ(rd32(b, kHdrTableCrc), crc32c({b.data() + 64, 9 * kEntryBytes}));
 
   // Metadata comes first, right after the table, so a short prefix holds the name.
   const std::size_t meta = findEntry(b, kMetadata);
   EXPECT_EQ(meta, 0u);
-  EXPECT_EQ(payloadOffset(b, meta), (64 + 8 * 40 + 15) / 16 * 16);
+  EXPECT_EQ(payloadOffset(b, meta), (64 + 9 * 40 + 15) / 16 * 16);
   const std::size_t m = payloadOffset(b, meta);
   EXPECT_EQ(rd64(b, m), a.samples);
   EXPECT_EQ(rd64(b, m + 8), a.seed);
@@ -347,6 +385,20 @@ TEST(Asset, LayoutMatchesTheDocument) {
   EXPECT_EQ(rd32(b, m + 20), a.name.size());
   EXPECT_EQ(std::string(b.begin() + static_cast<std::ptrdiff_t>(m + 24), b.begin() + static_cast<std::ptrdiff_t>(m + 24 + a.sampling.size())),
             a.sampling);
+
+  // Lighting second: format bytes, no args, 20 bytes (u32 model, f32 centre x y z, f32 radius).
+  const std::size_t light = findEntry(b, kLighting);
+  EXPECT_EQ(light, 1u);
+  EXPECT_EQ(rd32(b, entryAt(light) + kEFormat), kRawBytes);
+  EXPECT_EQ(rd64(b, entryAt(light) + kESize), kLightBytes);
+  EXPECT_EQ(rd32(b, entryAt(light) + kEArg0) | rd32(b, entryAt(light) + kEArg1) | rd32(b, entryAt(light) + kEArg2), 0u);
+  const std::size_t l = payloadOffset(b, light);
+  EXPECT_EQ(l, (m + 24 + a.sampling.size() + a.name.size() + 15) / 16 * 16);
+  EXPECT_EQ(rd32(b, l + kLightModel), 2u);
+  EXPECT_EQ(rd32(b, l + kLightCenter), bitsOf(a.lighting.center.x));
+  EXPECT_EQ(rd32(b, l + kLightCenter + 4), bitsOf(a.lighting.center.y));
+  EXPECT_EQ(rd32(b, l + kLightCenter + 8), bitsOf(a.lighting.center.z));
+  EXPECT_EQ(rd32(b, l + kLightRadius), bitsOf(a.lighting.radius));
 
   // Floats are IEEE-754 little-endian; indices uint32 little-endian; transfer [vertex][channel][coefficient].
   const std::size_t pos = payloadOffset(b, findEntry(b, kPositions));
@@ -365,7 +417,7 @@ TEST(Asset, LayoutMatchesTheDocument) {
             bitsOf(p->coeffs[(vertex * 3 + channel) * 9 + coeff]));
 
   // Every section is 16-byte aligned, and its checksum covers exactly its payload.
-  for (std::size_t i = 0; i < 8; ++i) {
+  for (std::size_t i = 0; i < 9; ++i) {
     const std::uint64_t off = rd64(b, entryAt(i) + kEOffset), size = rd64(b, entryAt(i) + kESize);
     EXPECT_EQ(off % 16, 0u);
     EXPECT_EQ(rd32(b, entryAt(i) + kECrc), crc32c({b.data() + off, static_cast<std::size_t>(size)}));
@@ -373,8 +425,63 @@ TEST(Asset, LayoutMatchesTheDocument) {
 }
 
 TEST(Asset, MatchesTheWorkedExampleInTheDocument) {
-  // docs/asset-format.md, "Worked example": the complete 420-byte file.
+  // docs/asset-format.md, "Worked example": the complete 500-byte file.
   const Bytes expected = {
+    0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0x01, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00, 0xdf, 0xa5, 0xcc, 0xf7,
+    0xf4, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x8c, 0x72, 0x3b, 0x3a,
+    0x06, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x60, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x26, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x86, 0x00, 0x1d, 0xc3, 0x07, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00,
+    0x90, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x14, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x9c, 0x10, 0x21, 0x96,
+    0x01, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0xb0, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x0c, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x83, 0xe7, 0x4d, 0x38, 0x02, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0xc0, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xda, 0xd3, 0xf3, 0xce,
+    0x03, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0xd0, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x0c, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x5d, 0xb5, 0x60, 0x2b, 0x04, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0xe0, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0xc2, 0x76, 0x8a,
+    0x05, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0xf0, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x04, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x56, 0xf8, 0x80, 0xd9, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x04, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x0a, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x68, 0x61, 0x6d, 0x6d, 0x65, 0x72, 0x73, 0x6c,
+    0x65, 0x79, 0x74, 0x69, 0x6e, 0x79, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xc0, 0x3f, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x80, 0x40, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0x40, 0x00, 0x00, 0x40, 0x40, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80, 0x3e, 0x00, 0x00, 0x00, 0x3e, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x40, 0x3f,
+  };
+  BakedAsset a;
+  a.shOrder = 1;
+  a.positions = {{1.0f, 2.0f, 3.0f}};
+  a.normals = {{0.0f, 1.0f, 0.0f}};
+  a.albedo = {{0.5f, 0.25f, 0.125f}};
+  a.indices = {0, 0, 0};
+  a.passes = {TransferPass{TransferKind::kShadowed, 1, 0, {0.75f}, {}}};
+  a.samples = 1024;
+  a.seed = 7;
+  a.sampling = "hammersley";
+  a.name = "tiny";
+  a.lighting = {LightingModel::kLocalSphere, {0.0f, 1.5f, 0.0f}, 4.0f};
+  EXPECT_EQ(encodeOrDie(a), expected);
+  BakedAsset back;
+  ASSERT_TRUE(decode(expected, &back).isOk());
+  expectBitEqual(a, back);
+}
+
+TEST(Asset, Version10FileWithoutLightingDecodesAsDistant) {
+  // The same asset as format 1.0 wrote it (the document's worked example before 1.1): no
+  // lighting section. Readers of 1.1 read it as distant lighting.
+  const Bytes v10 = {
     0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
     0x01, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x06, 0x00, 0x00, 0x00, 0xdc, 0x3e, 0xfc, 0xc3,
     0xa4, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
@@ -403,21 +510,27 @@ TEST(Asset, MatchesTheWorkedExampleInTheDocument) {
     0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80, 0x3e, 0x00, 0x00, 0x00, 0x3e, 0x00, 0x00, 0x00, 0x00,
     0x00, 0x00, 0x40, 0x3f,
   };
-  BakedAsset a;
-  a.shOrder = 1;
-  a.positions = {{1.0f, 2.0f, 3.0f}};
-  a.normals = {{0.0f, 1.0f, 0.0f}};
-  a.albedo = {{0.5f, 0.25f, 0.125f}};
-  a.indices = {0, 0, 0};
-  a.passes = {TransferPass{TransferKind::kShadowed, 1, 0, {0.75f}}};
-  a.samples = 1024;
-  a.seed = 7;
-  a.sampling = "hammersley";
-  a.name = "tiny";
-  EXPECT_EQ(encodeOrDie(a), expected);
   BakedAsset back;
-  ASSERT_TRUE(decode(expected, &back).isOk());
-  expectBitEqual(a, back);
+  const Status s = decode(v10, &back);
+  ASSERT_TRUE(s.isOk()) << s.toString();
+  EXPECT_EQ(back.lighting.model, LightingModel::kDistant);
+  EXPECT_EQ(back.lighting.radius, 0.0f);
+  EXPECT_EQ(back.name, "tiny");
+  ASSERT_EQ(back.passes.size(), 1u);
+  EXPECT_EQ(back.passes[0].coeffs, std::vector<float>{0.75f});
+  AssetSummary peeked, verified;
+  ASSERT_TRUE(peekAssetHeader(v10, &peeked).isOk());
+  ASSERT_TRUE(verifyAsset(v10, &verified).isOk());
+  for (const AssetSummary* sum : {&peeked, &verified}) {
+    EXPECT_EQ(sum->versionMinor, 0);
+    EXPECT_EQ(sum->sectionCount, 6u);
+    EXPECT_EQ(sum->lighting.model, LightingModel::kDistant);
+  }
+  // Re-encoding writes 1.1 with an explicit distant lighting section, one section more.
+  const Bytes again = encodeOrDie(back);
+  EXPECT_EQ(rd32(again, kHdrSections), 7u);
+  EXPECT_EQ(again[kHdrVersionMinor], 1);
+  EXPECT_EQ(rd32(again, payloadOffset(again, findEntry(again, kLighting)) + kLightModel), 0u);
 }
 
 TEST(Asset, IndependentWriterFromTheDocumentProducesTheSameBytes) {
@@ -446,11 +559,11 @@ TEST(Asset, PeekAndVerifySummariseWithoutDecoding) {
   ASSERT_TRUE(verifyAsset(b, nullptr).isOk());
   for (const AssetSummary* s : {&full, &verified}) {
     EXPECT_EQ(s->versionMajor, 1);
-    EXPECT_EQ(s->versionMinor, 0);
+    EXPECT_EQ(s->versionMinor, 1);
     EXPECT_EQ(s->shOrder, 5);
     EXPECT_EQ(s->vertexCount, 20u);
     EXPECT_EQ(s->triangleCount, 30u);
-    EXPECT_EQ(s->sectionCount, 8u);
+    EXPECT_EQ(s->sectionCount, 9u);
     EXPECT_EQ(s->fileSize, b.size());
     ASSERT_EQ(s->passes.size(), 3u);
     for (std::size_t i = 0; i < 3; ++i) {
@@ -462,15 +575,22 @@ TEST(Asset, PeekAndVerifySummariseWithoutDecoding) {
     EXPECT_EQ(s->seed, a.seed);
     EXPECT_EQ(s->sampling, a.sampling);
     EXPECT_EQ(s->name, a.name);
+    EXPECT_EQ(s->lighting.model, a.lighting.model);
+    EXPECT_EQ(bitsOf(s->lighting.center.z), bitsOf(a.lighting.center.z));
+    EXPECT_EQ(bitsOf(s->lighting.radius), bitsOf(a.lighting.radius));
   }
-  // A prefix that ends with the metadata section is enough; one byte less is not.
-  const std::size_t meta = findEntry(b, kMetadata);
-  const std::size_t needed = payloadOffset(b, meta) + static_cast<std::size_t>(rd64(b, entryAt(meta) + kESize));
+  // A prefix that ends with the lighting section (the second) is enough; one byte less is not.
+  const std::size_t light = findEntry(b, kLighting);
+  const std::size_t needed = payloadOffset(b, light) + static_cast<std::size_t>(rd64(b, entryAt(light) + kESize));
   ASSERT_LT(needed, kAssetPeekPrefixSize);
   ASSERT_TRUE(peekAssetHeader(std::span(b).first(needed), &peeked).isOk());
   EXPECT_EQ(peeked.name, a.name);
+  EXPECT_EQ(peeked.lighting.model, a.lighting.model);
   EXPECT_EQ(peeked.fileSize, b.size());  // tells the catalogue how long the file must be
-  expectError(peekAssetHeader(std::span(b).first(needed - 1), &peeked), StatusCode::kTruncated, "metadata");
+  expectError(peekAssetHeader(std::span(b).first(needed - 1), &peeked), StatusCode::kTruncated, "lighting");
+  const std::size_t meta = findEntry(b, kMetadata);
+  const std::size_t metaEnd = payloadOffset(b, meta) + static_cast<std::size_t>(rd64(b, entryAt(meta) + kESize));
+  expectError(peekAssetHeader(std::span(b).first(metaEnd - 1), &peeked), StatusCode::kTruncated, "metadata");
   // Peek ignores damage outside header, table and metadata; verify does not.
   Bytes damaged = b;
   damaged.back() ^= 0x40;
@@ -550,7 +670,7 @@ TEST(Asset, FutureAndPastMajorVersionsAreRefusedNamingBoth) {
   Bytes b = encodeOrDie(makeAsset(2, 4, 2));
   wr16(b, kHdrVersionMajor, 2);
   wr16(b, kHdrVersionMinor, 3);
-  expectDecodeError(b, StatusCode::kBadVersion, "2.3 is newer than this reader's 1.0");
+  expectDecodeError(b, StatusCode::kBadVersion, "2.3 is newer than this reader's 1.2");
   AssetSummary s;
   expectError(peekAssetHeader(b, &s), StatusCode::kBadVersion, "2.3");
   // Even a future header we cannot checksum is reported as a version problem, not damage.
@@ -665,7 +785,7 @@ TEST(Asset, OffsetsPastTheEndAreRejectedWithoutOverflow) {
   const std::size_t last = r.sections.size() - 1;
   wr64(u, entryAt(last) + kEOffset, 1ull << 40);
   reseal(u);
-  expectDecodeError(u, StatusCode::kCorrupt, "section 8 (type 48879)");
+  expectDecodeError(u, StatusCode::kCorrupt, "section 9 (type 48879)");
 }
 
 TEST(Asset, MisalignedSectionsAreRejected) {
@@ -679,7 +799,7 @@ TEST(Asset, SizesMustMatchCountsAndFormats) {
   const Bytes good = encodeOrDie(makeAsset(2, 4, 2));
   const std::size_t pos = findEntry(good, kPositions), idx = findEntry(good, kIndices), meta = findEntry(good, kMetadata);
   const std::size_t shadowed = findEntry(good, kTransfer, 1), ir = findEntry(good, kTransfer, 2);
-  expectDecodeError(editEntry(good, pos, kESize, 36, true), StatusCode::kCorrupt, "section 1 (positions) is 36 bytes; 48 expected");
+  expectDecodeError(editEntry(good, pos, kESize, 36, true), StatusCode::kCorrupt, "section 2 (positions) is 36 bytes; 48 expected");
   expectDecodeError(editEntry(good, idx, kEFormat, kF32), StatusCode::kCorrupt, "element format");
   expectDecodeError(editEntry(good, pos, kEFormat, kU32), StatusCode::kCorrupt, "element format");
   expectDecodeError(editEntry(good, meta, kEFormat, kF32), StatusCode::kCorrupt, "element format");
@@ -736,7 +856,7 @@ TEST(Asset, UnknownSectionsAreSkipped) {
   expectBitEqual(a, back);
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(b, &summary).isOk());
-  EXPECT_EQ(summary.sectionCount, 10u);
+  EXPECT_EQ(summary.sectionCount, 11u);
   EXPECT_EQ(summary.passes.size(), 3u);
   // ...but their checksums are still verified: every byte of a file is protected.
   Bytes damaged = b;
@@ -809,6 +929,96 @@ TEST(Asset, MetadataIsValidated) {
   expectDecodeError(edit(nameAt, 0xC0), StatusCode::kCorrupt, "UTF-8");
   AssetSummary s;
   expectError(peekAssetHeader(edit(nameAt, 0xFF), &s), StatusCode::kCorrupt, "UTF-8");
+}
+
+TEST(Asset, LightingIsValidated) {
+  const Bytes good = encodeOrDie(makeAsset(2, 4, 2));
+  const std::size_t light = findEntry(good, kLighting);
+  const std::size_t l = payloadOffset(good, light);
+  auto with = [&](std::uint32_t model, const float (&fields)[4]) {
+    Bytes b = good;
+    wr32(b, l + kLightModel, model);
+    for (int i = 0; i < 4; ++i) wr32(b, l + kLightCenter + 4 * static_cast<std::size_t>(i), bitsOf(fields[i]));
+    reseal(b);
+    return b;
+  };
+  // The section is well-formed with these; only the values are wrong.
+  struct Bad {
+    std::uint32_t model;
+    float fields[4];  // centre x, y, z, radius
+    const char* message;
+  };
+  const Bad bad[] = {
+      {3, {0, 0, 0, 0}, "lighting model 3 is unknown"},
+      {0xFFFFFFFFu, {0, 1, 0, 2}, "lighting model 4294967295 is unknown"},
+      {1, {kNan, 0, 0, 1}, "local-sphere centre is not finite"},
+      {1, {0, kInf, 0, 1}, "local-sphere centre is not finite"},
+      {2, {0, 0, -kInf, 1}, "local-sphere-paper centre is not finite"},
+      {1, {0, 0, 0, kNan}, "local-sphere radius is not finite"},
+      {2, {0, 0, 0, kInf}, "local-sphere-paper radius is not finite"},
+      {1, {0, 0, 0, 0}, "radius 0.000000 is not positive"},
+      {1, {0, 0, 0, -0.0f}, "is not positive"},
+      {2, {1, 2, 3, -2}, "radius -2.000000 is not positive"},
+      {0, {0, 0, 0, 1}, "distant has no centre or radius"},
+      {0, {0, 1, 0, 0}, "distant has no centre or radius"},
+      {0, {-0.0f, 0, 0, 0}, "distant has no centre or radius"},
+      {0, {0, 0, 0, kNan}, "distant has no centre or radius"},
+  };
+  for (const Bad& c : bad) {
+    const Bytes b = with(c.model, c.fields);
+    expectDecodeError(b, StatusCode::kCorrupt, c.message);
+    EXPECT_TRUE(decode(b).message().starts_with("section 1 (lighting): lighting")) << decode(b).message();
+    AssetSummary s;
+    expectError(peekAssetHeader(b, &s), StatusCode::kCorrupt, c.message);
+  }
+  // The same values through the encoder are argument errors, not corruption.
+  for (const Bad& c : bad) {
+    BakedAsset a = makeAsset(2, 4, 2);
+    a.lighting = {static_cast<LightingModel>(c.model), {c.fields[0], c.fields[1], c.fields[2]}, c.fields[3]};
+    Bytes out;
+    const Status st = encodeAsset(a, &out);
+    EXPECT_FALSE(st.isOk()) << c.message;
+    EXPECT_TRUE(st.code() == StatusCode::kInvalidArgument || st.code() == StatusCode::kNotFinite) << st.toString();
+    EXPECT_NE(st.message().find(c.message), std::string::npos) << st.message();
+    EXPECT_EQ(checkAsset(a).code(), st.code());
+    EXPECT_EQ(checkLightingInfo(a.lighting).code(), st.code());
+  }
+  // Good values near the edges are accepted.
+  for (const float radius : {1e-38f, std::numeric_limits<float>::max()}) {
+    const float fields[4] = {-std::numeric_limits<float>::max(), 0.0f, 1e-45f, radius};
+    EXPECT_TRUE(decode(with(1, fields)).isOk()) << radius;
+  }
+  const float zero[4] = {0, 0, 0, 0};
+  EXPECT_TRUE(decode(with(0, zero)).isOk());
+  // The table entry: format, args, size.
+  expectDecodeError(editEntry(good, light, kEFormat, kF32), StatusCode::kCorrupt, "section 1 (lighting) has element format");
+  expectDecodeError(editEntry(good, light, kEArg1, 1), StatusCode::kCorrupt, "section 1 (lighting) has non-zero arguments");
+  expectDecodeError(editEntry(good, light, kESize, 16, true), StatusCode::kCorrupt, "section 1 (lighting) is 16 bytes; 20 expected");
+  expectDecodeError(editEntry(good, light, kESize, 24, true), StatusCode::kCorrupt, "20 expected");
+}
+
+TEST(Asset, LightingSectionIsOptionalButAtMostOnce) {
+  const BakedAsset a = makeAsset(2, 4, 2);
+  const RawAsset good = split(encodeOrDie(a));
+  RawAsset missing = good, twice = good;
+  std::erase_if(missing.sections, [](const RawSection& s) { return s.type == kLighting; });
+  ASSERT_EQ(missing.sections.size(), good.sections.size() - 1);
+  BakedAsset back;
+  const Bytes noLighting = build(missing);
+  ASSERT_TRUE(decode(noLighting, &back).isOk());
+  EXPECT_EQ(back.lighting.model, LightingModel::kDistant);
+  EXPECT_EQ(back.passes.size(), a.passes.size());
+  AssetSummary s;
+  ASSERT_TRUE(peekAssetHeader(noLighting, &s).isOk());
+  EXPECT_EQ(s.lighting.model, LightingModel::kDistant);
+  twice.sections.push_back(good.sections[1]);
+  ASSERT_EQ(twice.sections[1].type, kLighting);
+  expectDecodeError(build(twice), StatusCode::kCorrupt, "section 9 (lighting) repeats section 1");
+  // Damage in the lighting payload is caught by its checksum, by peek as well.
+  Bytes damaged = encodeOrDie(a);
+  damaged[payloadOffset(damaged, findEntry(damaged, kLighting)) + kLightRadius] ^= 0x01;
+  expectDecodeError(damaged, StatusCode::kChecksumMismatch, "section 1 (lighting) checksum");
+  expectError(peekAssetHeader(damaged, &s), StatusCode::kChecksumMismatch, "lighting");
 }
 
 TEST(Asset, DecodeLeavesOutputUntouchedOnError) {

@@ -68,6 +68,143 @@ const rotated = core.rotateCoefficients(3, lobe, [0, -1, 0, 1, 0, 0, 0, 0, 1]);
 check(Math.abs(rotated[1] - 1) < 1e-6 && Math.abs(rotated[3]) < 1e-6, `rotation: ${rotated}`);
 check(typeof core.rotateCoefficients(3, lobe, [2, 0, 0, 0, 1, 0, 0, 0, 1]) === 'string', 'a non-rotation must be rejected');
 
+// ---- Dynamic lights (web/src/emitters.h, cube_faces.h) ----------------------------------
+const light = (shape, extra = {}) => {
+  const l = [shape, 1, 2, 3, 0.5, 0.25, 0, 0, 1, 1, 0.5, 0.25, 2, 0, 0, 0];
+  for (const [k, v] of Object.entries(extra)) l[Number(k)] = v;
+  return l;
+};
+{
+  const ok = core.parseLights([...light(0), ...light(1, { 6: 0, 7: -2, 8: 0 }), ...light(2), ...light(3, { 13: 1 })], 2);
+  check(ok.error === '' && ok.count === 4, `valid lights rejected: ${ok.error}`);
+  if (ok.count === 4) {
+    check(ok.emitters[0].radiance.join() === [2, 1, 0.5].join(), `radiance is colour x intensity: ${ok.emitters[0].radiance}`);
+    check(ok.emitters[1].normal.join() === '0,-1,0', `disc normal not normalised: ${ok.emitters[1].normal}`);
+  }
+  // Bad input: the error names the light index and the field; nothing is accepted.
+  const bad = [
+    [[...light(0), ...light(0, { 4: 0 })], /light 1: sizeX must be > 0/],
+    [light(2, { 5: -1 }), /light 0: sizeY must be > 0/],
+    [light(0, { 2: NaN }), /light 0: py is not finite/],
+    [light(0, { 12: Infinity }), /light 0: intensity is not finite/],
+    [light(7), /light 0: shape must be/],
+    [light(0.5), /light 0: shape must be/],
+    [light(1, { 6: 0, 7: 0, 8: 0 }), /light 0: normal .* must be non-zero/],
+    [light(0, { 10: -1 }), /light 0: g must be >= 0/],
+    [light(3, { 13: 2 }), /light 0: meshId 2.* is not a mesh/],
+    [light(0).slice(0, 15), /16 floats per light/],
+  ];
+  for (const [flat, pattern] of bad) {
+    const r = core.parseLights(flat, 2);
+    check(pattern.test(r.error) && r.count === 0, `bad lights ${JSON.stringify(flat)}: '${r.error}' does not match ${pattern}`);
+  }
+  // The disc/rect frame: orthonormal, right-handed around n, v = up projected on the plane.
+  let worstFrame = 0, upOk = true;
+  for (let k = 0; k < 200; k++) {
+    const n = k < 4 ? [[0, 1, 0], [0, -1, 0], [0, 0.9999, 0.0141], [1, 0, 0]][k] : [Math.sin(k * 1.7), Math.cos(k * 2.3), Math.sin(k * 0.7 + 1)];
+    const e = core.parseLights(light(2, { 6: n[0], 7: n[1], 8: n[2] }), 0).emitters[0];
+    const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    const uxv = cross(e.u, e.v);
+    worstFrame = Math.max(worstFrame, Math.abs(dot(e.u, e.u) - 1), Math.abs(dot(e.v, e.v) - 1), Math.abs(dot(e.u, e.v)),
+      Math.abs(dot(e.u, e.normal)), ...uxv.map((x, i) => Math.abs(x - e.normal[i])));
+    if (Math.abs(e.normal[1]) < 0.99 && e.v[1] < 0) upOk = false;
+  }
+  check(worstFrame < 1e-5, `emitter frame is not orthonormal around n (error ${worstFrame})`);
+  check(upOk, 'rect v axis should be +y projected onto the plane');
+}
+{
+  // Face projection: the GL cube-map table (sc, tc, ma), written out independently here.
+  const table = [(d) => [-d[2], -d[1], d[0]], (d) => [d[2], -d[1], -d[0]], (d) => [d[0], d[2], d[1]],
+    (d) => [d[0], -d[2], -d[1]], (d) => [d[0], -d[1], d[2]], (d) => [-d[0], -d[1], -d[2]]];
+  const faceOf = (d) => {
+    const a = d.map(Math.abs);
+    if (a[0] >= a[1] && a[0] >= a[2]) return d[0] > 0 ? 0 : 1;
+    if (a[1] >= a[2]) return d[1] > 0 ? 2 : 3;
+    return d[2] > 0 ? 4 : 5;
+  };
+  const c = [0.3, -1, 2];
+  let worst = 0, depthOrdered = true;
+  for (let k = 0; k < 300; k++) {
+    const d = [Math.sin(k * 12.9898) * 2, Math.cos(k * 78.233), Math.sin(k * 3.7 + 0.4) * 1.5];
+    const f = faceOf(d);
+    const [sc, tc, ma] = table[f](d);
+    const near = core.cubeFaceProject(f, c, d.map((v, i) => c[i] + v));
+    const far = core.cubeFaceProject(f, c, d.map((v, i) => c[i] + 3 * v));
+    worst = Math.max(worst, Math.abs(near[0] - sc / ma), Math.abs(near[1] - tc / ma), Math.abs(far[0] - sc / ma));
+    if (!(near[2] > -1 && near[2] < far[2] && far[2] < 1)) depthOrdered = false;
+  }
+  check(worst < 1e-5, `cube face projection differs from the GL table by ${worst}`);
+  check(depthOrdered, 'cube face depth must grow with distance inside (-1, 1)');
+  // Face culling is conservative: a sphere with any point on a face's side touches it.
+  let missed = 0, culled = 0;
+  for (let k = 0; k < 400; k++) {
+    const centre = [Math.sin(k * 1.3) * 3, Math.cos(k * 2.1) * 3, Math.sin(k * 0.37) * 3];
+    const radius = 0.05 + 1.5 * Math.abs(Math.sin(k * 5.1));
+    for (let f = 0; f < 6; f++) {
+      const touches = core.sphereTouchesCubeFace(f, [0, 0, 0], centre, radius);
+      if (!touches) culled++;
+      for (let s = 0; s < 300 && !touches; s++) {
+        const u = [Math.sin(s * 1.1 + k), Math.cos(s * 2.7 + k), Math.sin(s * 0.9 + 2 * k)];
+        const r = radius * Math.cbrt(Math.abs(Math.sin(s * 7.7))) / Math.hypot(...u);
+        const p = centre.map((v, i) => v + r * u[i]);
+        if (faceOf(p) === f) { missed++; break; }
+      }
+    }
+  }
+  check(missed === 0, `${missed} spheres were culled from a face they reach`);
+  // The texel rectangle the GPU projection reads holds every texel a sphere covers, and
+  // is not much larger for a small sphere.
+  let outside = 0, loose = 0;
+  const faceSize = 64;
+  for (let k = 0; k < 150; k++) {
+    const centre = [Math.sin(k * 1.9) * 3, Math.cos(k * 0.7) * 3, Math.sin(k * 2.3 + 1) * 3];
+    const radius = k % 3 === 0 ? 0.05 : 0.2 + Math.abs(Math.sin(k * 4.1));
+    const rects = [0, 1, 2, 3, 4, 5].map((f) => core.sphereFaceRect(f, [0, 0, 0], centre, radius, faceSize));
+    for (let s = 0; s < 400; s++) {
+      const u = [Math.sin(s * 1.7 + k), Math.cos(s * 3.1 + k), Math.sin(s * 0.3 + 3 * k)];
+      const r = radius * Math.cbrt(Math.abs(Math.sin(s * 5.3))) / Math.hypot(...u);
+      const p = centre.map((v, i) => v + r * u[i]);
+      const f = faceOf(p);
+      const [sc, tc, ma] = table[f](p);
+      const i = Math.min(faceSize - 1, Math.floor((sc / ma + 1) / 2 * faceSize));
+      const j = Math.min(faceSize - 1, Math.floor((tc / ma + 1) / 2 * faceSize));
+      const [x0, y0, x1, y1] = rects[f];
+      if (i < x0 || i > x1 || j < y0 || j > y1) outside++;
+    }
+    if (radius === 0.05) {  // about 1 degree seen from 3 units: a few texels plus the margin
+      const area = rects.reduce((a, [x0, y0, x1, y1]) => a + Math.max(0, x1 - x0 + 1) * Math.max(0, y1 - y0 + 1), 0);
+      if (area > 8 * 8) loose++;
+    }
+  }
+  check(outside === 0, `${outside} sphere points fell outside the face rectangles`);
+  check(loose === 0, `${loose} small spheres got loose face rectangles`);
+  check(culled > 400, `face culling culls too little to be useful (${culled} of 2400)`);
+  // RGBE8 atlas: value = byte / 255 * 2^(alpha - 128); face f at ((f % 3) size, (f / 3) size).
+  const size = 2;
+  const bytes = new Uint8Array(3 * size * 2 * size * 4);
+  const at = (x, y) => 4 * (y * 3 * size + x);
+  bytes.set([255, 51, 0, 130], at(size + 1, size + 0));  // face 4 (+Z), texel (1, 0)
+  bytes.set([128, 0, 255, 120], at(0, 1));               // face 0 (+X), texel (0, 1)
+  const faces = core.decodeRgbeAtlas(size, bytes);
+  const texel = (f, i, j) => faces[f].slice(3 * (j * size + i), 3 * (j * size + i) + 3);
+  const near = (a, b) => a.every((v, i) => Math.abs(v - b[i]) <= 1e-6 * Math.max(1, Math.abs(b[i])));
+  check(near(texel(4, 1, 0), [4, 0.8, 0]), `RGBE decode of face 4: ${texel(4, 1, 0)}`);
+  check(near(texel(0, 0, 1), [128 / 255 / 256, 0, 1 / 256]), `RGBE decode of face 0: ${texel(0, 0, 1)}`);
+  check(faces.every((f, k) => f.reduce((a, v) => a + v, 0) > 0 === (k === 0 || k === 4)), 'RGBE atlas decoded into the wrong faces');
+  check(typeof core.decodeRgbeAtlas(size, bytes.subarray(1)) === 'string', 'a short RGBE atlas must be rejected');
+}
+{
+  // The analytic circular light: band 0 is radiance x cap solid angle x y_00.
+  const zeta = 0.3, radiance = 2.5;
+  const sh = core.circularLightSH(5, zeta, radiance, 0, 0, 1);
+  const l0 = radiance * 2 * Math.PI * (1 - Math.cos(zeta)) * 0.5 / Math.sqrt(Math.PI);
+  check(Math.abs(sh[0] - l0) < 1e-5 * l0, `circular light L0 ${sh[0]}, expected ${l0}`);
+  check(Math.abs(sh[1]) < 1e-6 && Math.abs(sh[3]) < 1e-6 && sh[2] > 0, `a cap about +z has only m = 0 terms: ${sh.slice(0, 4)}`);
+  const whole = core.circularLightSH(3, Math.PI, 1, 0, 1, 0);
+  check(Math.abs(whole[0] - 2 * Math.sqrt(Math.PI)) < 1e-5 && whole.slice(1).every((v) => Math.abs(v) < 1e-5), `a full-sphere cap is constant: ${whole}`);
+}
+
 if (failures.length) {
   console.error(`${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
   process.exit(1);

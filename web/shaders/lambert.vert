@@ -8,9 +8,11 @@ layout(location = 1) in vec3 aAlbedo;
 layout(location = 2) in vec3 aNormal;
 
 uniform mat4 uViewProjection;
-uniform vec4 uLightR[16];
-uniform vec4 uLightG[16];
-uniform vec4 uLightB[16];
+layout(std140) uniform Lighting {  // built on the GPU by lighting_combine.vert
+  vec4 uLightR[16];
+  vec4 uLightG[16];
+  vec4 uLightB[16];
+};
 
 out vec3 vRadiance;
 

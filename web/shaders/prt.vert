@@ -17,9 +17,11 @@ uniform int uTexelsPerChannel;  // ceil(order^2 / 4) at the baked order
 uniform int uChannels;          // 1 or 3
 uniform int uActiveTexels;      // ceil(order'^2 / 4) at the displayed order (<= uTexelsPerChannel)
 // Lighting packed like the transfer: 4 coefficients per vec4, 16 vec4 = order 8.
-uniform vec4 uLightR[16];
-uniform vec4 uLightG[16];
-uniform vec4 uLightB[16];
+layout(std140) uniform Lighting {  // built on the GPU by lighting_combine.vert
+  vec4 uLightR[16];
+  vec4 uLightG[16];
+  vec4 uLightB[16];
+};
 
 out vec3 vRadiance;
 

@@ -4,13 +4,23 @@
 // (docs/web-client.md).
 import GUI from './lil-gui.esm.min.js';
 import createPrtModule from './prt_client.mjs';
+import { LightSet } from './light_set.js';
+import { LightDrag } from './light_drag.js';
+import { LightsPanel } from './lights_panel.js';
+import { normaliseLights } from './lights.js';
+import { fetchJson, downloadAsset } from './scene_download.js';
 
 const MODES = { unshadowed: 0, shadowed: 1, interreflected: 2, lambert: 3 };
+const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
+const PROJECTIONS = { gpu: 0, cpu: 1 };
+const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
 const params = new URLSearchParams(location.search);
 const canvas = document.getElementById('view');
 const loadingText = document.getElementById('loading-text');
 const loadingBar = document.getElementById('loading-bar');
 const statsLine = document.getElementById('stats');
+const noticeBox = document.getElementById('notice');
+const helpBox = document.getElementById('help');
 
 const state = {
   scene: params.get('scene') || '',
@@ -24,24 +34,49 @@ const state = {
   color: '#ffffff',
   background: true,
 };
+// The dynamic-light settings the Lights panel edits (docs/web-client.md).
+const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
 let app = null;
 let scenes = [];
-let lights = [];
+let environments = [];  // /api/lights: environment maps as radiance SH
 let gui = null;
+let lightSet = null;
+let lightDrag = null;
+let lightsPanel = null;
 
 // ---- the test hook (docs/web-client.md) -------------------------------------------------
+const rows = (flat) => {
+  const out = [];
+  for (let i = 0; i < flat.length; i += 3) out.push([flat[i], flat[i + 1], flat[i + 2]]);
+  return out;
+};
 const hook = {
   ready: false,
   frames: 0,
   error: null,
+  notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
   stats,
+  // Radiance SH the last frame used: the light cube's projection plus the environment when on.
   lightSH() {
-    if (!app) return [];
-    const flat = app.lightSH();
-    const rows = [];
-    for (let i = 0; i < flat.length; i += 3) rows.push([flat[i], flat[i + 1], flat[i + 2]]);
-    return rows;
+    return app ? rows(app.lightSH()) : [];
+  },
+  // The light cube's projection alone (no environment), at the baked order.
+  cubeSH() {
+    return app ? rows(app.cubeSH()) : [];
+  },
+  get lightCenter() { return app && hook.ready ? Array.from(app.lightCenter()) : null; },
+  get lightingModel() { return app && hook.ready ? LIGHTING_MODELS[app.lightingModel()] ?? 'unknown' : null; },
+  get lightingRadius() { return app && hook.ready ? app.lightingRadius() : null; },
+  get lights() { return lightSet ? lightSet.snapshot() : []; },
+  get projection() { return lightSettings.projection; },
+  get cubeSize() { return lightSettings.cubeSize; },
+  get environment() { return lightSettings.environmentOn ? state.environment : null; },
+  // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
+  // indices); returns the id to use as {shape: 'mesh', mesh: id}. Throws on bad input.
+  addMesh(positions, indices) {
+    if (!lightSet) throw new Error('addMesh: no scene is loaded yet');
+    return lightSet.addMesh(positions, indices);
   },
   // Canvas pixel (CSS pixels, origin top-left) where world point p appeared in the last frame.
   project(p) {
@@ -62,19 +97,63 @@ const hook = {
     }
     return (performance.now() - t0) / n;
   },
+  // Benchmark: n samples, each the mean milliseconds of `batch` light updates back to back
+  // (light cube render + SH projection). Each update ends by reading its result back
+  // (cubeSH: 48 floats from the GPU on the GPU path), so its GPU work is inside the sample:
+  // finishGpu alone was seen not to block in headless Chromium, letting work pile up.
+  // Batches > 1 measure updates shorter than the browser's timer resolution (100 us
+  // without cross-origin isolation).
+  timeLightUpdates(n, batch = 1) {
+    if (!app || !hook.ready) return [];
+    const samples = [];
+    for (let i = 0; i < n; i++) {
+      const t0 = performance.now();
+      for (let k = 0; k < batch; k++) {
+        app.projectLightsNow();
+        app.finishGpu();
+        app.cubeSH();
+      }
+      samples.push((performance.now() - t0) / batch);
+    }
+    return samples;
+  },
+  // Changes settings (docs/web-client.md); returns the current frame count. Every value is
+  // checked first: on a bad one it throws an Error naming it and changes nothing.
   set(options) {
-    if ('mode' in options) state.mode = options.mode;
-    if ('order' in options) state.order = options.order;
-    if ('exposure' in options) state.exposure = options.exposure;
+    if (options === null || typeof options !== 'object') throw new Error('set: expected an object of settings');
+    for (const key of Object.keys(options)) {
+      if (!SET_OPTIONS.includes(key)) throw new Error(`set: unknown setting '${key}' (known: ${SET_OPTIONS.join(', ')})`);
+    }
+    if ('mode' in options && !Object.hasOwn(MODES, options.mode)) throw new Error(`set: mode must be one of ${Object.keys(MODES).join(', ')}; got ${JSON.stringify(options.mode)}`);
+    if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= 8)) throw new Error(`set: order must be an integer 1..8, got ${JSON.stringify(options.order)}`);
+    if ('projection' in options && !Object.hasOwn(PROJECTIONS, options.projection)) throw new Error(`set: projection must be 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
+    if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
+      throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);
+    }
+    if ('environment' in options && options.environment !== null && !environmentNames().includes(options.environment)) {
+      throw new Error(`set: environment must be null (off) or one of ${environmentNames().map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
+    }
+    if ('lights' in options) {
+      if (!lightSet) throw new Error('set: lights need a loaded scene');
+      if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
+      normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
+    }
+    for (const key of ['mode', 'order', 'exposure', 'intensity', 'background']) if (key in options) state[key] = options[key];
     if ('envRotation' in options) {
       const r = options.envRotation;
       [state.envYaw, state.envPitch] = Array.isArray(r) ? r : [r, 0];
     }
-    if ('intensity' in options) state.intensity = options.intensity;
-    if ('background' in options) state.background = options.background;
-    if ('environment' in options) selectEnvironment(options.environment ?? 'white furnace');
+    if ('environment' in options) {
+      lightSettings.environmentOn = options.environment !== null;
+      if (options.environment !== null) selectEnvironment(options.environment);
+    }
+    if ('projection' in options) lightSettings.projection = options.projection;
+    if ('cubeSize' in options) lightSettings.cubeSize = options.cubeSize;
     applyState();
+    const projectionError = applyLightSettings();
+    if ('lights' in options) lightSet.set(options.lights);
     if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    if (projectionError && 'projection' in options) throw new Error(`set: ${projectionError}`);
     return hook.frames;
   },
 };
@@ -94,58 +173,22 @@ function progress(text, fraction) {
   loadingBar.style.width = `${Math.round(100 * Math.max(0, Math.min(1, fraction)))}%`;
 }
 
-async function fetchJson(url, what) {
-  let response;
-  try {
-    response = await fetch(url);
-  } catch (e) {
-    throw new Error(`Cannot reach the server for the ${what} (${url}): ${e.message}. Is prt-serve running?`);
-  }
-  if (!response.ok) throw new Error(`The server answered ${response.status} ${response.statusText} for the ${what} (${url}).`);
-  try {
-    return await response.json();
-  } catch (e) {
-    throw new Error(`The ${what} (${url}) is not valid JSON: ${e.message}`);
-  }
-}
-
-// Streams the asset straight into wasm memory, updating the progress bar.
+// Streams the asset into wasm memory (scene_download.js), updating the progress bar.
 async function downloadScene(entry) {
-  let response;
-  try {
-    response = await fetch(entry.url);
-  } catch (e) {
-    throw new Error(`Cannot reach the server for scene '${entry.name}': ${e.message}. Is prt-serve running?`);
-  }
-  if (!response.ok) throw new Error(`The server answered ${response.status} ${response.statusText} for scene '${entry.name}' (${entry.url}).`);
-  const declared = Number(response.headers.get('Content-Length') || entry.bytes || 0);
-  let chunks = [];
-  let received = 0;
-  const reader = response.body.getReader();
-  for (;;) {
-    const { done, value } = await reader.read();
-    if (done) break;
-    chunks.push(value);
-    received += value.length;
+  await downloadAsset(app, entry, (received, declared) => {
     stats.bytesLoaded = received;
     progress(`Loading ${entry.name}: ${(received / 1e6).toFixed(1)} of ${(declared / 1e6).toFixed(1)} MB`, declared ? received / declared : 0);
-  }
-  const memory = app.reserveAsset(received);
-  if (!memory) throw new Error(`Out of memory: cannot hold scene '${entry.name}' (${(received / 1e6).toFixed(1)} MB).`);
-  let offset = 0;
-  for (const c of chunks) {
-    memory.set(c, offset);
-    offset += c.length;
-  }
-  chunks = null;
-  progress(`Decoding ${entry.name}…`, 1);
-  const error = app.loadAsset();
-  if (error) throw new Error(`Scene '${entry.name}' could not be loaded: ${error}`);
+  }, () => progress(`Decoding ${entry.name}…`, 1));
+}
+
+// 'white furnace' and the usable environment maps, the names set({environment}) takes.
+function environmentNames() {
+  return ['white furnace', ...environments.filter((l) => l.usable).map((l) => l.name)];
 }
 
 function selectEnvironment(name) {
   state.environment = name;
-  const light = lights.find((l) => l.name === name && l.usable);
+  const light = environments.find((l) => l.name === name && l.usable);
   if (!light) {
     state.environment = 'white furnace';
     app.setWhiteFurnace(1);
@@ -168,6 +211,69 @@ function applyState() {
   app.setBackground(state.background);
 }
 
+// Pushes the Lights panel's settings to the client; returns "" or why the GPU projection
+// is unavailable (the client then projects on the CPU, and the panel says so).
+function applyLightSettings() {
+  if (!app) return '';
+  let error = app.setProjection(PROJECTIONS[lightSettings.projection]);
+  if (error) {
+    lightSettings.projection = 'cpu';
+    notify(`GPU projection unavailable (${error}); projecting on the CPU.`);
+  }
+  const sizeError = app.setCubeSize(lightSettings.cubeSize);
+  if (sizeError) error = error || sizeError;
+  app.setEnvironmentEnabled(lightSettings.environmentOn);
+  return error;
+}
+
+// Scene radius in world units, for default light placement and the panel's slider ranges:
+// the local lighting sphere's radius, or for distant scenes the bounds radius, recovered
+// from the framed camera (ClientApp::frameScene puts it 2.7 bounds radii from the centre).
+let sceneRadius = 1;
+function measureSceneRadius() {
+  const r = app.lightingRadius();
+  if (r > 0) return r;
+  const c = app.lightCenter();
+  const ray = app.rayFromScreen(0, 0);
+  const d = ray && ray.length === 6 ? Math.hypot(ray[0] - c[0], ray[1] - c[1], ray[2] - c[2]) / 2.7 : 0;
+  return d > 0 && Number.isFinite(d) ? d : 1;
+}
+
+// A scene baked for local lighting opens with one sphere light above the light centre c
+// and to the viewer's left (the panel covers the right), inside the lighting sphere, so
+// the first view shows the light, its soft shadows and the floor's gradient; distant
+// scenes open with the environment alone.
+function defaultLights() {
+  if (app.lightingModel() === 0) return [];
+  const c = Array.from(app.lightCenter()), r = sceneRadius;
+  const ray = Array.from(app.rayFromScreen(0, 0));
+  const f = ray.length === 6 && ray.every(Number.isFinite) ? ray.slice(3) : [0, 0, -1];
+  let right = [-f[2], 0, f[0]];  // forward x up
+  const length = Math.hypot(...right);
+  right = length > 1e-3 ? right.map((x) => x / length) : [1, 0, 0];
+  const offset = [0, 1, 2].map((k) => r * (-0.3 * right[k] + (k === 1 ? 0.3 : 0) - 0.1 * f[k]));
+  return [{ shape: 'sphere', position: c.map((x, k) => x + offset[k]), radius: 0.07 * r, color: [1, 0.92, 0.8], intensity: 40 }];
+}
+
+function notify(message) {
+  hook.notice = message;
+  noticeBox.textContent = message;
+  noticeBox.hidden = false;
+  console.warn(`prt: ${message}`);
+  clearTimeout(notify.timer);
+  notify.timer = setTimeout(() => { noticeBox.hidden = true; }, 8000);
+}
+
+function toggleHelp(show = helpBox.hidden) {
+  helpBox.hidden = !show;
+  if (!show || !hook.ready) return;
+  const c = Array.from(app.lightCenter()).map((x) => x.toFixed(2)).join(', ');
+  const model = LIGHTING_MODELS[app.lightingModel()];
+  document.getElementById('help-scene').textContent = app.lightingModel() === 0
+    ? `This scene was baked for distant lighting: lights act only through their direction from c = (${c}).`
+    : `This scene was baked for local lighting (${model}): c = (${c}), r = ${app.lightingRadius().toFixed(2)}.`;
+}
+
 async function loadScene(name) {
   const entry = scenes.find((s) => s.name === name);
   if (!entry) throw new Error(`No scene named '${name}' in the catalogue.`);
@@ -179,6 +285,12 @@ async function loadScene(name) {
   stats.vertices = app.vertexCount();
   state.order = app.bakedOrder();
   applyState();
+  // Render once so rayFromScreen has a camera to measure the scene with.
+  app.render(Math.max(1, canvas.width), Math.max(1, canvas.height));
+  sceneRadius = measureSceneRadius();
+  lightSettings.environmentOn = app.lightingModel() === 0 || params.has('env');
+  applyLightSettings();
+  lightSet.set(defaultLights());
   hook.ready = true;
 }
 
@@ -189,29 +301,65 @@ function buildGui() {
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
   gui.add(state, 'mode', Object.keys(MODES)).name('transfer').onChange(applyState);
   gui.add(state, 'order', 1, 8, 1).name('SH order').onChange(applyState);
-  const envNames = ['white furnace', ...lights.filter((l) => l.usable).map((l) => l.name)];
-  gui.add(state, 'environment', envNames).name('environment').onChange((n) => { selectEnvironment(n); applyState(); });
-  gui.add(state, 'envYaw', -Math.PI, Math.PI, 0.01).name('light yaw').onChange(applyState);
-  gui.add(state, 'envPitch', -1.5, 1.5, 0.01).name('light pitch').onChange(applyState);
-  gui.add(state, 'intensity', 0, 10, 0.01).name('intensity').onChange(applyState);
-  gui.addColor(state, 'color').name('light colour').onChange(applyState);
+  const envNames = ['white furnace', ...environments.filter((l) => l.usable).map((l) => l.name)];
+  gui.add(state, 'environment', envNames).name('environment').onChange((n) => {
+    selectEnvironment(n);
+    lightSettings.environmentOn = true;  // picking a map means wanting to see it
+    applyState();
+    applyLightSettings();
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  });
+  gui.add(state, 'envYaw', -Math.PI, Math.PI, 0.01).name('env yaw').onChange(applyState);
+  gui.add(state, 'envPitch', -1.5, 1.5, 0.01).name('env pitch').onChange(applyState);
+  gui.add(state, 'intensity', 0, 10, 0.01).name('env intensity').onChange(applyState);
+  gui.addColor(state, 'color').name('env colour').onChange(applyState);
   gui.add(state, 'exposure', -8, 8, 0.1).name('exposure (EV)').onChange(applyState);
   gui.add(state, 'background').name('background').onChange(applyState);
+  lightsPanel = new LightsPanel(gui, {
+    lightSet,
+    settings: lightSettings,
+    applySettings() {
+      applyLightSettings();
+      gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    },
+    scale: () => sceneRadius,
+    centre: () => Array.from(app.lightCenter()),
+    notify,
+    showHelp: () => toggleHelp(true),
+  });
 }
 
-// ---- input: drag orbits, shift/right drag turns the light, wheel/pinch zooms, two-finger drag pans
+// ---- input: a press on a light drags it (light_drag.js); otherwise drag orbits, shift/right
+// drag turns the environment, wheel/pinch zooms, two-finger drag pans
 function setupInput() {
   const pointers = new Map();
   let lastPinch = 0;
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
   canvas.addEventListener('pointerdown', (e) => {
-    canvas.setPointerCapture(e.pointerId);
+    try {
+      canvas.setPointerCapture(e.pointerId);
+    } catch {
+      // A pointer the browser no longer tracks (lifted already, or synthetic): nothing to capture.
+    }
+    if (hook.ready && lightDrag && !pointers.size && lightDrag.pointerDown(e)) return;
     pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, button: e.button, shift: e.shiftKey });
   });
-  const end = (e) => { pointers.delete(e.pointerId); lastPinch = 0; };
+  const end = (e) => {
+    if (lightDrag && lightDrag.pointerUp(e)) return;
+    pointers.delete(e.pointerId);
+    lastPinch = 0;
+  };
   canvas.addEventListener('pointerup', end);
   canvas.addEventListener('pointercancel', end);
   canvas.addEventListener('pointermove', (e) => {
+    if (lightDrag && lightDrag.dragging) {
+      try {
+        lightDrag.pointerMove(e);
+      } catch (err) {
+        notify(err.message);
+      }
+      return;
+    }
     const p = pointers.get(e.pointerId);
     if (!p || !app) return;
     const dx = e.clientX - p.x, dy = e.clientY - p.y;
@@ -257,7 +405,9 @@ function frame(now) {
     stats.frameMs = 0.9 * stats.frameMs + 0.1 * (performance.now() - t0 + (frame.last ? now - frame.last - (performance.now() - t0) : 0));
     stats.order = app.displayOrder();
     statsLine.textContent = `${stats.frameMs.toFixed(1)} ms/frame · ${stats.vertices.toLocaleString()} vertices · ` +
-      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded`;
+      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
+      `${LIGHTING_MODELS[app.lightingModel()]} lighting · ${lightSet.lights.length} light${lightSet.lights.length === 1 ? '' : 's'} ` +
+      `(${lightSettings.projection} ${lightSettings.cubeSize}²)${lightSettings.environmentOn ? ' + environment' : ''}`;
   }
   frame.last = now;
   requestAnimationFrame(frame);
@@ -281,6 +431,10 @@ async function main() {
     fail(app.error());
     return;
   }
+  lightSet = new LightSet(app, () => lightsPanel && lightsPanel.refresh());
+  lightDrag = new LightDrag(canvas, app, lightSet, () => 4 * sceneRadius);
+  document.getElementById('help-button').addEventListener('click', () => toggleHelp());
+  document.getElementById('help-close').addEventListener('click', () => toggleHelp(false));
   setupInput();
   requestAnimationFrame(frame);
   try {
@@ -294,14 +448,15 @@ async function main() {
     }
     if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     try {
-      lights = (await fetchJson('/api/lights?order=8', 'environment list')).lights || [];
+      environments = (await fetchJson('/api/lights?order=8', 'environment list')).lights || [];
     } catch (e) {
       console.warn(`prt: ${e.message}; using the white furnace`);
-      lights = [];
+      environments = [];
     }
     await loadScene(state.scene);
-    selectEnvironment(state.environment || (lights.find((l) => l.usable) || { name: 'white furnace' }).name);
+    selectEnvironment(state.environment || (environments.find((l) => l.usable) || { name: 'white furnace' }).name);
     applyState();
+    applyLightSettings();
     buildGui();
   } catch (e) {
     fail(e.message);

@@ -25,9 +25,18 @@ ClientApp::ClientApp(const std::string& selector) {
     return;
   }
   emscripten_webgl_make_context_current(context_);
-  if (Status s = renderer_.init(); !s.isOk()) error_ = s.message();
+  if (Status s = renderer_.init(); !s.isOk()) {
+    error_ = s.message();
+    return;
+  }
+  // Float render targets (the light cube, the GPU projection); without them the cube is
+  // RGBE8 and projected on the CPU.
+  const bool floatTargets = emscripten_webgl_enable_extension(context_, "EXT_color_buffer_float");
+  if (Status s = lights_.init(floatTargets); !s.isOk()) error_ = s.message();
   setWhiteFurnace(1.0f);
 }
+
+void ClientApp::makeCurrent() const { emscripten_webgl_make_context_current(context_); }
 
 std::uint8_t* ClientApp::reserveAsset(std::size_t bytes) {
   pending_.clear();
@@ -54,7 +63,7 @@ std::string ClientApp::loadAsset() {
     boundsMin_ = {std::min(boundsMin_.x, p.x), std::min(boundsMin_.y, p.y), std::min(boundsMin_.z, p.z)};
     boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
   }
-  displayOrder_ = asset_.shOrder;
+  displayOrder_ = std::min(asset_.shOrder, 8);
   if (!renderer_.hasPass(mode_)) {
     for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
       if (renderer_.hasPass(m)) mode_ = m;
@@ -91,7 +100,7 @@ void ClientApp::setMode(int mode) {
   const auto m = static_cast<ShadingMode>(std::clamp(mode, 0, 3));
   if (renderer_.hasPass(m) || asset_.positions.empty()) mode_ = m;
 }
-void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, asset_.shOrder)); }
+void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, 8))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
 void ClientApp::orbit(float dx, float dy) {
@@ -127,23 +136,102 @@ void ClientApp::updateLighting() {
   packLighting(lighting_, displayOrder_, packed_);
 }
 
+Vec3 ClientApp::lightCenter() const {
+  if (isLocalLighting(asset_.lighting.model)) return asset_.lighting.center;
+  return (boundsMin_ + boundsMax_) * 0.5f;
+}
+
+void ClientApp::syncLightView() {
+  // The cube is projected at the baked order (the lighting holds at most 8 bands); before a
+  // scene is loaded, at 5.
+  const int order = asset_.shOrder > 0 ? std::min(asset_.shOrder, 8) : 5;
+  lights_.setView(lightCenter(), 0.5f * length(boundsMax_ - boundsMin_), order);
+}
+
 void ClientApp::render(int width, int height) {
   if (!ok() || width <= 0 || height <= 0) return;
-  emscripten_webgl_make_context_current(context_);
+  makeCurrent();
   updateLighting();  // the shared SH rotation, every frame
-  const Vec3 eye = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
-                                  std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
-  const float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
-  const float farZ = distance_ + 2.0f * radius_;
-  viewProjection_ = multiply(perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ), lookAt(eye, target_, {0, 1, 0}));
+  static const float kNoEnvironment[3 * 64] = {};
+  const float* environment = environmentEnabled_ ? packed_ : kNoEnvironment;
+  syncLightView();
+  lights_.update(environment, displayOrder_);  // re-projects the light cube only when dirty
+  eye_ = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
+                        std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
+  float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
+  float farZ = distance_ + 2.0f * radius_;
+  for (const BoundingSphere& b : lights_.emitterBounds()) {  // keep the emitters inside the depth range
+    const float d = length(b.center - eye_);
+    farZ = std::max(farZ, d + b.radius);
+    nearZ = std::min(nearZ, d - b.radius);
+  }
+  nearZ = std::max(nearZ, farZ * 1e-4f);
+  viewProjection_ = multiply(perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ), lookAt(eye_, target_, {0, 1, 0}));
   FrameParams p;
   p.viewProjection = viewProjection_;
   p.mode = mode_;
   p.displayOrder = displayOrder_;
   p.exposure = exposure_;
-  p.background = background_;
-  p.lighting = packed_;
+  p.background = background_ && environmentEnabled_;
+  p.environment = packed_;
   renderer_.draw(width, height, p);
+  lights_.drawEmitters(viewProjection_, eye_, exposure_);
+}
+
+std::string ClientApp::setLights(const std::vector<float>& flat) {
+  if (!ok()) return error_;
+  return lights_.setLights(flat);
+}
+
+int ClientApp::addLightMesh(std::vector<float> positions, std::vector<std::uint32_t> indices) {
+  if (!ok()) return -1;
+  makeCurrent();
+  return lights_.addLightMesh(std::move(positions), std::move(indices));
+}
+
+std::string ClientApp::setProjection(int mode) {
+  if (!ok()) return error_;
+  return lights_.setProjection(mode);
+}
+
+std::string ClientApp::setCubeSize(int size) {
+  if (!ok()) return error_;
+  return lights_.setCubeSize(size);
+}
+
+std::vector<float> ClientApp::cubeSH() {
+  if (!ok()) return {};
+  makeCurrent();
+  syncLightView();
+  return lights_.cubeSH();
+}
+
+void ClientApp::projectLightsNow() {
+  if (!ok()) return;
+  makeCurrent();
+  syncLightView();
+  lights_.projectNow();
+}
+
+void ClientApp::finishGpu() {
+  if (!ok()) return;
+  makeCurrent();
+  lights_.finishGpu();
+}
+
+std::vector<float> ClientApp::rayFromScreen(float ndcX, float ndcY) const {
+  const Mat4 inv = inverse(viewProjection_);
+  auto unproject = [&](float z) {
+    const float x = inv[0] * ndcX + inv[4] * ndcY + inv[8] * z + inv[12];
+    const float y = inv[1] * ndcX + inv[5] * ndcY + inv[9] * z + inv[13];
+    const float zz = inv[2] * ndcX + inv[6] * ndcY + inv[10] * z + inv[14];
+    const float w = inv[3] * ndcX + inv[7] * ndcY + inv[11] * z + inv[15];
+    return Vec3{x / w, y / w, zz / w};
+  };
+  Vec3 d = unproject(1.0f) - unproject(-1.0f);
+  const float len = length(d);
+  d = len > 0.0f && std::isfinite(len) ? d * (1.0f / len) : Vec3{0, 0, -1};
+  return {eye_.x, eye_.y, eye_.z, d.x, d.y, d.z};
 }
 
 std::vector<float> ClientApp::project(float x, float y, float z) const {
@@ -156,15 +244,10 @@ std::vector<float> ClientApp::project(float x, float y, float z) const {
   return {cx / cw, cy / cw, cz / cw};
 }
 
-std::vector<float> ClientApp::lightSH() const {
-  const int n = shCoeffCount(std::max(1, std::min(displayOrder_, 8)));
-  std::vector<float> out(static_cast<std::size_t>(3 * n), 0.0f);
-  for (int i = 0; i < n && i < static_cast<int>(lighting_.size()); ++i) {
-    out[3 * i] = lighting_[i].r;
-    out[3 * i + 1] = lighting_[i].g;
-    out[3 * i + 2] = lighting_[i].b;
-  }
-  return out;
+std::vector<float> ClientApp::lightSH() {
+  if (!ok()) return {};
+  makeCurrent();
+  return lights_.lightSH();
 }
 
 }  // namespace prt::web

@@ -1,13 +1,14 @@
 // The client's state and per-frame work, driven from JavaScript through embind
 // (client_bindings.cpp): the decoded scene on the GPU, the lighting (an environment's SH
-// or a constant "white furnace"), its live rotation by the shared SH rotation, and an
-// orbit camera.
+// or a constant "white furnace", its live rotation by the shared SH rotation, plus dynamic
+// area lights projected through a light cube map: dynamic_lighting.h), and an orbit camera.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "dynamic_lighting.h"
 #include "gl_renderer.h"
 #include "prt/asset.h"
 #include "prt/vec3.h"
@@ -52,8 +53,39 @@ class ClientApp {
   // [-1, 1] with +y up. Lets tests find scene features on screen without guessing.
   std::vector<float> project(float x, float y, float z) const;
 
-  // The lighting of the last frame at the display order, flat [r,g,b] per coefficient.
-  std::vector<float> lightSH() const;
+  // The lighting of the last frame at the display order, flat [r,g,b] per coefficient:
+  // the light cube's projection plus the environment when enabled. Reads the GPU-built
+  // lighting block back (synchronous; tests and tools only).
+  std::vector<float> lightSH();
+
+  // ---- dynamic lights (docs/web-client.md, "Light cube"; API: emitters.h) ----
+  // 16 floats per light; "" or an error naming the light and field (nothing changes).
+  std::string setLights(const std::vector<float>& flat);
+  // Local-unit mesh for shape 3; returns its id, or -1 on invalid input.
+  int addLightMesh(std::vector<float> positions, std::vector<std::uint32_t> indices);
+  // Whether the environment is added to the lighting (and drawn as the background).
+  void setEnvironmentEnabled(bool on) { environmentEnabled_ = on; }
+  std::string setProjection(int mode);  // 0 GPU, 1 CPU; "" or why GPU is unavailable
+  int projectionMode() const { return lights_.projectionMode(); }
+  bool gpuProjectionSupported() const { return lights_.gpuProjectionSupported(); }
+  std::string setCubeSize(int size);  // faces of size x size texels, 8..512
+  int cubeSize() const { return lights_.cubeSize(); }
+  void simulateNoFloatTargets(bool on) { lights_.simulateNoFloatTargets(on); }
+  // The point the light cube is rendered from: the asset's lighting centre for the local
+  // models, the scene bounds' centre for distant lighting. World units.
+  Vec3 lightCenter() const;
+  int lightingModel() const { return static_cast<int>(asset_.lighting.model); }
+  float lightingRadius() const { return asset_.lighting.radius; }
+  // The last light-cube projection alone, flat [r,g,b] per coefficient at the baked order
+  // (at most 8); projects first if lights, size, path or order changed since.
+  std::vector<float> cubeSH();
+  // Re-renders and re-projects the light cube now, without drawing (benchmarks).
+  void projectLightsNow();
+  void finishGpu();  // waits until the GPU has done all queued work (benchmarks)
+  std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
+  const std::string& projectionError() const { return lights_.projectionError(); }
+  // World-space ray through NDC point (x, y) of the last frame: {origin (the eye), unit dir}.
+  std::vector<float> rayFromScreen(float ndcX, float ndcY) const;
 
   std::size_t vertexCount() const { return asset_.positions.size(); }
   std::size_t triangleCount() const { return asset_.indices.size() / 3; }
@@ -65,10 +97,14 @@ class ClientApp {
  private:
   bool ok() const { return error_.empty(); }
   void updateLighting();
+  void makeCurrent() const;
+  void syncLightView();  // light-cube centre, near plane and order from the scene
 
   std::string error_;
   int context_ = 0;
   GlRenderer renderer_;
+  DynamicLighting lights_;
+  bool environmentEnabled_ = true;
   std::vector<std::uint8_t> pending_;
   BakedAsset asset_;
   Vec3 boundsMin_{}, boundsMax_{};
@@ -88,6 +124,7 @@ class ClientApp {
   Vec3 target_{};
   float radius_ = 1.0f, distance_ = 3.0f, camYaw_ = 0.0f, camPitch_ = 0.35f;
   Mat4 viewProjection_{};
+  Vec3 eye_{};
 };
 
 }  // namespace prt::web

@@ -23,7 +23,34 @@ std::string setEnvironment(ClientApp& app, const val& flat, int order) {
   return app.setEnvironment(emscripten::convertJSArrayToNumberVector<float>(flat), order);
 }
 
-val lightSH(const ClientApp& app) { return val::array(app.lightSH()); }
+val lightSH(ClientApp& app) { return val::array(app.lightSH()); }
+val cubeSH(ClientApp& app) { return val::array(app.cubeSH()); }
+
+// Float32Array or array of numbers.
+std::string setLights(ClientApp& app, const val& flat) {
+  return app.setLights(emscripten::convertJSArrayToNumberVector<float>(flat));
+}
+
+int addLightMesh(ClientApp& app, const val& positions, const val& indices) {
+  if (positions.isNull() || positions.isUndefined() || indices.isNull() || indices.isUndefined()) return -1;
+  // Doubles first: a negative, fractional or huge index must be rejected, not wrapped.
+  const std::vector<double> raw = emscripten::convertJSArrayToNumberVector<double>(indices);
+  std::vector<std::uint32_t> idx;
+  idx.reserve(raw.size());
+  for (double v : raw) {
+    if (!(v >= 0.0) || v > 4294967295.0 || v != static_cast<double>(static_cast<std::uint32_t>(v))) return -1;
+    idx.push_back(static_cast<std::uint32_t>(v));
+  }
+  return app.addLightMesh(emscripten::convertJSArrayToNumberVector<float>(positions), std::move(idx));
+}
+
+val lightCenter(const ClientApp& app) {
+  const prt::Vec3 c = app.lightCenter();
+  return val::array(std::vector<float>{c.x, c.y, c.z});
+}
+
+val rayFromScreen(const ClientApp& app, float x, float y) { return val::array(app.rayFromScreen(x, y)); }
+double weightTableBytes(const ClientApp& app) { return static_cast<double>(app.weightTableBytes()); }
 
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
 
@@ -55,5 +82,23 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("bakedOrder", &ClientApp::bakedOrder)
       .function("displayOrder", &ClientApp::displayOrder)
       .function("mode", &ClientApp::mode)
-      .function("hasPass", &ClientApp::hasPass);
+      .function("hasPass", &ClientApp::hasPass)
+      .function("setLights", &setLights)
+      .function("addLightMesh", &addLightMesh)
+      .function("setEnvironmentEnabled", &ClientApp::setEnvironmentEnabled)
+      .function("setProjection", &ClientApp::setProjection)
+      .function("projectionMode", &ClientApp::projectionMode)
+      .function("gpuProjectionSupported", &ClientApp::gpuProjectionSupported)
+      .function("setCubeSize", &ClientApp::setCubeSize)
+      .function("cubeSize", &ClientApp::cubeSize)
+      .function("simulateNoFloatTargets", &ClientApp::simulateNoFloatTargets)
+      .function("lightCenter", &lightCenter)
+      .function("lightingModel", &ClientApp::lightingModel)
+      .function("lightingRadius", &ClientApp::lightingRadius)
+      .function("cubeSH", &cubeSH)
+      .function("projectLightsNow", &ClientApp::projectLightsNow)
+      .function("finishGpu", &ClientApp::finishGpu)
+      .function("weightTableBytes", &weightTableBytes)
+      .function("projectionError", &ClientApp::projectionError)
+      .function("rayFromScreen", &rayFromScreen);
 }

@@ -6,11 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "cube_faces.h"
+#include "emitters.h"
 #include "prt/asset.h"
+#include "prt/cube_sh_weights.h"
 #include "prt/cubemap.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_project.h"
 #include "prt/sh_rotation.h"
+#include "prt/sh_zonal.h"
 #include "transfer_texture.h"
 
 using emscripten::val;
@@ -102,9 +106,94 @@ val projectCube(int order, int size, const val& faces) {
   return val::array(flat);
 }
 
+// Radiance SH of a uniform circular light: radiance `radiance` inside the cap of half-angle
+// zeta (radians) about axis (x, y, z): zonalCircularLight placed on the axis. Flat, one
+// channel, order^2 values; or the error. The analytic reference for a sphere light seen
+// from outside (zeta = asin(radius / distance)).
+val circularLightSH(int order, float zeta, float radiance, float x, float y, float z) {
+  if (prt::Status s = prt::checkShOrder(order); !s.isOk()) return val(s.toString());
+  std::vector<float> zonal(static_cast<std::size_t>(order));
+  std::vector<float> out(static_cast<std::size_t>(prt::shCoeffCount(order)));
+  if (prt::Status s = prt::zonalCircularLight(order, zeta, radiance, zonal); !s.isOk()) return val(s.toString());
+  if (prt::Status s = prt::placeZonal(order, zonal, {x, y, z}, out); !s.isOk()) return val(s.toString());
+  return val::array(out);
+}
+
+// parseEmitters on a flat array: {error, count, emitters: [{shape, position, radiance,
+// normal, u, v, bounds}]} (the frame and bounds the renderer uses).
+val parseLights(const val& flat, int meshCount) {
+  const std::vector<float> data = emscripten::convertJSArrayToNumberVector<float>(flat);
+  std::vector<prt::web::Emitter> emitters;
+  val out = val::object();
+  const std::string error = prt::web::parseEmitters(data, meshCount, &emitters);
+  out.set("error", error);
+  out.set("count", static_cast<int>(emitters.size()));
+  val list = val::array();
+  auto vec = [](prt::Vec3 v) { return val::array(std::vector<float>{v.x, v.y, v.z}); };
+  for (const prt::web::Emitter& e : emitters) {
+    val item = val::object();
+    item.set("shape", static_cast<int>(e.shape));
+    item.set("position", vec(e.position));
+    item.set("normal", vec(e.normal));
+    item.set("radiance", val::array(std::vector<float>{e.radiance.r, e.radiance.g, e.radiance.b}));
+    const prt::web::EmitterFrame f = prt::web::emitterFrame(e.normal);
+    item.set("u", vec(f.u));
+    item.set("v", vec(f.v));
+    const prt::web::BoundingSphere b = prt::web::emitterBounds(e, {});
+    item.set("boundsRadius", b.radius);
+    list.call<void>("push", item);
+  }
+  out.set("emitters", list);
+  return out;
+}
+
+// Where world point p lands on light-cube face `face` seen from c: [s, t, depth] (NDC).
+val cubeFaceProject(int face, const val& c, const val& p) {
+  if (face < 0 || face > 5) return val(std::string("face must be 0..5"));
+  const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
+  const std::vector<float> pv = emscripten::convertJSArrayToNumberVector<float>(p);
+  if (cv.size() != 3 || pv.size() != 3) return val(std::string("c and p must hold 3 numbers"));
+  const prt::web::Mat4 m = prt::web::cubeFaceViewProjection(face, {cv[0], cv[1], cv[2]}, 0.01f);
+  float clip[4];
+  for (int r = 0; r < 4; ++r) clip[r] = m[r] * pv[0] + m[4 + r] * pv[1] + m[8 + r] * pv[2] + m[12 + r];
+  return val::array(std::vector<float>{clip[0] / clip[3], clip[1] / clip[3], clip[2] / clip[3]});
+}
+
+bool sphereTouchesCubeFace(int face, const val& c, const val& center, float radius) {
+  const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
+  const std::vector<float> sv = emscripten::convertJSArrayToNumberVector<float>(center);
+  if (face < 0 || face > 5 || cv.size() != 3 || sv.size() != 3) return true;
+  return prt::web::sphereTouchesCubeFace(face, {cv[0], cv[1], cv[2]}, {{sv[0], sv[1], sv[2]}, radius});
+}
+
+// sphereFaceRect: [x0, y0, x1, y1] inclusive (empty: x1 < x0).
+val sphereFaceRect(int face, const val& c, const val& center, float radius, int size) {
+  const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
+  const std::vector<float> sv = emscripten::convertJSArrayToNumberVector<float>(center);
+  if (face < 0 || face > 5 || cv.size() != 3 || sv.size() != 3 || size < 1) return val(std::string("bad arguments"));
+  const prt::web::FaceRect r = prt::web::sphereFaceRect(face, {cv[0], cv[1], cv[2]}, {{sv[0], sv[1], sv[2]}, radius}, size);
+  return val::array(std::vector<int>{r.x0, r.y0, r.x1, r.y1});
+}
+
+// The six faces decoded from an RGBE8 atlas (3 size x 2 size RGBA bytes), flat per face.
+val decodeRgbeAtlas(int size, const val& bytes) {
+  const std::vector<std::uint8_t> data = bytesFrom(bytes);
+  prt::CubeMap cube;
+  if (prt::Status s = prt::web::cubeMapFromRgbeAtlas(size, data, &cube); !s.isOk()) return val(s.toString());
+  val faces = val::array();
+  for (const auto& f : cube.faces) faces.call<void>("push", val::array(f));
+  return faces;
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_core) {
+  emscripten::function("circularLightSH", &circularLightSH);
+  emscripten::function("parseLights", &parseLights);
+  emscripten::function("cubeFaceProject", &cubeFaceProject);
+  emscripten::function("sphereTouchesCubeFace", &sphereTouchesCubeFace);
+  emscripten::function("decodeRgbeAtlas", &decodeRgbeAtlas);
+  emscripten::function("sphereFaceRect", &sphereFaceRect);
   emscripten::function("inspectAsset", &inspectAsset);
   emscripten::function("shadeConstant", &shadeConstant);
   emscripten::function("evalBasis", &evalBasis);

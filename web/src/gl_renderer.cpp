@@ -3,27 +3,13 @@
 #include <algorithm>
 #include <vector>
 
+#include "gl_program.h"
+#include "lighting_block.h"
 #include "transfer_texture.h"
 #include "web_shaders.h"
 
 namespace prt::web {
 namespace {
-
-Status compile(GLenum type, const char* source, GLuint* out) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    return Status::error(StatusCode::kInvalidArgument, std::string("shader compile failed: ") + log);
-  }
-  *out = s;
-  return Status::ok();
-}
 
 GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
   GLuint b = 0;
@@ -36,27 +22,9 @@ GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
 }  // namespace
 
 Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* feedback) {
-  GLuint v = 0, f = 0;
-  if (Status s = compile(GL_VERTEX_SHADER, vs, &v); !s.isOk()) return s;
-  if (Status s = compile(GL_FRAGMENT_SHADER, fs, &f); !s.isOk()) {
-    glDeleteShader(v);
-    return s;
-  }
-  const GLuint p = glCreateProgram();
-  glAttachShader(p, v);
-  glAttachShader(p, f);
-  if (feedback) glTransformFeedbackVaryings(p, 1, &feedback, GL_SEPARATE_ATTRIBS);
-  glLinkProgram(p);
-  glDeleteShader(v);
-  glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(p, sizeof log, nullptr, log);
-    glDeleteProgram(p);
-    return Status::error(StatusCode::kInvalidArgument, std::string("program link failed: ") + log);
-  }
+  GLuint p = 0;
+  if (Status s = linkProgram(vs, fs, &p, feedback); !s.isOk()) return s;
+  bindUniformBlock(p, "Lighting", kLightingBlockBinding);
   out->id = p;
   out->viewProjection = glGetUniformLocation(p, "uViewProjection");
   out->inverseViewProjection = glGetUniformLocation(p, "uInverseViewProjection");
@@ -170,18 +138,15 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glViewport(0, 0, width, height);
   glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  auto setLighting = [&](const Program& prog) {
-    glUniform4fv(prog.lightR, 16, p.lighting);
-    glUniform4fv(prog.lightG, 16, p.lighting + 64);
-    glUniform4fv(prog.lightB, 16, p.lighting + 128);
-    glUniform1f(prog.exposure, p.exposure);
-  };
   if (p.background) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(background_.id);
     const Mat4 inv = inverse(p.viewProjection);
     glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, inv.data());
-    setLighting(background_);
+    glUniform4fv(background_.lightR, 16, p.environment);
+    glUniform4fv(background_.lightG, 16, p.environment + 64);
+    glUniform4fv(background_.lightB, 16, p.environment + 128);
+    glUniform1f(background_.exposure, p.exposure);
     glBindVertexArray(backgroundVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
@@ -191,7 +156,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glBindVertexArray(vao_);
     glUseProgram(lambert_.id);
     glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
-    setLighting(lambert_);
+    glUniform1f(lambert_.exposure, p.exposure);  // lighting: the bound Lighting block
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
   }
@@ -202,7 +167,6 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   // vertices are not cached between triangles (software WebGL shades each corner anew).
   glUseProgram(prt_.id);
   glUniformMatrix4fv(prt_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
-  setLighting(prt_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, t.texture);
   glUniform1i(prt_.transfer, 0);

@@ -1,5 +1,5 @@
 // WebGL2 drawing of a baked asset: geometry buffers, one transfer texture per pass, the PRT
-// and Lambert programs and the SH background. All GL in the project lives in web/.
+// and Lambert programs and the SH background (emitters: dynamic_lighting.h). All GL in the project lives in web/.
 #pragma once
 
 #include <GLES3/gl3.h>
@@ -21,7 +21,10 @@ struct FrameParams {
   int displayOrder = 5;        // <= the baked order
   float exposure = 1.0f;       // linear multiplier
   bool background = true;      // draw the SH environment behind the scene
-  const float* lighting = nullptr;  // 3 x 64 floats from packLighting
+  // The environment alone (3 x 64 floats from packLighting) for the background. The PRT and
+  // Lambert programs read the full lighting from the uniform block bound at
+  // kLightingBlockBinding (lighting_block.h).
+  const float* environment = nullptr;
 };
 
 class GlRenderer {

@@ -1,0 +1,169 @@
+#include "prt/transfer_codec_streams.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+
+namespace prt::transfer_codec {
+
+void putU8(std::vector<std::uint8_t>& out, std::uint8_t v) { out.push_back(v); }
+void putU16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::uint8_t>(v));
+  out.push_back(static_cast<std::uint8_t>(v >> 8));
+}
+void putU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+void putU64(std::vector<std::uint8_t>& out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+void putF32(std::vector<std::uint8_t>& out, float v) { putU32(out, floatBits(v)); }
+
+std::uint16_t getU16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
+std::uint32_t getU32(const std::uint8_t* p) {
+  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
+         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+}
+std::uint64_t getU64(const std::uint8_t* p) {
+  return static_cast<std::uint64_t>(getU32(p)) | static_cast<std::uint64_t>(getU32(p + 4)) << 32;
+}
+float getF32(const std::uint8_t* p) { return floatFromBits(getU32(p)); }
+
+std::uint32_t floatBits(float f) {
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+float floatFromBits(std::uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+std::uint32_t zigzag(std::int32_t value, int width) {
+  const auto u = static_cast<std::uint32_t>(value);
+  const std::uint32_t signMask = value < 0 ? 0xffffffffu : 0u;
+  const std::uint32_t code = (u << 1) ^ signMask;
+  return width >= 4 ? code : code & ((1u << (8 * width)) - 1u);
+}
+
+std::int32_t unzigzag(std::uint32_t code) {
+  const std::uint32_t u = (code >> 1) ^ (0u - (code & 1u));
+  std::int32_t v;
+  std::memcpy(&v, &u, sizeof v);  // two's complement reinterpretation, defined for every u
+  return v;
+}
+
+std::int32_t wrapToWidth(std::int64_t value, int width) {
+  const int bits = 8 * width;
+  const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1u;
+  std::uint64_t u = static_cast<std::uint64_t>(value) & mask;
+  if (bits < 64 && (u >> (bits - 1)) & 1u) u |= ~mask;  // sign-extend
+  std::int64_t s;
+  std::memcpy(&s, &u, sizeof s);
+  return static_cast<std::int32_t>(s);
+}
+
+namespace {
+
+// The zig-zag codes of one stream after `filter`.
+void filteredCodes(const std::int32_t* values, std::size_t count, int width, StreamFilter filter,
+                   std::vector<std::uint32_t>& codes) {
+  codes.resize(count);
+  std::int64_t previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int32_t e = filter == StreamFilter::kDelta ? wrapToWidth(values[i] - previous, width) : values[i];
+    codes[i] = zigzag(e, width);
+    previous = values[i];
+  }
+}
+
+// Order-0 entropy in bytes of byte plane p (0 = most significant) of the codes.
+double planeEntropyBytes(const std::vector<std::uint32_t>& codes, int width, int p) {
+  std::array<std::size_t, 256> histogram{};
+  const int shift = 8 * (width - 1 - p);
+  for (std::uint32_t c : codes) ++histogram[(c >> shift) & 0xffu];
+  const double n = static_cast<double>(codes.size());
+  double bits = 0.0;
+  for (std::size_t h : histogram) {
+    if (h != 0) bits -= static_cast<double>(h) * std::log2(static_cast<double>(h) / n);
+  }
+  return bits / 8.0;
+}
+
+double codesEntropyBytes(const std::vector<std::uint32_t>& codes, int width) {
+  double total = 0.0;
+  for (int p = 0; p < width; ++p) total += planeEntropyBytes(codes, width, p);
+  return total;
+}
+
+// The filter with the smaller entropy estimate (ties: none), and that estimate.
+StreamFilter chooseFilter(const std::int32_t* values, std::size_t count, int width, std::vector<std::uint32_t>& codes,
+                          double* entropyBytes) {
+  filteredCodes(values, count, width, StreamFilter::kNone, codes);
+  const double plain = codesEntropyBytes(codes, width);
+  filteredCodes(values, count, width, StreamFilter::kDelta, codes);
+  const double delta = codesEntropyBytes(codes, width);
+  *entropyBytes = delta < plain ? delta : plain;
+  return delta < plain ? StreamFilter::kDelta : StreamFilter::kNone;
+}
+
+}  // namespace
+
+std::uint64_t streamGroupBytes(std::uint64_t streams, std::uint64_t count, int width) {
+  return streams + streams * count * static_cast<std::uint64_t>(width);
+}
+
+void putStreamGroup(std::span<const std::int32_t> values, std::size_t streams, std::size_t count, int width,
+                    std::vector<std::uint8_t>& out) {
+  std::vector<std::uint32_t> codes;
+  std::vector<StreamFilter> filters(streams);
+  for (std::size_t s = 0; s < streams; ++s) {
+    double unused = 0.0;
+    filters[s] = chooseFilter(values.data() + s * count, count, width, codes, &unused);
+    out.push_back(static_cast<std::uint8_t>(filters[s]));
+  }
+  const std::size_t planes = out.size();
+  out.resize(planes + streams * count * static_cast<std::size_t>(width));
+  for (std::size_t s = 0; s < streams; ++s) {
+    filteredCodes(values.data() + s * count, count, width, filters[s], codes);
+    for (int p = 0; p < width; ++p) {
+      std::uint8_t* plane = out.data() + planes + (static_cast<std::size_t>(p) * streams + s) * count;
+      const int shift = 8 * (width - 1 - p);
+      for (std::size_t i = 0; i < count; ++i) plane[i] = static_cast<std::uint8_t>(codes[i] >> shift);
+    }
+  }
+}
+
+double estimateStreamGroupBytes(std::span<const std::int32_t> values, std::size_t streams, std::size_t count,
+                                int width) {
+  std::vector<std::uint32_t> codes;
+  double total = static_cast<double>(streams);
+  for (std::size_t s = 0; s < streams; ++s) {
+    double bytes = 0.0;
+    chooseFilter(values.data() + s * count, count, width, codes, &bytes);
+    total += bytes;
+  }
+  return total;
+}
+
+bool getStream(const std::uint8_t* group, std::size_t streams, std::size_t count, int width, std::size_t stream,
+               std::span<std::int32_t> out) {
+  const std::uint8_t filter = group[stream];
+  if (filter > static_cast<std::uint8_t>(StreamFilter::kDelta)) return false;
+  const std::uint8_t* planes = group + streams;
+  std::int64_t previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t code = 0;
+    for (int p = 0; p < width; ++p) {
+      code = (code << 8) | planes[(static_cast<std::size_t>(p) * streams + stream) * count + i];
+    }
+    const std::int32_t e = unzigzag(code);
+    const std::int32_t v = filter == 1 ? wrapToWidth(previous + e, width) : e;
+    out[i] = v;
+    previous = v;
+  }
+  return true;
+}
+
+}  // namespace prt::transfer_codec

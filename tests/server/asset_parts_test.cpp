@@ -1,0 +1,190 @@
+// cutAssetParts against the layout docs/asset-format.md and docs/transfer-codec.md
+// specify: where the head ends, that the parts tile the file, and that an encoded
+// transfer's parts, fetched as a prefix, decode band by band like the whole blob.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "asset_parts.h"
+#include "encoded_asset.h"
+#include "prt/transfer_codec.h"
+#include "test_tree.h"
+
+namespace prt::serve::test {
+namespace {
+
+std::uint64_t alignUp(std::uint64_t x) { return (x + 15) / 16 * 16; }
+
+AssetSummary verified(const std::vector<std::uint8_t>& file) {
+  AssetSummary summary;
+  const Status s = verifyAsset(file, &summary);
+  EXPECT_TRUE(s.isOk()) << s.toString();
+  return summary;
+}
+
+// The parts start at 0, follow each other without gap or overlap, end at the file's end,
+// and none is empty.
+void expectTiling(const std::vector<AssetPart>& parts, std::uint64_t fileSize) {
+  ASSERT_FALSE(parts.empty());
+  std::uint64_t at = 0;
+  for (const AssetPart& p : parts) {
+    EXPECT_EQ(p.offset, at);
+    EXPECT_GT(p.size, 0u);
+    at = p.offset + p.size;
+  }
+  EXPECT_EQ(at, fileSize);
+}
+
+std::vector<const AssetPart*> partsOfSection(const std::vector<AssetPart>& parts, int section) {
+  std::vector<const AssetPart*> out;
+  for (const AssetPart& p : parts) {
+    if (p.section == section) out.push_back(&p);
+  }
+  return out;
+}
+
+TEST(AssetParts, PlainAssetIsCutAtEveryPayload) {
+  const std::vector<std::uint8_t> file = makeAssetBytes(100, 3, 1, "plain");
+  const AssetSummary summary = verified(file);
+  const std::vector<AssetPart> parts = cutAssetParts(file, summary);
+  expectTiling(parts, file.size());
+  const std::size_t n = summary.sections.size();
+  ASSERT_EQ(parts.size(), n + 1);
+  // encodeAsset's layout: the first payload at 64 + 40 n rounded up to 16.
+  EXPECT_EQ(parts[0].kind, AssetPartKind::kHead);
+  EXPECT_EQ(parts[0].section, -1);
+  EXPECT_EQ(parts[0].size, alignUp(64 + 40 * n));
+  int transferParts = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const AssetSectionInfo& s = summary.sections[i];
+    const auto mine = partsOfSection(parts, static_cast<int>(i));
+    ASSERT_EQ(mine.size(), 1u) << "section " << i;
+    const AssetPart& p = *mine[0];
+    EXPECT_EQ(p.kind, AssetPartKind::kSection);
+    EXPECT_EQ(p.offset, s.offset);
+    // The payload plus the zero padding up to the next one (none after the last).
+    EXPECT_EQ(p.size, p.offset + p.size == file.size() ? s.size : alignUp(s.size));
+    EXPECT_EQ(p.band, -1);
+    EXPECT_EQ(p.hasPass, s.type == static_cast<std::uint32_t>(AssetSectionType::kTransfer));
+    if (p.hasPass) {
+      ++transferParts;
+      EXPECT_EQ(static_cast<std::uint32_t>(p.pass), s.arg0);
+    }
+  }
+  EXPECT_EQ(transferParts, 2);
+  EXPECT_STREQ(assetPartKindName(AssetPartKind::kHead), "head");
+  EXPECT_STREQ(assetPartKindName(AssetPartKind::kTransferBand), "transfer-band");
+}
+
+// Concatenates the bytes of `parts` (file order, contiguous).
+std::vector<std::uint8_t> joined(const std::vector<std::uint8_t>& file, const std::vector<const AssetPart*>& parts) {
+  std::vector<std::uint8_t> out;
+  for (const AssetPart* p : parts) out.insert(out.end(), file.begin() + p->offset, file.begin() + p->offset + p->size);
+  return out;
+}
+
+void expectCutAtBlobParts(const std::vector<std::uint8_t>& file, const std::vector<AssetPart>& parts, int section,
+                          const std::vector<std::uint8_t>& blob, int order, int channels, bool clusters,
+                          TransferKind pass) {
+  SCOPED_TRACE("section " + std::to_string(section));
+  const auto mine = partsOfSection(parts, section);
+  ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + (clusters ? 1 : 0) + order));
+  std::size_t k = 0;
+  EXPECT_EQ(mine[k]->kind, AssetPartKind::kTransferHead);
+  // docs/transfer-codec.md: a 48-byte header, then 24 bytes per part (one per band, one more
+  // for the clusters).
+  EXPECT_EQ(mine[k]->size, 48u + 24u * static_cast<std::uint64_t>(order + (clusters ? 1 : 0)));
+  ++k;
+  if (clusters) {
+    EXPECT_EQ(mine[k++]->kind, AssetPartKind::kTransferClusters);
+  }
+  for (int l = 0; l < order; ++l, ++k) {
+    EXPECT_EQ(mine[k]->kind, AssetPartKind::kTransferBand);
+    EXPECT_EQ(mine[k]->band, l);
+  }
+  for (const AssetPart* p : mine) {
+    EXPECT_TRUE(p->hasPass);
+    EXPECT_EQ(p->pass, pass);
+  }
+  // The section's parts hold the blob (and any padding after it).
+  std::vector<std::uint8_t> whole = joined(file, mine);
+  ASSERT_GE(whole.size(), blob.size());
+  EXPECT_TRUE(std::equal(blob.begin(), blob.end(), whole.begin()));
+  // What a progressive client does: head, clusters, bands 0..b-1, decode b bands; the
+  // result equals decoding b bands of the whole blob.
+  for (int b = 1; b <= order; ++b) {
+    const std::vector<const AssetPart*> prefixParts(mine.begin(), mine.begin() + 1 + (clusters ? 1 : 0) + b);
+    std::vector<std::uint8_t> prefix = joined(file, prefixParts);
+    if (b == order) prefix.resize(blob.size());  // the blob without the section's padding
+    std::vector<float> fromPrefix, fromWhole;
+    const Status sp = decodeTransfer(prefix, b, &fromPrefix);
+    ASSERT_TRUE(sp.isOk()) << "bands " << b << ": " << sp.toString();
+    ASSERT_TRUE(decodeTransfer(blob, b, &fromWhole).isOk());
+    ASSERT_EQ(fromPrefix.size(), fromWhole.size());
+    EXPECT_EQ(fromPrefix.size() % static_cast<std::size_t>(channels * b * b), 0u);
+    EXPECT_TRUE(fromPrefix == fromWhole) << "bands " << b;
+  }
+}
+
+TEST(AssetParts, EncodedTransferIsCutAtItsBlobParts) {
+  const EncodedTransferAsset a = makeEncodedTransferAsset(400, 4, 3);
+  const AssetSummary summary = verified(a.bytes);
+  const std::vector<AssetPart> parts = cutAssetParts(a.bytes, summary);
+  expectTiling(parts, a.bytes.size());
+  int encoded = 0;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    const AssetSectionInfo& s = summary.sections[i];
+    if (s.type != static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer)) {
+      EXPECT_EQ(partsOfSection(parts, static_cast<int>(i)).size(), 1u);
+      continue;
+    }
+    ++encoded;
+    const bool cpca = s.arg0 == static_cast<std::uint32_t>(TransferKind::kInterreflected);
+    expectCutAtBlobParts(a.bytes, parts, static_cast<int>(i), cpca ? a.cpcaBlob : a.quantBlob, a.order, cpca ? 3 : 1,
+                         cpca, static_cast<TransferKind>(s.arg0));
+  }
+  EXPECT_EQ(encoded, 2);
+}
+
+TEST(AssetParts, UnreadableBlobsAndEmptySectionsStayWhole) {
+  const std::vector<std::uint8_t> plain = makeAssetBytes(40, 2, 4, "odd sections");
+  ExtraSection garbage;  // a type-8 payload that is no blob
+  garbage.args[0] = static_cast<std::uint32_t>(TransferKind::kShadowed);
+  garbage.args[1] = 1;
+  garbage.payload.assign(200, 0x5a);
+  EncodedTransferAsset donor = makeEncodedTransferAsset(40, 2, 4);
+  ExtraSection shortBlob = garbage;  // a real blob missing its last byte
+  shortBlob.args[0] = static_cast<std::uint32_t>(TransferKind::kInterreflected);
+  shortBlob.args[1] = 3;
+  shortBlob.payload.assign(donor.cpcaBlob.begin(), donor.cpcaBlob.end() - 1);
+  ExtraSection empty;  // an unknown type with no payload
+  empty.type = static_cast<AssetSectionType>(99);
+  // The reader rejects such a file; cutting only needs the table (verifyAsset comes first
+  // in the server, so this is the defensive path).
+  AssetSummary summary;
+  const std::vector<std::uint8_t> file = appendSections(plain, {garbage, empty, shortBlob}, &summary.sections);
+  summary.tableEnd = kAssetHeaderSize + summary.sections.size() * kAssetSectionEntrySize;
+  EXPECT_FALSE(verifyAsset(file, nullptr).isOk());
+  const std::vector<AssetPart> parts = cutAssetParts(file, summary);
+  expectTiling(parts, file.size());
+  const int n = static_cast<int>(summary.sections.size());
+  ASSERT_EQ(parts.size(), static_cast<std::size_t>(n));  // head + every section but the empty one
+  EXPECT_EQ(partsOfSection(parts, n - 1).size(), 1u);
+  EXPECT_EQ(partsOfSection(parts, n - 1)[0]->kind, AssetPartKind::kSection);
+  EXPECT_EQ(partsOfSection(parts, n - 2).size(), 0u);
+  EXPECT_EQ(partsOfSection(parts, n - 3).size(), 1u);
+  EXPECT_EQ(partsOfSection(parts, n - 3)[0]->kind, AssetPartKind::kSection);
+}
+
+TEST(AssetParts, ATableThatDoesNotFitGivesNoParts) {
+  const std::vector<std::uint8_t> file = makeAssetBytes(40, 2, 4, "short");
+  const AssetSummary summary = verified(file);
+  const std::vector<std::uint8_t> cut(file.begin(), file.end() - 1);
+  EXPECT_TRUE(cutAssetParts(cut, summary).empty());
+  AssetSummary none = summary;
+  none.sections.clear();
+  EXPECT_TRUE(cutAssetParts(file, none).empty());
+}
+
+}  // namespace
+}  // namespace prt::serve::test

@@ -1,0 +1,120 @@
+#include "encoded_asset.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "prt/checksum.h"
+#include "prt/transfer_codec.h"
+#include "test_tree.h"
+
+namespace prt::serve::test {
+namespace {
+
+void putU16(std::uint8_t* p, std::uint16_t v) {
+  for (int i = 0; i < 2; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+void putU32(std::uint8_t* p, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+void putU64(std::uint8_t* p, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+std::uint64_t alignUp(std::uint64_t x) { return (x + kAssetAlignment - 1) / kAssetAlignment * kAssetAlignment; }
+
+std::vector<std::uint8_t> encode(std::span<const float> transfer, int order, int channels, const char* setting) {
+  TransferCodecSettings settings;
+  if (Status s = parseTransferSetting(setting, {}, &settings); !s.isOk()) throw std::runtime_error(s.toString());
+  std::vector<std::uint8_t> blob;
+  if (Status s = encodeTransfer(transfer, order, channels, settings, &blob); !s.isOk()) {
+    throw std::runtime_error(std::string("encodeTransfer ") + setting + ": " + s.toString());
+  }
+  return blob;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> appendSections(const std::vector<std::uint8_t>& asset, const std::vector<ExtraSection>& extra,
+                                         std::vector<AssetSectionInfo>* table) {
+  AssetSummary summary;
+  if (Status s = peekAssetHeader(asset, &summary); !s.isOk()) throw std::runtime_error("peekAssetHeader: " + s.toString());
+  struct Planned {
+    std::uint32_t type, format;
+    std::uint32_t args[3];
+    std::span<const std::uint8_t> payload;
+    std::uint64_t offset = 0;
+  };
+  std::vector<Planned> plan;
+  for (const AssetSectionInfo& s : summary.sections) {
+    plan.push_back({s.type, s.format, {s.arg0, s.arg1, s.arg2}, {asset.data() + s.offset, s.size}});
+  }
+  for (const ExtraSection& e : extra) {
+    plan.push_back({static_cast<std::uint32_t>(e.type), static_cast<std::uint32_t>(AssetElementFormat::kBytes),
+                    {e.args[0], e.args[1], e.args[2]}, e.payload});
+  }
+  const std::uint64_t tableEnd = kAssetHeaderSize + plan.size() * kAssetSectionEntrySize;
+  std::uint64_t end = tableEnd;
+  for (Planned& p : plan) {
+    p.offset = alignUp(end);
+    end = p.offset + p.payload.size();
+  }
+  std::vector<std::uint8_t> out(end, 0);
+  std::copy(asset.begin(), asset.begin() + kAssetHeaderSize, out.begin());
+  namespace L = asset_layout;
+  std::uint8_t* entries = out.data() + kAssetHeaderSize;
+  if (table) table->clear();
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const Planned& p = plan[i];
+    std::uint8_t* e = entries + i * kAssetSectionEntrySize;
+    putU32(e + L::kEntryType, p.type);
+    putU32(e + L::kEntryFormat, p.format);
+    putU64(e + L::kEntryOffset, p.offset);
+    putU64(e + L::kEntrySize, p.payload.size());
+    putU32(e + L::kEntryArg0, p.args[0]);
+    putU32(e + L::kEntryArg1, p.args[1]);
+    putU32(e + L::kEntryArg2, p.args[2]);
+    putU32(e + L::kEntryCrc, crc32c(p.payload));
+    std::copy(p.payload.begin(), p.payload.end(), out.begin() + static_cast<std::ptrdiff_t>(p.offset));
+    if (table) {
+      table->push_back({p.type, p.format, p.offset, p.payload.size(), p.args[0], p.args[1], p.args[2], crc32c(p.payload)});
+    }
+  }
+  putU16(out.data() + L::kVersionMinor, 2);  // encoded transfer is a 1.2 section type
+  putU32(out.data() + L::kSectionCount, static_cast<std::uint32_t>(plan.size()));
+  putU32(out.data() + L::kTableCrc, crc32c({entries, plan.size() * kAssetSectionEntrySize}));
+  putU64(out.data() + L::kFileSize, out.size());
+  putU32(out.data() + L::kHeaderCrc, crc32c({out.data(), L::kHeaderCrc}));
+  return out;
+}
+
+EncodedTransferAsset makeEncodedTransferAsset(int vertices, int order, std::uint32_t seed) {
+  const std::vector<std::uint8_t> plain = makeAssetBytes(vertices, order, seed, "encoded transfer");
+  BakedAsset asset;
+  if (Status s = decodeAsset(plain, &asset); !s.isOk()) throw std::runtime_error("decodeAsset: " + s.toString());
+  // Unshadowed stays a float32 section; its coefficients, scaled, stand in for a shadowed
+  // pass; the interreflected pass moves into a CPCA blob.
+  const TransferPass unshadowed = *findPass(asset, TransferKind::kUnshadowed);
+  const TransferPass interreflected = *findPass(asset, TransferKind::kInterreflected);
+  asset.passes = {unshadowed};
+  std::vector<std::uint8_t> base;
+  if (Status s = encodeAsset(asset, &base); !s.isOk()) throw std::runtime_error("encodeAsset: " + s.toString());
+
+  EncodedTransferAsset out;
+  out.order = order;
+  out.cpcaBlob = encode(interreflected.coeffs, order, 3, "cpca8@0.05");
+  std::vector<float> shadowed = unshadowed.coeffs;
+  for (float& x : shadowed) x *= 0.75f;
+  out.quantBlob = encode(shadowed, order, 1, "q8");
+  ExtraSection cpca, quant;
+  cpca.args[0] = static_cast<std::uint32_t>(TransferKind::kInterreflected);
+  cpca.args[1] = 3;
+  cpca.args[2] = static_cast<std::uint32_t>(interreflected.bounces);
+  cpca.payload = out.cpcaBlob;
+  quant.args[0] = static_cast<std::uint32_t>(TransferKind::kShadowed);
+  quant.args[1] = 1;
+  quant.payload = out.quantBlob;
+  out.bytes = appendSections(base, {cpca, quant});
+  return out;
+}
+
+}  // namespace prt::serve::test

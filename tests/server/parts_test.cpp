@@ -1,0 +1,391 @@
+// Assets served as parts (/parts/<hash>) by a real prt-serve: the catalogue's part lists
+// tile each file, every part URL serves its bytes in every coding with immutable caching
+// and validators, encoded transfers are cut at band boundaries, shared parts have one URL,
+// the size limit leaves large assets whole, and bad part URLs are 400/404.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <map>
+#include <set>
+#include <thread>
+#include <tuple>
+
+#include "encoded_asset.h"
+#include "mini_json.h"
+#include "prt/transfer_codec.h"
+#include "serve_env.h"
+
+namespace prt::serve::test {
+namespace {
+
+constexpr const char* kImmutable = "public, max-age=31536000, immutable";
+
+std::string asString(const std::vector<std::uint8_t>& v) { return std::string(v.begin(), v.end()); }
+
+// A tree with the usual assets plus an asset holding encoded transfers (encoded.prt) and
+// a twin of room.prt that differs only in its name (twin.prt), and a server on it.
+struct PartsServer {
+  TestTree tree;
+  EncodedTransferAsset encoded;
+  std::vector<std::uint8_t> twin;
+  std::unique_ptr<ServerProcess> server;
+  int port = 0;
+};
+
+PartsServer& partsServer() {
+  static PartsServer shared = [] {
+    PartsServer s;
+    s.tree = makeTestTree(workDir());
+    s.encoded = makeEncodedTransferAsset(3000, 4, 7);
+    writeFile(s.tree.root + "/encoded.prt", s.encoded.bytes);
+    s.twin = makeAssetBytes(6000, 4, 1, "twin of the room");
+    writeFile(s.tree.root + "/twin.prt", s.twin);
+    s.server = startServer(s.tree, {"--threads", "2"}, "parts.log");
+    s.port = s.server ? s.server->port() : 0;
+    return s;
+  }();
+  if (!shared.server) ADD_FAILURE() << "the parts server is not running";
+  return shared;
+}
+
+Json catalogue(int port) {
+  const HttpResponse r = fetch(port, "/api/scenes");
+  Json j;
+  std::string error;
+  EXPECT_EQ(r.status, 200);
+  EXPECT_TRUE(parseJson(r.body, &j, &error)) << error;
+  return j;
+}
+
+const Json* entry(const Json& cat, const std::string& file) {
+  for (const Json& e : cat["scenes"].array) {
+    if (e["file"].string == file) return &e;
+  }
+  return nullptr;
+}
+
+std::string decodeAs(const std::string& encoding, const std::string& body) {
+  if (encoding.empty()) return body;
+  if (encoding == "gzip") return gunzip(body);
+  if (encoding == "zstd") return unzstd(body);
+  if (encoding == "br") return unbrotli(body);
+  return "<unknown encoding " + encoding + ">";
+}
+
+// Fetches every part of `e` (identity) and places it at its offset in a buffer of the
+// asset's size, as a progressive client does; checks the list tiles the file on the way.
+std::string assemble(int port, const Json& e) {
+  const Json& parts = e["parts"];
+  EXPECT_EQ(parts.type, Json::Type::kArray) << e["file"].string;
+  std::string file(static_cast<std::size_t>(e["bytes"].number), '\0');
+  std::uint64_t at = 0;
+  for (const Json& p : parts.array) {
+    const auto offset = static_cast<std::uint64_t>(p["offset"].number);
+    const auto size = static_cast<std::uint64_t>(p["size"].number);
+    EXPECT_EQ(offset, at) << p["url"].string;
+    EXPECT_GT(size, 0u);
+    at = offset + size;
+    const HttpResponse r = fetch(port, p["url"].string);
+    EXPECT_EQ(r.status, 200) << p["url"].string;
+    EXPECT_EQ(r.body.size(), size) << p["url"].string;
+    if (r.body.size() == size && offset + size <= file.size()) file.replace(offset, size, r.body);
+  }
+  EXPECT_EQ(at, file.size()) << e["file"].string;
+  return file;
+}
+
+TEST(Parts, CatalogueListsPartsThatTileEveryAsset) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  struct Expect {
+    const char* file;
+    const std::vector<std::uint8_t>* bytes;
+  };
+  for (const Expect& x : {Expect{"room.prt", &s.tree.room}, Expect{"sub/small.prt", &s.tree.small},
+                          Expect{"encoded.prt", &s.encoded.bytes}, Expect{"twin.prt", &s.twin}}) {
+    SCOPED_TRACE(x.file);
+    const Json* e = entry(cat, x.file);
+    ASSERT_NE(e, nullptr);
+    ASSERT_TRUE(e->has("parts"));
+    const Json& parts = (*e)["parts"];
+    ASSERT_GE(parts.array.size(), 2u);
+    EXPECT_EQ(parts[0]["kind"].string, "head");
+    EXPECT_FALSE(parts[0].has("section"));
+    AssetSummary summary;
+    ASSERT_TRUE(verifyAsset(*x.bytes, &summary).isOk());
+    // The head ends where the first payload begins; every section of the table is listed.
+    std::uint64_t firstPayload = x.bytes->size();
+    for (const AssetSectionInfo& sec : summary.sections) firstPayload = std::min(firstPayload, sec.offset);
+    EXPECT_EQ(parts[0]["size"].number, static_cast<double>(firstPayload));
+    std::set<int> sections;
+    for (const Json& p : parts.array) {
+      const std::string& url = p["url"].string;
+      EXPECT_TRUE(url.starts_with("/parts/") && url.size() == 7 + 16) << url;
+      if (p.has("section")) sections.insert(static_cast<int>(p["section"].number));
+      if (p["kind"].string == "section" && p.has("section")) {
+        const AssetSectionInfo& sec = summary.sections.at(static_cast<std::size_t>(p["section"].number));
+        EXPECT_EQ(p["offset"].number, static_cast<double>(sec.offset));
+      }
+    }
+    EXPECT_EQ(sections.size(), summary.sections.size());
+    // Fetching every part and placing it at its offset rebuilds the file byte for byte.
+    EXPECT_TRUE(assemble(s.port, *e) == asString(*x.bytes));
+  }
+}
+
+TEST(Parts, EveryEncodingDecodesToThePartBytes) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  std::map<std::string, int> compressed;  // encoding -> parts served in it
+  for (const char* file : {"room.prt", "encoded.prt"}) {
+    const Json* e = entry(cat, file);
+    ASSERT_NE(e, nullptr);
+    const std::vector<std::uint8_t>& bytes = std::string(file) == "room.prt" ? s.tree.room : s.encoded.bytes;
+    for (const Json& p : (*e)["parts"].array) {
+      const std::string& url = p["url"].string;
+      const std::string want = asString(bytes).substr(static_cast<std::size_t>(p["offset"].number),
+                                                      static_cast<std::size_t>(p["size"].number));
+      std::set<std::string> etags;
+      for (const char* accept : {"identity", "gzip", "zstd", "br", "gzip, deflate, br, zstd"}) {
+        const HttpResponse r = fetch(s.port, url, {{"Accept-Encoding", accept}});
+        ASSERT_EQ(r.status, 200) << url << " " << accept;
+        const std::string enc = r.header("content-encoding");
+        if (std::string(accept) != "identity" && std::string(accept).find(',') == std::string::npos) {
+          EXPECT_TRUE(enc.empty() || enc == accept) << url << " " << accept << " -> " << enc;
+        }
+        if (!enc.empty()) {
+          ++compressed[enc];
+          EXPECT_LT(r.body.size(), want.size()) << url << " " << enc;
+        }
+        EXPECT_EQ(r.header("content-length"), std::to_string(r.body.size()));
+        EXPECT_TRUE(decodeAs(enc, r.body) == want) << url << " " << accept;
+        etags.insert(r.header("etag"));
+      }
+      EXPECT_GE(etags.size(), 1u);
+    }
+  }
+  // The transfer and mesh parts of these assets compress: every coding was used.
+  EXPECT_GT(compressed["gzip"], 0);
+  EXPECT_GT(compressed["zstd"], 0);
+  EXPECT_GT(compressed["br"], 0);
+}
+
+TEST(Parts, ImmutableCachingValidatorsRangesAndHead) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const Json* room = entry(cat, "room.prt");
+  ASSERT_NE(room, nullptr);
+  // The largest part: a transfer section, certainly compressible.
+  const Json* biggest = nullptr;
+  for (const Json& p : (*room)["parts"].array) {
+    if (!biggest || p["size"].number > (*biggest)["size"].number) biggest = &p;
+  }
+  ASSERT_NE(biggest, nullptr);
+  const std::string url = (*biggest)["url"].string;
+  const std::string hash = url.substr(7);
+  const std::string want = asString(s.tree.room).substr(static_cast<std::size_t>((*biggest)["offset"].number),
+                                                        static_cast<std::size_t>((*biggest)["size"].number));
+  EXPECT_EQ(hexHash(std::vector<std::uint8_t>(want.begin(), want.end())), hash);  // content-addressed
+
+  const HttpResponse r = fetch(s.port, url);
+  ASSERT_EQ(r.status, 200);
+  EXPECT_TRUE(r.body == want);
+  EXPECT_EQ(r.header("content-type"), "application/octet-stream");
+  EXPECT_EQ(r.header("cache-control"), kImmutable);
+  EXPECT_EQ(r.header("etag"), "\"" + hash + "\"");
+  EXPECT_EQ(r.header("vary"), "Accept-Encoding");
+  EXPECT_EQ(r.header("accept-ranges"), "bytes");
+  EXPECT_EQ(r.header("x-content-type-options"), "nosniff");
+
+  const HttpResponse br = fetch(s.port, url, {{"Accept-Encoding", "br"}});
+  ASSERT_EQ(br.header("content-encoding"), "br");
+  EXPECT_EQ(br.header("etag"), "\"" + hash + ".br\"");
+  EXPECT_EQ(br.header("cache-control"), kImmutable);
+
+  // Revalidation: each representation by its own validator.
+  const HttpResponse notModified = fetch(s.port, url, {{"If-None-Match", r.header("etag")}});
+  EXPECT_EQ(notModified.status, 304);
+  EXPECT_TRUE(notModified.body.empty());
+  EXPECT_EQ(notModified.header("cache-control"), kImmutable);
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", br.header("etag")}, {"Accept-Encoding", "br"}}).status, 304);
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", br.header("etag")}}).status, 200);
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", "\"0000000000000000\""}}).status, 200);
+
+  const HttpResponse head = fetch(s.port, url, {}, "HEAD");
+  EXPECT_EQ(head.status, 200);
+  EXPECT_TRUE(head.body.empty());
+  EXPECT_EQ(head.header("content-length"), std::to_string(want.size()));
+  EXPECT_EQ(head.header("etag"), r.header("etag"));
+
+  const HttpResponse range = fetch(s.port, url, {{"Range", "bytes=10-99"}});
+  EXPECT_EQ(range.status, 206);
+  EXPECT_TRUE(range.body == want.substr(10, 90));
+  EXPECT_EQ(range.header("content-range"), "bytes 10-99/" + std::to_string(want.size()));
+  EXPECT_EQ(fetch(s.port, url, {{"Range", "bytes=" + std::to_string(want.size()) + "-"}}).status, 416);
+}
+
+TEST(Parts, EncodedTransferIsCutAtBandBoundaries) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const Json* e = entry(cat, "encoded.prt");
+  ASSERT_NE(e, nullptr);
+  AssetSummary summary;
+  ASSERT_TRUE(verifyAsset(s.encoded.bytes, &summary).isOk());
+  const int order = s.encoded.order;
+  for (const auto& [pass, blob, clusters] :
+       {std::tuple{std::string("interreflected"), &s.encoded.cpcaBlob, true},
+        std::tuple{std::string("shadowed"), &s.encoded.quantBlob, false}}) {
+    SCOPED_TRACE(pass);
+    std::vector<const Json*> mine;
+    for (const Json& p : (*e)["parts"].array) {
+      if (p["pass"].string == pass) mine.push_back(&p);
+    }
+    ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + (clusters ? 1 : 0) + order));
+    const int section = static_cast<int>((*mine[0])["section"].number);
+    EXPECT_EQ(summary.sections.at(static_cast<std::size_t>(section)).type,
+              static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer));
+    EXPECT_EQ((*mine[0])["offset"].number, static_cast<double>(summary.sections[static_cast<std::size_t>(section)].offset));
+    std::size_t k = 0;
+    EXPECT_EQ((*mine[k++])["kind"].string, "transfer-head");
+    if (clusters) {
+      EXPECT_EQ((*mine[k++])["kind"].string, "transfer-clusters");
+    }
+    for (int l = 0; l < order; ++l, ++k) {
+      EXPECT_EQ((*mine[k])["kind"].string, "transfer-band");
+      EXPECT_EQ((*mine[k])["band"].number, l);
+      EXPECT_EQ((*mine[k])["section"].number, section);
+    }
+    // A progressive client: blob head (+ clusters), then band after band, decoding as it
+    // goes; each prefix decodes like the whole blob at that many bands.
+    std::vector<std::uint8_t> prefix;
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      const HttpResponse r = fetch(s.port, (*mine[i])["url"].string, {{"Accept-Encoding", "br, gzip"}});
+      ASSERT_EQ(r.status, 200);
+      const std::string bytes = decodeAs(r.header("content-encoding"), r.body);
+      prefix.insert(prefix.end(), bytes.begin(), bytes.end());
+      if ((*mine[i])["kind"].string != "transfer-band") continue;
+      const int bands = static_cast<int>((*mine[i])["band"].number) + 1;
+      std::vector<std::uint8_t> usable = prefix;
+      if (bands == order) usable.resize(blob->size());  // the section's padding follows the blob
+      std::vector<float> got, want;
+      const Status st = decodeTransfer(usable, bands, &got);
+      ASSERT_TRUE(st.isOk()) << bands << " bands: " << st.toString();
+      ASSERT_TRUE(decodeTransfer(*blob, bands, &want).isOk());
+      EXPECT_TRUE(got == want) << bands << " bands";
+    }
+  }
+}
+
+TEST(Parts, IdenticalPartsShareOneUrl) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const Json* room = entry(cat, "room.prt");
+  const Json* twin = entry(cat, "twin.prt");
+  ASSERT_NE(room, nullptr);
+  ASSERT_NE(twin, nullptr);
+  std::set<std::string> roomUrls;
+  for (const Json& p : (*room)["parts"].array) roomUrls.insert(p["url"].string);
+  // Only the name differs: the head (sizes in the table) and the metadata differ, the
+  // mesh and transfer parts are the same bytes at the same URLs.
+  int shared = 0, own = 0;
+  for (const Json& p : (*twin)["parts"].array) (roomUrls.count(p["url"].string) ? shared : own)++;
+  EXPECT_EQ(own, 2);
+  EXPECT_EQ(shared, static_cast<int>((*twin)["parts"].array.size()) - 2);
+}
+
+TEST(Parts, BadPartUrlsAre404Or400) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const std::string good = (*entry(cat, "room.prt"))["parts"][1]["url"].string;
+  std::string upper = good;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  upper.replace(0, 7, "/parts/");
+  for (const std::string& target :
+       {std::string("/parts/0000000000000000"), std::string("/parts/"), std::string("/parts"), upper,
+        good + "/x", good + ".br", good + "0", good.substr(0, good.size() - 1), "/parts/" + hexHash(s.tree.room),
+        "/parts/" + hexHash(s.tree.room) + "/room.prt", good + "?v=2"}) {
+    const HttpResponse r = fetch(s.port, target);
+    if (target.find('?') != std::string::npos) {
+      EXPECT_EQ(r.status, 200) << target;  // a query does not change what a path names
+      continue;
+    }
+    EXPECT_EQ(r.status, 404) << target;
+    EXPECT_LT(r.body.size(), 200u) << target;
+  }
+  for (const std::string& target : {std::string("/parts/../assets"), std::string("/parts/%2e%2e/%2e%2e/etc/passwd"),
+                                    std::string("/parts/..%2f..%2fetc%2fpasswd"), good + "%00",
+                                    std::string("/parts//") + good.substr(7), std::string("/parts/%5c..")}) {
+    const RawResult r = rawExchange(s.port, "GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+                                    std::chrono::seconds(5));
+    const int status = rawStatus(r.received);
+    EXPECT_TRUE(status == 400 || status == 404) << target << " -> " << r.received.substr(0, 120);
+    EXPECT_EQ(r.received.find("root:x:0"), std::string::npos);
+    EXPECT_TRUE(healthy(s.port)) << "after " << target;
+  }
+  EXPECT_EQ(fetch(s.port, "/parts/0000000000000000", {}, "HEAD").status, 404);
+  EXPECT_EQ(fetch(s.port, good, {}, "POST").status, 405);
+}
+
+TEST(Parts, LimitLeavesLargerAssetsWhole) {
+  const TestTree tree = makeTestTree(workDir());
+  auto limited = startServer(tree, {"--max-parts-mib", "1"}, "parts-limit.log");
+  ASSERT_TRUE(limited);
+  const Json cat = catalogue(limited->port());
+  ASSERT_GT(tree.room.size(), 1u << 20);
+  const Json* room = entry(cat, "room.prt");
+  const Json* small = entry(cat, "sub/small.prt");
+  ASSERT_NE(room, nullptr);
+  ASSERT_NE(small, nullptr);
+  EXPECT_TRUE((*room)["usable"].boolean);
+  EXPECT_FALSE(room->has("parts"));  // over the limit: the client takes the whole asset
+  EXPECT_EQ(fetch(limited->port(), (*room)["url"].string).status, 200);
+  ASSERT_TRUE(small->has("parts"));
+  EXPECT_TRUE(assemble(limited->port(), *small) == asString(tree.small));
+  // The room's parts, served by a server without a limit, do not exist here.
+  PartsServer& s = partsServer();
+  const std::string roomPart = (*entry(catalogue(s.port), "room.prt"))["parts"][1]["url"].string;
+  EXPECT_EQ(fetch(s.port, roomPart).status, 200);
+  EXPECT_EQ(fetch(limited->port(), roomPart).status, 404);
+  EXPECT_EQ(limited->stop(SIGTERM, std::chrono::seconds(20)), 0);
+
+  auto none = startServer(tree, {"--max-parts-mib", "0"}, "parts-none.log");
+  ASSERT_TRUE(none);
+  const Json unparted = catalogue(none->port());
+  ASSERT_FALSE(unparted["scenes"].array.empty());
+  for (const Json& e : unparted["scenes"].array) EXPECT_FALSE(e.has("parts")) << e["file"].string;
+  EXPECT_EQ(none->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Parts, PartsFollowTheCatalogue) {
+  const TestTree tree = makeTestTree(workDir());
+  const std::vector<std::uint8_t> twin = makeAssetBytes(6000, 4, 1, "twin of the room");
+  writeFile(tree.root + "/twin.prt", twin);
+  auto server = startServer(tree, {}, "parts-rescan.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  const Json before = catalogue(port);
+  std::set<std::string> roomUrls;
+  for (const Json& p : (*entry(before, "room.prt"))["parts"].array) roomUrls.insert(p["url"].string);
+  std::vector<std::string> twinOnly, twinShared;
+  for (const Json& p : (*entry(before, "twin.prt"))["parts"].array) {
+    (roomUrls.count(p["url"].string) ? twinShared : twinOnly).push_back(p["url"].string);
+  }
+  ASSERT_EQ(twinOnly.size(), 2u);
+  ASSERT_FALSE(twinShared.empty());
+  for (const std::string& u : twinOnly) EXPECT_EQ(fetch(port, u).status, 200);
+
+  // The twin is deleted: its own parts go with it, the parts it shares with the room stay.
+  ASSERT_EQ(std::remove((tree.root + "/twin.prt").c_str()), 0);
+  bool gone = false;
+  for (int i = 0; i < 100 && !gone; ++i) {
+    gone = entry(catalogue(port), "twin.prt") == nullptr;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_TRUE(gone);
+  for (const std::string& u : twinOnly) EXPECT_EQ(fetch(port, u).status, 404) << u;
+  for (const std::string& u : twinShared) EXPECT_EQ(fetch(port, u).status, 200) << u;
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+}  // namespace
+}  // namespace prt::serve::test

@@ -1,0 +1,137 @@
+// What the browser tests share: Debian's headless Chromium (SwiftShader WebGL2) driven by
+// playwright-core, a real prt-serve on a free loopback port, pixel read-back and the
+// check/report bookkeeping. Used by browser_test.mjs and browser_lights_test.mjs.
+import { spawn } from 'node:child_process';
+import net from 'node:net';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const { chromium } = await import(path.join(here, '../../web/node_modules/playwright-core/index.mjs'));
+
+export function makeChecks() {
+  const failures = [];
+  let count = 0;
+  const check = (ok, message) => {
+    count++;
+    if (!ok) failures.push(message);
+    return ok;
+  };
+  return { failures, check, count: () => count };
+}
+
+async function freePort() {
+  return new Promise((resolve, reject) => {
+    const s = net.createServer();
+    s.once('error', reject);
+    s.listen(0, '127.0.0.1', () => {
+      const { port } = s.address();
+      s.close(() => resolve(port));
+    });
+  });
+}
+
+// Starts prt-serve on `root` with the page from `webDist`; resolves once /api/scenes answers.
+export async function startServer(prtServe, root, webDist) {
+  const port = await freePort();
+  const child = spawn(prtServe, ['--root', root, '--web', webDist, '--bind', '127.0.0.1', '--port', String(port), '--quiet'],
+    { stdio: ['ignore', 'ignore', 'pipe'] });
+  let stderr = '';
+  child.stderr.on('data', (d) => { stderr += d; });
+  const base = `http://127.0.0.1:${port}`;
+  for (let i = 0; i < 200; i++) {
+    try {
+      const r = await fetch(`${base}/api/scenes`);
+      if (r.ok) return { child, base, stderr: () => stderr };
+    } catch { /* not up yet */ }
+    if (child.exitCode !== null) break;
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  child.kill('SIGKILL');
+  throw new Error(`prt-serve did not come up on ${base}: ${stderr}`);
+}
+
+export async function launchBrowser() {
+  return chromium.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking',
+      '--disable-component-update', '--no-first-run', '--disable-sync'],
+  });
+}
+
+// Opens `url` at 640x480 and (by default) waits until the page has drawn a few frames or
+// failed; collects console errors and uncaught exceptions.
+export async function openPage(browser, url, { waitReady = true } = {}) {
+  const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+  const consoleErrors = [];
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(`uncaught: ${e.message}`));
+  await page.goto(url);
+  if (waitReady) {
+    await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2)),
+      null, { timeout: 90000 });
+  }
+  return { page, consoleErrors };
+}
+
+// Waits for a few frames after the last change, then returns the canvas as RGBA bytes.
+export async function settle(page) {
+  const before = await page.evaluate(() => window.prtApp.frames);
+  await page.waitForFunction((n) => window.prtApp.frames > n + 2, before, { timeout: 30000 });
+}
+
+// Applies `settings` with prtApp.set, renders a few frames, returns the canvas pixels.
+export async function capture(page, settings) {
+  await page.evaluate((s) => window.prtApp.set(s), settings || {});
+  await settle(page);
+  return page.evaluate(() => {
+    const c = document.getElementById('view');
+    const copy = document.createElement('canvas');
+    copy.width = c.width;
+    copy.height = c.height;
+    const ctx = copy.getContext('2d');
+    ctx.drawImage(c, 0, 0);
+    return { width: c.width, height: c.height, cssWidth: c.clientWidth, data: Array.from(ctx.getImageData(0, 0, c.width, c.height).data) };
+  });
+}
+
+export const luminance = (img, x, y) => {
+  const i = 4 * (Math.round(y) * img.width + Math.round(x));
+  return 0.2126 * img.data[i] + 0.7152 * img.data[i + 1] + 0.0722 * img.data[i + 2];
+};
+
+// Mean luminance over a square window around CSS-pixel point p.
+export function windowLuminance(img, p, radius = 4) {
+  const s = img.width / img.cssWidth;
+  let sum = 0, n = 0;
+  for (let dy = -radius; dy <= radius; dy++)
+    for (let dx = -radius; dx <= radius; dx++) {
+      sum += luminance(img, p[0] * s + dx, p[1] * s + dy);
+      n++;
+    }
+  return sum / n;
+}
+
+export function meanAbsDifference(a, b) {
+  let d = 0;
+  for (let i = 0; i < a.data.length; i += 4) d += Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2]);
+  return d / (a.data.length / 4) / 3;
+}
+
+// Runs cases[caseName](browser) with a fresh browser, prints the verdict and exits 1 on failure.
+export async function runCase(caseName, cases, checks) {
+  const browser = await launchBrowser();
+  try {
+    if (!Object.hasOwn(cases, caseName)) throw new Error(`unknown case ${caseName}; known: ${Object.keys(cases).join(', ')}`);
+    await cases[caseName](browser);
+  } catch (e) {
+    checks.failures.push(`${caseName}: ${e.stack || e}`);
+  } finally {
+    await browser.close();
+  }
+  if (checks.failures.length) {
+    console.error(`${caseName}: ${checks.failures.length} of ${checks.count()} checks failed:\n  ${checks.failures.join('\n  ')}`);
+    process.exit(1);
+  }
+  console.log(`${caseName}: ${checks.count()} checks passed`);
+}

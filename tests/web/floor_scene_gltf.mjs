@@ -1,0 +1,83 @@
+// A tiny glTF test scene for the light tests: a grey floor grid on y = 0 over
+// [-half, half]^2 and a white box standing on it, written as one .gltf with its buffer in a
+// data URI, so prt-bake can bake it in well under a second.
+
+// Returns the .gltf text. The floor has cells x cells quads; the box
+// {centre: [x, z], half: [hx, hy, hz]} sits on the floor (its bottom at y = 0).
+export function floorSceneGltf({ half = 1.5, cells = 48, box = { centre: [0, 0], half: [0.3, 0.3, 0.3] } } = {}) {
+  const floor = { positions: [], normals: [], indices: [], color: [0.7, 0.7, 0.7, 1] };
+  for (let j = 0; j <= cells; j++) {
+    for (let i = 0; i <= cells; i++) {
+      floor.positions.push(-half + (2 * half * i) / cells, 0, -half + (2 * half * j) / cells);
+      floor.normals.push(0, 1, 0);
+    }
+  }
+  for (let j = 0; j < cells; j++) {
+    for (let i = 0; i < cells; i++) {
+      const a = j * (cells + 1) + i, b = a + 1, c = a + cells + 1, d = c + 1;
+      floor.indices.push(a, c, b, b, c, d);  // counter-clockwise seen from +y
+    }
+  }
+  // Box: 4x4 cells per face, each face its own vertices (flat normals).
+  const solid = { positions: [], normals: [], indices: [], color: [0.8, 0.8, 0.8, 1] };
+  const [cx, cz] = box.centre, extent = box.half;
+  const centre = [cx, extent[1], cz];
+  const faces = [
+    { n: [1, 0, 0], u: [0, 0, -1], v: [0, 1, 0] }, { n: [-1, 0, 0], u: [0, 0, 1], v: [0, 1, 0] },
+    { n: [0, 1, 0], u: [1, 0, 0], v: [0, 0, -1] }, { n: [0, -1, 0], u: [1, 0, 0], v: [0, 0, 1] },
+    { n: [0, 0, 1], u: [1, 0, 0], v: [0, 1, 0] }, { n: [0, 0, -1], u: [-1, 0, 0], v: [0, 1, 0] },
+  ];
+  const k = 4;
+  for (const { n, u, v } of faces) {
+    const base = solid.positions.length / 3;
+    for (let j = 0; j <= k; j++) {
+      for (let i = 0; i <= k; i++) {
+        const s = -1 + (2 * i) / k, t = -1 + (2 * j) / k;
+        solid.positions.push(...[0, 1, 2].map((a) => centre[a] + extent[a] * (n[a] + s * u[a] + t * v[a])));
+        solid.normals.push(...n);
+      }
+    }
+    for (let j = 0; j < k; j++) {
+      for (let i = 0; i < k; i++) {
+        const a = base + j * (k + 1) + i, b = a + 1, c = a + k + 1, d = c + 1;
+        solid.indices.push(a, b, c, b, d, c);  // u x v = n: counter-clockwise seen from outside
+      }
+    }
+  }
+  return gltfText([floor, solid]);
+}
+
+// One node and mesh per part, all in one base64 buffer.
+function gltfText(parts) {
+  const chunks = [], bufferViews = [], accessors = [], meshes = [], materials = [];
+  let offset = 0;
+  const view = (typed, target) => {
+    chunks.push(Buffer.from(typed.buffer));
+    bufferViews.push({ buffer: 0, byteOffset: offset, byteLength: typed.byteLength, target });
+    offset += typed.byteLength;
+    return bufferViews.length - 1;
+  };
+  parts.forEach((part, m) => {
+    const pos = new Float32Array(part.positions), nrm = new Float32Array(part.normals), idx = new Uint32Array(part.indices);
+    const count = pos.length / 3;
+    const min = [0, 1, 2].map((a) => Math.min(...part.positions.filter((_, i) => i % 3 === a)));
+    const max = [0, 1, 2].map((a) => Math.max(...part.positions.filter((_, i) => i % 3 === a)));
+    accessors.push({ bufferView: view(pos, 34962), componentType: 5126, count, type: 'VEC3', min, max });
+    accessors.push({ bufferView: view(nrm, 34962), componentType: 5126, count, type: 'VEC3' });
+    accessors.push({ bufferView: view(idx, 34963), componentType: 5125, count: idx.length, type: 'SCALAR' });
+    meshes.push({ primitives: [{ attributes: { POSITION: 3 * m, NORMAL: 3 * m + 1 }, indices: 3 * m + 2, material: m }] });
+    materials.push({ pbrMetallicRoughness: { baseColorFactor: part.color } });
+  });
+  const bytes = Buffer.concat(chunks);
+  return JSON.stringify({
+    asset: { version: '2.0', generator: 'tests/web/floor_scene_gltf.mjs' },
+    scene: 0,
+    scenes: [{ nodes: parts.map((_, i) => i) }],
+    nodes: parts.map((_, i) => ({ mesh: i })),
+    meshes,
+    materials,
+    buffers: [{ byteLength: bytes.length, uri: `data:application/octet-stream;base64,${bytes.toString('base64')}` }],
+    bufferViews,
+    accessors,
+  });
+}

@@ -1,0 +1,203 @@
+// The page's pure JS modules under Node (no browser): the OBJ reader, the built-in torus,
+// light checking and packing, and the ray geometry used to pick and drag lights, each
+// against independent references (hand-worked files, brute-force sampling).
+// Usage: node shell_modules_test.mjs
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const shell = path.join(path.dirname(fileURLToPath(import.meta.url)), '../../web/shell');
+const load = (name) => import(pathToFileURL(path.join(shell, name)).href);
+const { parseObj, normaliseToUnitRadius, meshRadius } = await load('obj_loader.js');
+const { torusMesh } = await load('torus_mesh.js');
+const { normaliseLight, normaliseLights, packLights, boundingRadius, FLOATS_PER_LIGHT } = await load('lights.js');
+const { raySphere, pickLight, rayHorizontalPlane, worldPerPixel, along } = await load('light_picking.js');
+
+const failures = [];
+let checks = 0;
+const check = (ok, message) => {
+  checks++;
+  if (!ok) failures.push(message);
+  return ok;
+};
+const throwsMatching = (fn, pattern, what) => {
+  try {
+    fn();
+  } catch (e) {
+    return check(pattern.test(e.message), `${what}: message '${e.message}' does not match ${pattern}`);
+  }
+  return check(false, `${what}: no error`);
+};
+const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
+
+// ---- OBJ: a quad and a pentagon, with normals/texcoords, comments, negative indices
+{
+  const text = [
+    '# a unit square in z = 0 and a pentagon',
+    'mtllib ignored.mtl', 'o thing', 'vn 0 0 1', 'vt 0 0',
+    'v 0 0 0', 'v 1 0 0', 'v 1 1 0', 'v 0 1 0',
+    'f 1/1/1 2/1/1 3/1/1 4/1/1',
+    'v 2 0 0 1.0', 'v 3 0 0', 'v 3.5 1 0', 'v 2.5 2 0', 'v 1.5 1 0',
+    'g part', 'usemtl red', 's off',
+    'f -5 -4 -3 -2 -1  # relative to the last vertex',
+  ].join('\r\n');
+  const mesh = parseObj(text);
+  check(mesh.positions.length === 27, `OBJ: ${mesh.positions.length / 3} vertices, expected 9`);
+  // Quad -> 2 triangles, pentagon -> 3, fanned from the first corner.
+  check(JSON.stringify(Array.from(mesh.indices)) === JSON.stringify([0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 4, 7, 8]),
+    `OBJ indices: ${Array.from(mesh.indices)}`);
+  // Fan triangulation of a convex polygon keeps its area: 1 + pentagon (shoelace).
+  let area = 0;
+  for (let t = 0; t < mesh.indices.length; t += 3) {
+    const [a, b, c] = [0, 1, 2].map((k) => mesh.indices[t + k]);
+    const p = (i) => [mesh.positions[3 * i], mesh.positions[3 * i + 1]];
+    const [pa, pb, pc] = [p(a), p(b), p(c)];
+    area += 0.5 * Math.abs((pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]));
+  }
+  const pent = [[2, 0], [3, 0], [3.5, 1], [2.5, 2], [1.5, 1]];
+  let shoelace = 0;
+  for (let i = 0; i < 5; i++) shoelace += pent[i][0] * pent[(i + 1) % 5][1] - pent[(i + 1) % 5][0] * pent[i][1];
+  check(close(area, 1 + Math.abs(shoelace) / 2, 1e-5), `OBJ triangulated area ${area}, expected ${1 + Math.abs(shoelace) / 2}`);
+
+  // Normalisation: bounding-box centre to the origin, farthest used vertex at distance 1.
+  const unit = normaliseToUnitRadius(mesh.positions, mesh.indices);
+  check(close(meshRadius(unit, mesh.indices), 1, 1e-6), `normalised radius ${meshRadius(unit, mesh.indices)}`);
+  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let v = 0; v < 9; v++) for (let a = 0; a < 3; a++) { lo[a] = Math.min(lo[a], unit[3 * v + a]); hi[a] = Math.max(hi[a], unit[3 * v + a]); }
+  check([0, 1, 2].every((a) => close(lo[a] + hi[a], 0, 1e-6)), `normalised box not centred: ${lo} .. ${hi}`);
+  // The box of the input is [0, 3.5] x [0, 2] x 0: centre (1.75, 1), farthest corner (0,0) or (3.5,0)...
+  const expectedRadius = Math.max(...[[0, 0], [1, 0], [1, 1], [0, 1], ...pent].map(([x, y]) => Math.hypot(x - 1.75, y - 1)));
+  check(close(unit[3 * 1] - unit[0], 1 / expectedRadius, 1e-6), 'normalisation scale is not 1/(distance of the farthest vertex)');
+
+  // Bad files: clear messages with line numbers, never a crash.
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\n'), /no faces/, 'point cloud');
+  throwsMatching(() => parseObj('{"not": "an obj"}'), /no vertices/, 'JSON file');
+  throwsMatching(() => parseObj(''), /no vertices/, 'empty file');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n'), /line 4: vertex index 4 is out of range/, 'index past the end');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n'), /line 4: vertex index 0/, 'index 0');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n'), /line 4: vertex index -4/, 'negative index too far back');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 nan 0\n'), /line 2: vertex coordinates are not finite/, 'NaN vertex');
+  throwsMatching(() => parseObj('v 0 0\n'), /line 1: a vertex needs x y z/, 'short vertex');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nf 1 2\n'), /line 3: a face needs at least 3/, 'two-corner face');
+  throwsMatching(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 2\n'), /'x' is not a vertex index/, 'non-numeric index');
+  throwsMatching(() => normaliseToUnitRadius(new Float32Array([1, 1, 1, 1, 1, 1, 1, 1, 1]), [0, 1, 2]), /no extent/, 'degenerate mesh');
+}
+
+// ---- the torus: outer radius 1, every edge shared by exactly two triangles (closed), consistent winding
+{
+  const { positions, indices } = torusMesh(24, 10, 0.3);
+  check(positions.length === 24 * 10 * 3 && indices.length === 24 * 10 * 6, 'torus sizes');
+  check(close(meshRadius(positions, indices), 1, 1e-6), `torus outer radius ${meshRadius(positions, indices)}`);
+  let minR = Infinity;
+  for (let v = 0; v < positions.length / 3; v++) minR = Math.min(minR, Math.hypot(positions[3 * v], positions[3 * v + 2]));
+  check(close(minR, 0.4, 1e-6), `torus inner radius ${minR}, expected 0.4`);
+  const directed = new Map();
+  for (let t = 0; t < indices.length; t += 3) {
+    for (let k = 0; k < 3; k++) {
+      const key = `${indices[t + k]}>${indices[t + (k + 1) % 3]}`;
+      directed.set(key, (directed.get(key) || 0) + 1);
+    }
+  }
+  let manifold = true;
+  for (const [key, n] of directed) {
+    const [a, b] = key.split('>');
+    if (n !== 1 || directed.get(`${b}>${a}`) !== 1) manifold = false;
+  }
+  check(manifold, 'torus is not a closed, consistently wound surface');
+}
+
+// ---- light checking and packing
+{
+  const meshes = new Map([['torus', { id: 7, radius: 1 }], [3, { id: 3, radius: 2 }]]);
+  const sphere = normaliseLight({ shape: 'sphere', position: [1, 2, 3], radius: 0.5 }, 0, meshes);
+  check(JSON.stringify(sphere) === JSON.stringify({ shape: 'sphere', position: [1, 2, 3], color: [1, 1, 1], intensity: 1, radius: 0.5 }),
+    `sphere defaults: ${JSON.stringify(sphere)}`);
+  const disc = normaliseLight({ shape: 'disc', position: [0, 1, 0], radius: 0.2, normal: [0, 0, -2], color: [1, 0.5, 0], intensity: 3 }, 1, meshes);
+  check(JSON.stringify(disc.normal) === JSON.stringify([0, 0, -1]), `disc normal not normalised: ${disc.normal}`);
+  const rect = normaliseLight({ shape: 'rect', position: [0, 1, 0], size: [0.4, 0.3] }, 2, meshes);
+  check(JSON.stringify(rect.normal) === JSON.stringify([0, -1, 0]), `rect default normal ${rect.normal}`);
+  const torus = normaliseLight({ shape: 'mesh', position: [0, 1, 0], mesh: 'torus', scale: 0.25 }, 3, meshes);
+  const custom = normaliseLight({ shape: 'mesh', position: [0, 1, 0], mesh: 3 }, 4, meshes);
+  check(custom.scale === 1, 'mesh scale defaults to 1');
+  const flat = packLights([sphere, disc, rect, torus, custom], meshes);
+  check(flat.length === 5 * FLOATS_PER_LIGHT, `packed length ${flat.length}`);
+  const row = (i) => Array.from(flat.subarray(i * 16, i * 16 + 16));
+  check(JSON.stringify(row(0)) === JSON.stringify([0, 1, 2, 3, 0.5, 0, 0, -1, 0, 1, 1, 1, 1, 0, 0, 0]), `sphere row ${row(0)}`);
+  check(JSON.stringify(row(1).map((x) => +x.toFixed(6))) === JSON.stringify([1, 0, 1, 0, 0.2, 0, 0, 0, -1, 1, 0.5, 0, 3, 0, 0, 0]), `disc row ${row(1)}`);
+  check(JSON.stringify(row(2).map((x) => +x.toFixed(6))) === JSON.stringify([2, 0, 1, 0, 0.4, 0.3, 0, -1, 0, 1, 1, 1, 1, 0, 0, 0]), `rect row ${row(2)}`);
+  check(row(3)[0] === 3 && row(3)[4] === 0.25 && row(3)[13] === 7, `torus row ${row(3)}`);
+  check(row(4)[13] === 3 && row(4)[4] === 1, `custom mesh row ${row(4)}`);
+  check(close(boundingRadius(rect, meshes), 0.25, 1e-9) && boundingRadius(torus, meshes) === 0.25 && boundingRadius(custom, meshes) === 2,
+    'bounding radii');
+
+  const bad = [
+    [{ shape: 'cone', position: [0, 0, 0] }, /lights\[0\]\.shape must be one of sphere, disc, rect, mesh/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: -1 }, /lights\[0\]\.radius must be a finite number > 0, got -1/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: 0 }, /radius must be a finite number > 0/],
+    [{ shape: 'sphere', position: [0, NaN, 0], radius: 1 }, /lights\[0\]\.position\[1\] must be a finite number/],
+    [{ shape: 'sphere', position: [0, 0], radius: 1 }, /position must hold 3 numbers/],
+    [{ shape: 'sphere', position: 'here', radius: 1 }, /position must be an array of 3 numbers/],
+    [{ shape: 'sphere', radius: 1 }, /position is required/],
+    [{ shape: 'sphere', position: [0, 0, 0] }, /radius is required/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: 1, size: [1, 1] }, /lights\[0\]\.size is not a field of a sphere light/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: 1, intensity: -2 }, /intensity must be a finite number >= 0/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: 1, intensity: '3' }, /intensity must be a finite number >= 0/],
+    [{ shape: 'sphere', position: [0, 0, 0], radius: 1, color: [1, -1, 0] }, /color\[1\] must be >= 0/],
+    [{ shape: 'disc', position: [0, 0, 0], radius: 1, normal: [0, 0, 0] }, /normal must not be the zero vector/],
+    [{ shape: 'rect', position: [0, 0, 0], size: [1, Infinity] }, /size\[1\] must be a finite number/],
+    [{ shape: 'rect', position: [0, 0, 0], size: [1, 0] }, /size\[1\] must be a finite number > 0/],
+    [{ shape: 'mesh', position: [0, 0, 0], mesh: 99 }, /lights\[0\]\.mesh 99 is unknown/],
+    [{ shape: 'mesh', position: [0, 0, 0] }, /mesh is required/],
+    [null, /lights\[0\] must be an object/],
+  ];
+  for (const [spec, pattern] of bad) throwsMatching(() => normaliseLight(spec, 0, meshes), pattern, `bad light ${JSON.stringify(spec)}`);
+  throwsMatching(() => normaliseLights({ shape: 'sphere' }, meshes), /lights must be an array/, 'not an array');
+  throwsMatching(() => normaliseLights([sphere, { ...sphere, radius: 'big' }], meshes), /lights\[1\]\.radius/, 'second light named');
+}
+
+// ---- ray geometry against brute force
+{
+  let seed = 12345;
+  const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648);
+  let agree = 0, total = 0;
+  for (let trial = 0; trial < 300; trial++) {
+    const origin = [random() * 4 - 2, random() * 4 - 2, random() * 4 - 2];
+    let dir = [random() - 0.5, random() - 0.5, random() - 0.5];
+    const n = Math.hypot(...dir);
+    dir = dir.map((x) => x / n);
+    const centre = [random() * 2 - 1, random() * 2 - 1, random() * 2 - 1];
+    const radius = 0.2 + random();
+    const ray = { origin, dir };
+    const t = raySphere(ray, centre, radius);
+    // Brute force: march the ray in small steps and find the first point inside the sphere.
+    let first = null;
+    for (let s = 0; s <= 10; s += 1e-3) {
+      const p = along(ray, s);
+      if (Math.hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]) <= radius) { first = s; break; }
+    }
+    total++;
+    if ((t === null && first === null) || (t !== null && first !== null && Math.abs(t - first) < 2e-3)) agree++;
+  }
+  check(agree === total, `raySphere disagrees with ray marching in ${total - agree} of ${total} cases`);
+
+  const ray = { origin: [0, 1, 5], dir: [0, 0, -1] };
+  check(pickLight(ray, [[0, 1, 0], [0, 1, 2], [3, 1, 0]], [0.5, 0.5, 0.5], 0.001) === 1, 'pickLight should pick the nearer of two lights on the ray');
+  check(pickLight(ray, [[3, 1, 0]], [0.5], 0.001) === -1, 'pickLight picked a light off the ray');
+  // A tiny light 0.06 off the ray at distance 5 is picked when 8 pixels there are wider than that.
+  check(pickLight(ray, [[0.06, 1, 0]], [0.001], 0.002) === 0 && pickLight(ray, [[0.06, 1, 0]], [0.001], 0.001) === -1,
+    'the minimum on-screen pick size is not applied as stated');
+
+  const down = { origin: [1, 3, 1], dir: [0.6, -0.8, 0] };
+  const hit = rayHorizontalPlane(down, 1);
+  check(hit && close(hit[1], 1) && close(hit[0], 1 + 1.5), `rayHorizontalPlane: ${hit}`);
+  check(rayHorizontalPlane({ origin: [0, 3, 0], dir: [1, 0, 0] }, 1) === null, 'a parallel ray must not hit the plane');
+  check(rayHorizontalPlane({ origin: [0, 3, 0], dir: [0, 1, 0] }, 1) === null, 'a plane behind the ray must not be hit');
+  const a = 0.01;
+  const wpp = worldPerPixel({ origin: [0, 0, 0], dir: [0, 0, -1] }, { origin: [0, 0, 0], dir: [Math.sin(a), 0, -Math.cos(a)] }, [0, 0, -10]);
+  check(close(wpp, 10 * Math.tan(a), 1e-9), `worldPerPixel ${wpp}`);
+}
+
+if (failures.length) {
+  console.error(`${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
+  process.exit(1);
+}
+console.log(`page modules: ${checks} checks passed`);

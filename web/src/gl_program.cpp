@@ -1,0 +1,64 @@
+#include "gl_program.h"
+
+#include <string>
+
+namespace prt::web {
+namespace {
+
+Status compile(GLenum type, const char* source, GLuint* out) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    glDeleteShader(s);
+    return Status::error(StatusCode::kInvalidArgument, std::string("shader compile failed: ") + log);
+  }
+  *out = s;
+  return Status::ok();
+}
+
+}  // namespace
+
+Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feedback) {
+  GLuint v = 0, f = 0;
+  if (Status s = compile(GL_VERTEX_SHADER, vs, &v); !s.isOk()) return s;
+  if (Status s = compile(GL_FRAGMENT_SHADER, fs, &f); !s.isOk()) {
+    glDeleteShader(v);
+    return s;
+  }
+  const GLuint p = glCreateProgram();
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  if (feedback) glTransformFeedbackVaryings(p, 1, &feedback, GL_SEPARATE_ATTRIBS);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    glDeleteProgram(p);
+    return Status::error(StatusCode::kInvalidArgument, std::string("program link failed: ") + log);
+  }
+  *out = p;
+  return Status::ok();
+}
+
+void bindUniformBlock(GLuint program, const char* name, GLuint binding) {
+  const GLuint index = glGetUniformBlockIndex(program, name);
+  if (index != GL_INVALID_INDEX) glUniformBlockBinding(program, index, binding);
+}
+
+void setNearestClamp(GLenum target) {
+  glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+}  // namespace prt::web

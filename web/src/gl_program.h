@@ -1,0 +1,20 @@
+// Compiling and linking GLSL ES 3.00 programs (shared by every GL class of the client).
+#pragma once
+
+#include <GLES3/gl3.h>
+
+#include "prt/status.h"
+
+namespace prt::web {
+
+// Compiles and links `vs` + `fs` into *out. `feedback`: name of a varying to capture with
+// transform feedback (separate attribs), or nullptr. Errors carry the driver's log.
+Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feedback = nullptr);
+
+// Binds the program's uniform block `name` (if it has one) to binding point `binding`.
+void bindUniformBlock(GLuint program, const char* name, GLuint binding);
+
+// Texture parameters for texelFetch-only textures (no filtering, no wrapping).
+void setNearestClamp(GLenum target);
+
+}  // namespace prt::web
