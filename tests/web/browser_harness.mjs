@@ -68,7 +68,9 @@ export async function openPage(browser, url, { waitReady = true } = {}) {
   page.on('pageerror', (e) => consoleErrors.push(`uncaught: ${e.message}`));
   await page.goto(url);
   if (waitReady) {
-    await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2)),
+    // A scene streamed in parts is ready at its first band: wait for every part too.
+    await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2 &&
+      !(window.prtApp.bytesReceived < window.prtApp.bytesTotal))),
       null, { timeout: 90000 });
   }
   return { page, consoleErrors };

@@ -88,7 +88,8 @@ const cases = {
     try {
       const page = await browser.newPage();
       // The asset arrives cut short (a broken proxy or connection): the decoder must say so.
-      await page.route('**/assets/**', async (route) => {
+      // Whole assets and progressive parts alike (the page streams parts when listed).
+      await page.route(/\/(assets|parts)\//, async (route) => {
         const response = await route.fetch();
         const body = await response.body();
         await route.fulfill({ response, body: body.subarray(0, Math.floor(body.length / 3)), headers: { ...response.headers(), 'content-length': String(Math.floor(body.length / 3)) } });

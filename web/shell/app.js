@@ -9,6 +9,7 @@ import { LightDrag } from './light_drag.js';
 import { LightsPanel } from './lights_panel.js';
 import { normaliseLights } from './lights.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
+import { streamAsset } from './stream_loader.js';
 
 const MODES = { unshadowed: 0, shadowed: 1, interreflected: 2, lambert: 3 };
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
@@ -279,7 +280,20 @@ async function loadScene(name) {
   if (!entry) throw new Error(`No scene named '${name}' in the catalogue.`);
   document.getElementById('loading').hidden = false;
   hook.ready = false;
-  await downloadScene(entry);
+  if (entry.parts) {
+    // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
+    // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
+    await streamAsset(app, entry, {
+      progress: hook,
+      onProgress: () => {
+        stats.bytesLoaded = hook.bytesReceived;
+        progress(`Loading ${entry.name}: ${(hook.bytesReceived / 1e6).toFixed(1)} of ${(entry.bytes / 1e6).toFixed(1)} MB`, hook.bytesReceived / entry.bytes);
+      },
+      onError: (e) => fail(e.message),
+    });
+  } else {
+    await downloadScene(entry);
+  }
   document.getElementById('loading').hidden = true;
   state.scene = name;
   stats.vertices = app.vertexCount();

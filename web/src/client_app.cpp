@@ -51,25 +51,70 @@ std::uint8_t* ClientApp::reserveAsset(std::size_t bytes) {
 
 std::string ClientApp::loadAsset() {
   if (!ok()) return error_;
+  stream_.release();  // a scene still streaming is abandoned (its loader sees the buffer gone)
   BakedAsset decoded;
   const Status s = decodeAsset(pending_, &decoded);
   pending_.clear();
   pending_.shrink_to_fit();
   if (!s.isOk()) return s.toString();
   if (Status u = renderer_.upload(decoded); !u.isOk()) return u.message();
+  adoptGeometry(std::move(decoded));
+  if (!renderer_.hasPass(mode_)) {
+    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
+      if (renderer_.hasPass(m)) mode_ = m;
+  }
+  return "";
+}
+
+void ClientApp::adoptGeometry(BakedAsset decoded) {
   asset_ = std::move(decoded);
+  asset_.passes.clear();  // on the GPU now; the CPU copy is not used again
+  asset_.passes.shrink_to_fit();
   boundsMin_ = boundsMax_ = asset_.positions.front();
   for (const Vec3& p : asset_.positions) {
     boundsMin_ = {std::min(boundsMin_.x, p.x), std::min(boundsMin_.y, p.y), std::min(boundsMin_.z, p.z)};
     boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
   }
   displayOrder_ = std::min(asset_.shOrder, 8);
-  if (!renderer_.hasPass(mode_)) {
-    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
-      if (renderer_.hasPass(m)) mode_ = m;
-  }
+  pendingMode_ = -1;
   frameScene();
+}
+
+std::uint8_t* ClientApp::reserveStream(std::size_t bytes) { return stream_.reserve(bytes); }
+
+std::string ClientApp::streamGeometry() {
+  if (!ok()) return error_;
+  BakedAsset decoded;
+  if (Status s = stream_.decodeGeometry(&decoded); !s.isOk()) return s.toString();
+  makeCurrent();
+  if (Status u = renderer_.uploadGeometry(decoded); !u.isOk()) return u.message();
+  adoptGeometry(std::move(decoded));
+  // The displayed pass, chosen as loadAsset chooses among the passes the file holds.
+  if (!stream_.hasKind(static_cast<int>(mode_))) {
+    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
+      if (stream_.hasKind(static_cast<int>(m))) mode_ = m;
+  }
   return "";
+}
+
+std::string ClientApp::streamPass(int kind, int bands) {
+  if (!ok()) return error_;
+  if (kind < 0 || kind > 2) return "streamPass: kind must be 0, 1 or 2";
+  TransferPass pass;
+  int order = 0;
+  if (Status s = stream_.decodePass(kind, bands, &pass, &order); !s.isOk()) return s.toString();
+  makeCurrent();
+  if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
+  if (kind == pendingMode_) {
+    mode_ = static_cast<ShadingMode>(kind);
+    pendingMode_ = -1;
+  }
+  return "";
+}
+
+int ClientApp::loadedBands(int kind) const {
+  if (kind < 0 || kind > 2) return 0;
+  return renderer_.passOrder(static_cast<ShadingMode>(kind));
 }
 
 std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int order) {
@@ -98,7 +143,12 @@ void ClientApp::setEnvRotation(float yaw, float pitch) {
 void ClientApp::setLightColor(float r, float g, float b) { color_ = {r, g, b}; }
 void ClientApp::setMode(int mode) {
   const auto m = static_cast<ShadingMode>(std::clamp(mode, 0, 3));
-  if (renderer_.hasPass(m) || asset_.positions.empty()) mode_ = m;
+  if (renderer_.hasPass(m) || asset_.positions.empty()) {
+    mode_ = m;
+    pendingMode_ = -1;
+  } else if (stream_.hasKind(static_cast<int>(m))) {
+    pendingMode_ = static_cast<int>(m);  // still streaming: switch when its first band arrives
+  }
 }
 void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, 8))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "asset_stream.h"
 #include "dynamic_lighting.h"
 #include "gl_renderer.h"
 #include "prt/asset.h"
@@ -29,6 +30,24 @@ class ClientApp {
   // error (named by the reader: truncated, checksum mismatch, ...). Frames the camera.
   std::string loadAsset();
 
+  // ---- progressive loading (docs/web-client.md, "Progressive loading") ----
+  // A zeroed buffer of the catalogue's file size for the parts (nullptr when it cannot be
+  // allocated); streamBuffer() is the same memory, to re-take after memory growth.
+  std::uint8_t* reserveStream(std::size_t bytes);
+  std::uint8_t* streamBuffer() { return stream_.data(); }
+  std::size_t streamSize() const { return stream_.size(); }
+  // Once the head and every non-transfer section are in the buffer: validates and decodes
+  // the geometry, uploads it without transfer, frames the camera and picks the displayed
+  // pass (mode()). "" or the reader's error.
+  std::string streamGeometry();
+  // Decodes pass `kind` (0..2) from its first `bands` bands (0: all; float32 passes only
+  // decode whole) and re-uploads it at that order. "" or the error; bands checked by their CRCs.
+  std::string streamPass(int kind, int bands);
+  // Frees the stream buffer once every part has been applied (or on failure).
+  void endStream() { stream_.release(); }
+  // Bands of pass `kind` on the GPU (0 when absent): the baked order once loaded whole.
+  int loadedBands(int kind) const;
+
   // Environment lighting: radiance SH, flat [r,g,b] per coefficient, order 1..16 (the first
   // 8 bands are kept). Returns "" or the error.
   std::string setEnvironment(const std::vector<float>& flatRgb, int order);
@@ -36,7 +55,7 @@ class ClientApp {
   void setWhiteFurnace(float intensity);
   void setEnvRotation(float yawRadians, float pitchRadians);
   void setLightColor(float r, float g, float b);  // multiplies the lighting
-  void setMode(int mode);                          // ShadingMode
+  void setMode(int mode);  // ShadingMode; one whose pass is still streaming takes effect when it arrives
   void setDisplayOrder(int order);                 // clamped to [1, baked order]
   void setExposure(float ev);                      // exposure value, 2^ev
   void setBackground(bool on) { background_ = on; }
@@ -99,6 +118,7 @@ class ClientApp {
   void updateLighting();
   void makeCurrent() const;
   void syncLightView();  // light-cube centre, near plane and order from the scene
+  void adoptGeometry(BakedAsset decoded);  // bounds, order, mode, framing of a new scene
 
   std::string error_;
   int context_ = 0;
@@ -106,6 +126,7 @@ class ClientApp {
   DynamicLighting lights_;
   bool environmentEnabled_ = true;
   std::vector<std::uint8_t> pending_;
+  AssetStream stream_;
   BakedAsset asset_;
   Vec3 boundsMin_{}, boundsMax_{};
 
@@ -117,6 +138,7 @@ class ClientApp {
   float packed_[3 * 64] = {};
 
   ShadingMode mode_ = ShadingMode::kInterreflected;
+  int pendingMode_ = -1;  // a mode asked for whose pass is still streaming
   int displayOrder_ = 8;
   float exposure_ = 1.0f;
   bool background_ = true;

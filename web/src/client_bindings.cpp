@@ -19,6 +19,19 @@ val reserveAsset(ClientApp& app, double bytes) {
   return val(emscripten::typed_memory_view(static_cast<std::size_t>(bytes), p));
 }
 
+// The progressive-loading buffer (zeroed, the catalogue's file size) as a Uint8Array, or
+// null when it cannot be allocated; streamBuffer re-takes the view (memory growth detaches it).
+val reserveStream(ClientApp& app, double bytes) {
+  if (!(bytes >= 0) || bytes > 2147483647.0) return val::null();
+  std::uint8_t* p = app.reserveStream(static_cast<std::size_t>(bytes));
+  if (!p) return val::null();
+  return val(emscripten::typed_memory_view(static_cast<std::size_t>(bytes), p));
+}
+val streamBuffer(ClientApp& app) {
+  if (app.streamSize() == 0) return val::null();
+  return val(emscripten::typed_memory_view(app.streamSize(), app.streamBuffer()));
+}
+
 std::string setEnvironment(ClientApp& app, const val& flat, int order) {
   return app.setEnvironment(emscripten::convertJSArrayToNumberVector<float>(flat), order);
 }
@@ -62,6 +75,12 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("error", &ClientApp::error)
       .function("reserveAsset", &reserveAsset)
       .function("loadAsset", &ClientApp::loadAsset)
+      .function("reserveStream", &reserveStream)
+      .function("streamBuffer", &streamBuffer)
+      .function("streamGeometry", &ClientApp::streamGeometry)
+      .function("streamPass", &ClientApp::streamPass)
+      .function("endStream", &ClientApp::endStream)
+      .function("loadedBands", &ClientApp::loadedBands)
       .function("setEnvironment", &setEnvironment)
       .function("setWhiteFurnace", &ClientApp::setWhiteFurnace)
       .function("setEnvRotation", &ClientApp::setEnvRotation)

@@ -50,7 +50,7 @@ Status GlRenderer::init() {
   return Status::ok();
 }
 
-void GlRenderer::release() {
+void GlRenderer::releaseGeometry() {
   for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_}) {
     if (*b) glDeleteBuffers(1, b);
     *b = 0;
@@ -60,24 +60,32 @@ void GlRenderer::release() {
     *a = 0;
   }
   vertexCount_ = 0;
+  indexCount_ = 0;
+}
+
+void GlRenderer::release() {
+  releaseGeometry();
   for (PassTexture& t : passes_) {
     if (t.texture) glDeleteTextures(1, &t.texture);
     t = {};
   }
-  indexCount_ = 0;
 }
 
-Status GlRenderer::upload(const BakedAsset& asset) {
-  // Pack first: nothing on the GPU changes if a pass does not fit.
-  GLint maxSize = 2048;  // the WebGL2 minimum
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  std::array<TransferTexture, 3> packed;
-  for (const TransferPass& pass : asset.passes) {
-    const auto kind = static_cast<std::size_t>(pass.kind);
-    if (kind > 2) continue;
-    if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), maxSize, &packed[kind]); !s.isOk()) return s;
-  }
-  release();
+void GlRenderer::setPassTexture(std::size_t kind, const TransferTexture& t, int order) {
+  PassTexture& p = passes_[kind];
+  if (!p.texture) glGenTextures(1, &p.texture);
+  glBindTexture(GL_TEXTURE_2D, p.texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.texels.data());
+  p.channels = t.channels;
+  p.texelsPerChannel = t.texelsPerChannel;
+  p.order = order;
+}
+
+void GlRenderer::makeGeometry(const BakedAsset& asset) {
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
   positions_ = makeBuffer(GL_ARRAY_BUFFER, asset.positions.data(), asset.positions.size() * sizeof(Vec3));
@@ -106,18 +114,62 @@ Status GlRenderer::upload(const BakedAsset& asset) {
   vertexCount_ = static_cast<GLsizei>(asset.positions.size());
   indexCount_ = static_cast<GLsizei>(asset.indices.size());
   bakedOrder_ = asset.shOrder;
+}
+
+Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
+  release();
+  makeGeometry(asset);
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    release();
+    return Status::error(StatusCode::kInvalidArgument,
+                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
+                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+  }
+  return Status::ok();
+}
+
+Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
+  const auto kind = static_cast<std::size_t>(pass.kind);
+  if (kind > 2 || indexCount_ == 0 || order < 1 || order > bakedOrder_) {
+    return Status::error(StatusCode::kInvalidArgument, "uploadPass: no geometry, or pass kind or order out of range");
+  }
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  TransferTexture packed;
+  if (Status s = packTransfer(pass, order, static_cast<std::size_t>(vertexCount_), maxSize, &packed); !s.isOk()) return s;
+  setPassTexture(kind, packed, order);
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's transfer"
+                                                 : "WebGL error " + std::to_string(err) + " while uploading a transfer pass");
+  }
+  return Status::ok();
+}
+
+int GlRenderer::passOrder(ShadingMode mode) const {
+  if (mode == ShadingMode::kLambert) return 0;
+  const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
+  return t.texture ? t.order : 0;
+}
+
+Status GlRenderer::upload(const BakedAsset& asset) {
+  // Pack first: nothing on the GPU changes if a pass does not fit.
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  std::array<TransferTexture, 3> packed;
+  for (const TransferPass& pass : asset.passes) {
+    const auto kind = static_cast<std::size_t>(pass.kind);
+    if (kind > 2) continue;
+    if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), maxSize, &packed[kind]); !s.isOk()) return s;
+  }
+  release();
+  makeGeometry(asset);
   for (std::size_t k = 0; k < 3; ++k) {
     const TransferTexture& t = packed[k];
     if (t.texels.empty()) continue;
-    glGenTextures(1, &passes_[k].texture);
-    glBindTexture(GL_TEXTURE_2D, passes_[k].texture);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.texels.data());
-    passes_[k].channels = t.channels;
-    passes_[k].texelsPerChannel = t.texelsPerChannel;
+    setPassTexture(k, t, asset.shOrder);
   }
   const GLenum err = glGetError();
   if (err != GL_NO_ERROR) {
@@ -173,7 +225,8 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glUniform1i(prt_.textureWidth, kTransferTextureWidth);
   glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
   glUniform1i(prt_.channels, t.channels);
-  glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(p.displayOrder, 1, bakedOrder_)));
+  // A pass still streaming holds fewer bands than the asset: shade with what it holds.
+  glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(std::min(p.displayOrder, t.order), 1, bakedOrder_)));
   glBindVertexArray(feedbackVao_);
   glEnable(GL_RASTERIZER_DISCARD);
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);

@@ -10,6 +10,7 @@
 #include "mat4.h"
 #include "prt/asset.h"
 #include "prt/status.h"
+#include "transfer_texture.h"
 
 namespace prt::web {
 
@@ -33,6 +34,13 @@ class GlRenderer {
   Status init();
   // Uploads geometry and every transfer pass of `asset`, replacing any previous scene.
   Status upload(const BakedAsset& asset);
+  // Progressive loading: uploads the geometry of `asset` (its passes are ignored) and drops
+  // every transfer pass; then uploadPass adds or replaces one pass, holding the first
+  // `order` bands (order^2 coefficients per channel, <= the baked order). Until a pass is
+  // uploaded its mode draws no scene. A pass that does not fit changes nothing.
+  Status uploadGeometry(const BakedAsset& asset);
+  Status uploadPass(const TransferPass& pass, int order);
+  int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
   bool hasPass(ShadingMode mode) const;
   void draw(int width, int height, const FrameParams& p);
 
@@ -46,10 +54,15 @@ class GlRenderer {
   struct PassTexture {
     GLuint texture = 0;
     int channels = 0, texelsPerChannel = 0;
+    int order = 0;  // bands held: the baked order, or fewer while streaming
   };
   // `feedback`: name of a varying to capture with transform feedback, or nullptr.
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   void release();
+  void releaseGeometry();
+  void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks glGetError
+  // Replaces the texture of pass `kind` with `t` (packed at `order`).
+  void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
 
   Program prt_, lambert_, background_, radiance_;
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT

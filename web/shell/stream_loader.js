@@ -1,0 +1,163 @@
+// Progressive loading of a scene that prt-serve offers in parts (docs/server.md, "parts";
+// docs/web-client.md, "Progressive loading"): the head and the mesh first, then per
+// transfer pass (the displayed one first) its codec head, clusters and bands in order, each
+// band re-uploaded as it arrives so the page shows an order-1 picture early and sharpens.
+// The wasm client checks every byte (header, table, section and band checksums); this file
+// only checks that the parts tile the file and arrive at their declared sizes.
+
+const KINDS = { unshadowed: 0, shadowed: 1, interreflected: 2 };
+const MAX_PARALLEL = 4;  // fetches in flight; bands are still applied strictly in order
+let currentStream = 0;  // a newer streamAsset call abandons the older one (another scene picked)
+
+class Superseded extends Error {}
+
+// Checks the catalogue's part list against the file size: integers, in file order, tiling
+// [0, bytes) exactly, the first one the head. Throws an Error naming the problem.
+export function checkParts(parts, bytes) {
+  if (!Array.isArray(parts) || parts.length === 0) throw new Error('the catalogue lists no parts');
+  if (!Number.isSafeInteger(bytes) || bytes <= 0) throw new Error(`the catalogue's file size ${bytes} is not a positive integer`);
+  let end = 0;
+  parts.forEach((p, i) => {
+    if (!p || !Number.isSafeInteger(p.offset) || !Number.isSafeInteger(p.size) || p.size <= 0 || typeof p.url !== 'string') {
+      throw new Error(`part ${i} has no valid offset, size or url`);
+    }
+    if (p.offset !== end) throw new Error(`part ${i} starts at ${p.offset}, not where part ${i - 1} ends (${end})`);
+    end = p.offset + p.size;
+    if (p.kind === 'transfer-band' && !(Number.isInteger(p.band) && p.band >= 0)) throw new Error(`part ${i} has no valid band`);
+    if (p.pass !== undefined && !Object.hasOwn(KINDS, p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
+  });
+  if (end !== bytes) throw new Error(`the parts cover ${end} bytes, the file has ${bytes}`);
+  if (parts[0].kind !== 'head') throw new Error('the first part is not the head');
+}
+
+// Streams catalogue entry `entry` ({name, bytes, parts}) into `app` (ClientApp). Resolves
+// once the first picture can be drawn (geometry and band 0 of the displayed pass, or the
+// whole displayed pass when it is float32), and keeps loading the rest in the background.
+// `progress` (an object) gets bytesReceived, bytesTotal, transferBytesReceived,
+// transferBytesTotal, updated per part; onProgress() is called after each. A failure before
+// the first picture rejects; one after it goes to onError(Error). Either way the message
+// names the scene and the problem (network, HTTP status, size, the decoder's own words).
+export function streamAsset(app, entry, { progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
+  const fail = (message) => new Error(`Scene '${entry.name}' could not be loaded: ${message}`);
+  try {
+    checkParts(entry.parts, entry.bytes);
+  } catch (e) {
+    throw fail(`the catalogue's part list is unusable: ${e.message}`);
+  }
+  const transferParts = entry.parts.filter((p) => p.pass !== undefined);
+  Object.assign(progress, {
+    bytesReceived: 0,
+    bytesTotal: entry.bytes,
+    transferBytesReceived: 0,
+    transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
+  });
+  // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there.
+  Object.defineProperty(progress, 'loadedBands', { get: () => [0, 1, 2].map((k) => app.loadedBands(k)), configurable: true, enumerable: true });
+  const generation = ++currentStream;
+  const superseded = () => generation !== currentStream;
+  if (!app.reserveStream(entry.bytes)) throw new Error(`Out of memory: cannot hold scene '${entry.name}' (${(entry.bytes / 1e6).toFixed(1)} MB).`);
+
+  let failed = false;
+  const fetchPart = async (part) => {
+    let response;
+    try {
+      response = await fetch(part.url);
+    } catch (e) {
+      throw new Error(`Cannot reach the server for scene '${entry.name}' (${part.url}): ${e.message}. Is prt-serve running?`);
+    }
+    if (!response.ok) throw new Error(`The server answered ${response.status} ${response.statusText} for a part of scene '${entry.name}' (${part.url}).`);
+    const body = new Uint8Array(await response.arrayBuffer());
+    if (superseded()) throw new Superseded();  // the buffer now belongs to another scene
+    if (body.length !== part.size) {
+      throw fail(`truncated: part ${part.url} (bytes ${part.offset}..${part.offset + part.size}) arrived with ${body.length} of its ${part.size} bytes`);
+    }
+    if (failed) return;
+    const memory = app.streamBuffer();  // re-taken: wasm memory growth detaches old views
+    // Gone or resized: a whole-asset load (which frees it) or another stream took over.
+    if (!memory || memory.length !== entry.bytes) throw new Superseded();
+    memory.set(body, part.offset);
+    progress.bytesReceived += part.size;
+    if (part.pass !== undefined) progress.transferBytesReceived += part.size;
+    onProgress();
+  };
+
+  // Runs fetchPart over `parts` with at most MAX_PARALLEL in flight, in list order, calling
+  // onDone(index) after each arrives (in arrival order).
+  const fetchAll = (parts, onDone) => new Promise((resolve, reject) => {
+    let next = 0, inFlight = 0, done = 0;
+    const pump = () => {
+      if (failed) return;
+      if (done === parts.length) { resolve(); return; }
+      while (inFlight < MAX_PARALLEL && next < parts.length) {
+        const i = next++;
+        inFlight++;
+        fetchPart(parts[i]).then(() => {
+          if (failed) return;
+          inFlight--;
+          done++;
+          onDone(i);
+          pump();
+        }).catch((e) => { failed = true; reject(e); });
+      }
+    };
+    pump();
+  });
+
+  const run = async (onFirstPicture) => {
+    await fetchAll(entry.parts.filter((p) => p.pass === undefined), () => {});
+    const geometryError = app.streamGeometry();
+    if (geometryError) throw fail(geometryError);
+    // The displayed pass first, then the others in file order.
+    const displayed = app.mode();
+    const kinds = [...new Set(transferParts.map((p) => KINDS[p.pass]))];
+    kinds.sort((a, b) => (b === displayed) - (a === displayed));
+    const queue = kinds.flatMap((k) => transferParts.filter((p) => KINDS[p.pass] === k));
+    const arrived = new Array(queue.length).fill(false);
+    const applied = new Map();  // kind -> bands uploaded
+    let shown = false;
+    // Applies, per pass, the longest run of arrived parts from its start: a pass's bands go
+    // up strictly in order whatever order the fetches finish in.
+    const apply = () => {
+      for (const k of kinds) {
+        const parts = queue.map((p, i) => [p, i]).filter(([p]) => KINDS[p.pass] === k);
+        let bands = 0, whole = false;
+        for (const [p, i] of parts) {
+          if (!arrived[i]) break;
+          if (p.kind === 'transfer-band') bands = p.band + 1;
+          else if (p.kind === 'section') whole = true;  // a float32 (or unsplittable) pass
+        }
+        if (!whole && bands === 0) continue;
+        const request = whole ? 0 : bands;
+        if (applied.get(k) === (whole ? 'all' : bands)) continue;
+        const error = app.streamPass(k, request);
+        if (error) throw fail(error);
+        applied.set(k, whole ? 'all' : bands);
+        if (k === displayed && !shown) {
+          shown = true;
+          onFirstPicture();
+        }
+      }
+    };
+    await fetchAll(queue, (i) => {
+      arrived[i] = true;
+      try {
+        apply();
+      } catch (e) {
+        failed = true;
+        throw e;
+      }
+    });
+    if (!shown) throw fail(`the parts hold no transfer for the displayed pass`);
+  };
+
+  return new Promise((resolve, reject) => {
+    let first = false;
+    run(() => { first = true; resolve(); }).then(() => app.endStream(), (e) => {
+      failed = true;
+      if (e instanceof Superseded) return;  // quietly: the newer stream owns the buffer and the page
+      app.endStream();
+      if (first) onError(e);
+      else reject(e);
+    });
+  });
+}

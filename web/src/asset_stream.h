@@ -1,0 +1,47 @@
+// Progressive loading of an asset that arrives in parts (prt-serve's /parts/, docs/server.md):
+// the file-sized buffer the parts are placed into, its validated header and table, and the
+// decoding of the geometry and of each transfer pass at the bands that have arrived.
+// GL-free; every byte is checked by the shared reader (checksums per section and per band).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prt/asset.h"
+#include "prt/status.h"
+
+namespace prt::web {
+
+class AssetStream {
+ public:
+  // A zeroed buffer of `bytes` (the catalogue's file size) for the parts; nullptr when it
+  // cannot be allocated. Forgets any previous stream.
+  std::uint8_t* reserve(std::size_t bytes);
+  std::uint8_t* data() { return file_.data(); }
+  std::size_t size() const { return file_.size(); }
+
+  // Once the head part and every non-transfer section have been placed: validates header,
+  // table, metadata and lighting (peekAssetHeader), checks that the declared file size is
+  // the buffer's, and decodes the geometry (no passes) into *out.
+  Status decodeGeometry(BakedAsset* out);
+
+  // Decodes the pass of `kind` (0 unshadowed, 1 shadowed, 2 interreflected) from its first
+  // `bands` bands (0: the whole pass, the only choice for a float32 pass). The caller says
+  // which bands have arrived; the bands' own checksums catch a wrong claim. *order is the
+  // order of the decoded transfer. Requires decodeGeometry first.
+  Status decodePass(int kind, int bands, TransferPass* out, int* order);
+
+  // Whether the asset holds a pass of `kind`, and whether it is encoded (band-progressive).
+  bool hasKind(int kind) const;
+  const AssetSummary& summary() const { return summary_; }
+  void release();  // frees the buffer (the decoded arrays live elsewhere)
+
+ private:
+  std::vector<std::uint8_t> file_;
+  AssetSummary summary_;
+  bool headerRead_ = false;
+};
+
+}  // namespace prt::web
