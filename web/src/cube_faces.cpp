@@ -76,11 +76,16 @@ FaceRect unite(const FaceRect& a, const FaceRect& b) {
   return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
-Status cubeMapFromAtlas(int size, std::span<const float> rgba, CubeMap* out) {
+namespace {
+
+// The six faces of a 3 x 2 atlas of 4-component texels (float RGBA or byte RGBE), each
+// texel turned into RGB by `texelRgb`; `unit` names the element type in errors.
+template <typename T, typename TexelRgb>
+Status cubeMapFromAtlasTexels(int size, std::span<const T> atlas, const char* unit, TexelRgb texelRgb, CubeMap* out) {
   if (size < 1 || size > 4096) return Status::error(StatusCode::kInvalidArgument, "cube size " + std::to_string(size) + " is outside [1, 4096]");
   const std::size_t width = static_cast<std::size_t>(3 * size);
-  if (rgba.size() != width * static_cast<std::size_t>(2 * size) * 4) {
-    return Status::error(StatusCode::kSizeMismatch, "cube atlas has " + std::to_string(rgba.size()) + " floats, " +
+  if (atlas.size() != width * static_cast<std::size_t>(2 * size) * 4) {
+    return Status::error(StatusCode::kSizeMismatch, "cube atlas has " + std::to_string(atlas.size()) + " " + unit + ", " +
                                                         std::to_string(width * 2 * size * 4) + " expected");
   }
   out->size = size;
@@ -90,14 +95,20 @@ Status cubeMapFromAtlas(int size, std::span<const float> rgba, CubeMap* out) {
     face.resize(static_cast<std::size_t>(size) * size * 3);
     for (int j = 0; j < size; ++j)
       for (int i = 0; i < size; ++i) {
-        const float* src = &rgba[((static_cast<std::size_t>(o.y + j)) * width + static_cast<std::size_t>(o.x + i)) * 4];
+        const Rgb c = texelRgb(&atlas[((static_cast<std::size_t>(o.y + j)) * width + static_cast<std::size_t>(o.x + i)) * 4]);
         float* dst = &face[(static_cast<std::size_t>(j) * size + i) * 3];
-        dst[0] = src[0];
-        dst[1] = src[1];
-        dst[2] = src[2];
+        dst[0] = c.r;
+        dst[1] = c.g;
+        dst[2] = c.b;
       }
   }
   return Status::ok();
+}
+
+}  // namespace
+
+Status cubeMapFromAtlas(int size, std::span<const float> rgba, CubeMap* out) {
+  return cubeMapFromAtlasTexels(size, rgba, "floats", [](const float* t) { return Rgb{t[0], t[1], t[2]}; }, out);
 }
 
 Rgb decodeRgbe(const std::uint8_t* texel) {
@@ -106,27 +117,7 @@ Rgb decodeRgbe(const std::uint8_t* texel) {
 }
 
 Status cubeMapFromRgbeAtlas(int size, std::span<const std::uint8_t> rgbe, CubeMap* out) {
-  if (size < 1 || size > 4096) return Status::error(StatusCode::kInvalidArgument, "cube size " + std::to_string(size) + " is outside [1, 4096]");
-  const std::size_t width = static_cast<std::size_t>(3 * size);
-  if (rgbe.size() != width * static_cast<std::size_t>(2 * size) * 4) {
-    return Status::error(StatusCode::kSizeMismatch, "cube atlas has " + std::to_string(rgbe.size()) + " bytes, " +
-                                                        std::to_string(width * 2 * size * 4) + " expected");
-  }
-  out->size = size;
-  for (int f = 0; f < 6; ++f) {
-    const AtlasOrigin o = cubeAtlasOrigin(f, size);
-    std::vector<float>& face = out->faces[static_cast<std::size_t>(f)];
-    face.resize(static_cast<std::size_t>(size) * size * 3);
-    for (int j = 0; j < size; ++j)
-      for (int i = 0; i < size; ++i) {
-        const Rgb c = decodeRgbe(&rgbe[((static_cast<std::size_t>(o.y + j)) * width + static_cast<std::size_t>(o.x + i)) * 4]);
-        float* dst = &face[(static_cast<std::size_t>(j) * size + i) * 3];
-        dst[0] = c.r;
-        dst[1] = c.g;
-        dst[2] = c.b;
-      }
-  }
-  return Status::ok();
+  return cubeMapFromAtlasTexels(size, rgbe, "bytes", decodeRgbe, out);
 }
 
 }  // namespace prt::web
