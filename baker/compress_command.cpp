@@ -29,7 +29,7 @@ constexpr double kRelativeErrorFloor = 0.01;
 
 constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
                                {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
-                               {"--per-lighting", false}};
+                               {"--per-lighting", false}, {"--save-blobs", true}};
 
 struct Options {
   std::string asset;
@@ -38,6 +38,7 @@ struct Options {
   std::string envDir = kDefaultEnvDir;
   bool json = false;
   bool perLighting = false;
+  std::string saveBlobs;  // directory for each setting's blob, or empty
 };
 
 Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
@@ -81,6 +82,10 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
     else return usage("unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)");
   }
   if (const std::string* d = p.value("--env-dir")) o->envDir = *d;
+  if (const std::string* d = p.value("--save-blobs")) {
+    if (d->empty()) return usage("--save-blobs needs a directory");
+    o->saveBlobs = *d;
+  }
   return Status::ok();
 }
 
@@ -257,6 +262,8 @@ const char* compressReportHelpText() {
          "  --env-dir DIR       directory of .exr environment maps\n"
          "                      (default /usr/share/blender/datafiles/studiolights/world)\n"
          "  --per-lighting      also list PSNR and max relative error of every lighting\n"
+         "  --save-blobs DIR    also write each setting's transfer blob to DIR/SETTING.prtt\n"
+         "                      (DIR must exist; for benchmarks of the decoder)\n"
          "  --json              one JSON object instead of a table\n"
          "  -h, --help          show this help\n"
          "\n"
@@ -313,6 +320,10 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
       return fail(err, kExitInputError, r.setting + ": the blob does not decode: " + s.toString());
     }
     r.bytes = blob.size();
+    if (!o.saveBlobs.empty()) {
+      const std::string path = o.saveBlobs + "/" + r.setting + ".prtt";
+      if (Status s = writeFileAtomically(path, blob); !s.isOk()) return fail(err, kExitInputError, "'" + path + "': " + s.message());
+    }
     if (Status s = zstdCompressedSize(blob, kReportZstdLevel, &r.zstdBytes); !s.isOk()) return fail(err, kExitInputError, s.message());
     if (Status s = brotliCompressedSize(blob, kReportBrotliQuality, kReportBrotliWindow, &r.brotliBytes); !s.isOk()) {
       return fail(err, kExitInputError, s.message());

@@ -96,6 +96,26 @@ if(NOT min EQUAL worst)
   message(FATAL_ERROR "psnr_db ${worst} is not the worst per-lighting PSNR ${min}")
 endif()
 
+# --save-blobs: each setting's blob, byte-sized as the report says.
+file(MAKE_DIRECTORY ${WORK_DIR}/blobs)
+run_checked(0 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings q8,cpca8@0.05 --json
+            --save-blobs ${WORK_DIR}/blobs)
+foreach(i 0 1)
+  string(JSON setting GET "${out}" rows ${i} setting)
+  string(JSON bytes GET "${out}" rows ${i} bytes)
+  set(blob ${WORK_DIR}/blobs/${setting}.prtt)
+  if(NOT EXISTS ${blob})
+    message(FATAL_ERROR "--save-blobs wrote no ${blob}")
+  endif()
+  file(SIZE ${blob} size)
+  file(READ ${blob} magic LIMIT 4 HEX)
+  if(NOT size EQUAL bytes OR NOT magic STREQUAL "50525454")  # "PRTT"
+    message(FATAL_ERROR "${blob}: ${size} bytes (report: ${bytes}), magic '${magic}'")
+  endif()
+endforeach()
+run_checked(1 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings q8 --save-blobs ${WORK_DIR}/no-such-dir)
+expect_contains("${err}" "no-such-dir" "--save-blobs into a missing directory")
+
 run_checked(2 out err ${PRT_BAKE} compress-report)
 expect_contains("${err}" "missing ASSET" "no asset")
 run_checked(2 out err ${PRT_BAKE} compress-report ${asset} --settings q9)

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "prt/status.h"
+#include "prt/transfer_codec.h"
 #include "prt/vec3.h"
 
 namespace prt {
@@ -257,5 +258,11 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out);
 // caller knows have arrived; 0 = all of them), and decodes as an order-`bands` pass (out->coeffs has
 // channels * bands^2 floats per vertex; *bandsDecoded says how many). out->encoded is left empty.
 Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded);
+
+// Like decodeAssetPass for an encoded CPCA pass, but unexpanded (for rendering straight from
+// the compressed form): *out gets the cluster ids and the first `bands` bands (0 = every band
+// that has arrived), *info the pass's kind, channels and bounces (no coefficients).
+// kInvalidArgument for a float32 pass or a blob of another encoding. Safe on untrusted input.
+Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int bands, CpcaTransfer* out, TransferPass* info);
 
 }  // namespace prt

@@ -439,8 +439,9 @@ Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::
 // Everything decodeAsset checks; afterwards every section may be read without checks.
 // An encoded transfer section's blob: its header must describe the asset's pass, and it must
 // decode in full (every part's checksum and value). `decoded` (may be null) receives the floats.
+// `cpca` (may be null): decode the CPCA parts unexpanded instead (the blob must be CPCA).
 Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& e, const Parsed& p, int bands,
-                            std::vector<float>* decoded, int* bandsDecoded) {
+                            std::vector<float>* decoded, int* bandsDecoded, CpcaTransfer* cpca = nullptr) {
   TransferBlobInfo info;
   if (Status s = readTransferBlobInfo(payload, &info); !s.isOk()) {
     return Status::error(s.code() == StatusCode::kTruncated ? StatusCode::kTruncated : StatusCode::kCorrupt,
@@ -460,7 +461,8 @@ Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& 
   }
   std::vector<float> scratch;
   std::vector<float>* out = decoded != nullptr ? decoded : &scratch;
-  if (Status s = decodeTransfer(payload, want, out); !s.isOk()) {
+  if (Status s = cpca != nullptr ? decodeCpcaTransfer(payload, want, cpca) : decodeTransfer(payload, want, out); !s.isOk()) {
+    if (cpca != nullptr && s.code() == StatusCode::kInvalidArgument) return Status::error(s.code(), sectionLabel(e) + ": " + s.message());
     return Status::error(s.code() == StatusCode::kChecksumMismatch ? s.code() : StatusCode::kCorrupt,
                          sectionLabel(e) + ": " + s.message());
   }
@@ -783,6 +785,34 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
   }
   *out = std::move(t);
   if (bandsDecoded != nullptr) *bandsDecoded = decodedBands;
+  return Status::ok();
+}
+
+Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int bands, CpcaTransfer* out, TransferPass* info) {
+  if (out == nullptr || info == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetPassCpca: out or info is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  if (pass < 0 || static_cast<std::size_t>(pass) >= p.transfer.size()) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "decodeAssetPassCpca: pass " + std::to_string(pass) + " of " + std::to_string(p.transfer.size()));
+  }
+  if (bands < 0 || bands > static_cast<int>(p.order)) {
+    return Status::error(StatusCode::kInvalidArgument, "decodeAssetPassCpca: bands " + std::to_string(bands) +
+                                                           " outside 0.." + std::to_string(p.order));
+  }
+  const Entry& e = p.entries[static_cast<std::size_t>(p.transfer[static_cast<std::size_t>(pass)])];
+  if (e.type != kTypeEncodedTransfer) {
+    return Status::error(StatusCode::kInvalidArgument, sectionLabel(e) + " is float32, not CPCA");
+  }
+  CpcaTransfer cpca;
+  if (Status s = checkEncodedTransfer(payloadOf(file, e), e, p, bands, nullptr, nullptr, &cpca); !s.isOk()) return s;
+  *info = TransferPass{};
+  info->kind = static_cast<TransferKind>(e.arg0);
+  info->channels = static_cast<int>(e.arg1);
+  info->bounces = static_cast<int>(e.arg2);
+  *out = std::move(cpca);
   return Status::ok();
 }
 

@@ -149,7 +149,11 @@ struct CpcaBand {
   int vectors = 0;  // n'_l, 0 .. dims
   std::vector<float> means;    // clusterCount * dims
   std::vector<float> basis;    // clusterCount * vectors * dims ([cluster][vector][dim])
-  std::vector<float> weights;  // vertexCount * vectors, dequantised
+  std::vector<float> weights;  // vertexCount * vectors, dequantised: levels[i] * steps[cluster]
+  // The stored form of the weights, for renderers that fold the step into the per-cluster
+  // constants (web client): weight (v, j) = float(levels[v * vectors + j]) * steps[cluster of v].
+  std::vector<float> steps;           // clusterCount
+  std::vector<std::int16_t> levels;   // vertexCount * vectors, within +-(2^(weightBits-1) - 1)
 };
 
 struct CpcaTransfer {
@@ -157,6 +161,7 @@ struct CpcaTransfer {
   int channels = 0;
   std::uint32_t vertexCount = 0;
   std::uint32_t clusterCount = 0;
+  int weightBits = 8;                    // 8 or 16: the width of the stored levels
   std::vector<std::uint32_t> clusterOf;  // per vertex, < clusterCount
   std::vector<CpcaBand> bands;           // the decoded leading bands
 };

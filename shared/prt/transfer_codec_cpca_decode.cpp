@@ -85,6 +85,7 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
     out->basis[i] = halfToFloat(h);
   }
   out->weights.resize(V * N);
+  out->levels.resize(V * N);
   std::vector<std::int32_t> levelsOf(V);
   for (std::size_t j = 0; j < N; ++j) {
     if (!getStream(p, N, V, weightBytes, j, levelsOf)) {
@@ -97,8 +98,10 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
                        std::to_string(q) + ", outside +-" + std::to_string(levels));
       }
       out->weights[v * N + j] = static_cast<float>(q) * steps[clusterOf[v]];
+      out->levels[v * N + j] = static_cast<std::int16_t>(q);  // |q| <= 32767: checked above
     }
   }
+  out->steps = std::move(steps);
   return Status::ok();
 }
 
@@ -117,6 +120,7 @@ Status decodeCpcaTransfer(std::span<const std::uint8_t> bytes, int bands, CpcaTr
   cpca.channels = info.channels;
   cpca.vertexCount = info.vertexCount;
   cpca.clusterCount = info.clusterCount;
+  cpca.weightBits = info.weightBits;
   if (Status s = decodeClusters(bytes, info, &cpca); !s.isOk()) return s;
   cpca.bands.resize(static_cast<std::size_t>(bands));
   for (int l = 0; l < bands; ++l) {

@@ -210,5 +210,47 @@ TEST(AssetEncoded, FloatPassesDecodeOnlyWhole) {
   EXPECT_FALSE(decodeAssetPass(damaged, 1, 0, &out, &bands).isOk());
 }
 
+// The unexpanded CPCA form of a pass, as the web client renders it, from a progressive
+// buffer: each band prefix expands to what decodeAssetPass gives; other encodings and
+// float32 passes are refused by name.
+TEST(AssetEncoded, CpcaPassDecodesUnexpandedFromEveryBandPrefix) {
+  BakedAsset a = makeSmoothAsset(4, 400);
+  encodePasses(&a, "cpca8@0.02");
+  const Bytes file = encodeOrDie(a);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int bands = 1; bands <= a.shOrder; ++bands) {
+      CpcaTransfer cpca;
+      TransferPass info;
+      const Status s = decodeAssetPassCpca(file, pass, bands, &cpca, &info);
+      ASSERT_TRUE(s.isOk()) << s.message();
+      EXPECT_EQ(info.kind, a.passes[static_cast<std::size_t>(pass)].kind);
+      EXPECT_EQ(info.channels, a.passes[static_cast<std::size_t>(pass)].channels);
+      EXPECT_TRUE(info.coeffs.empty());
+      ASSERT_EQ(cpca.bands.size(), static_cast<std::size_t>(bands));
+      std::vector<float> expanded(a.positions.size() * static_cast<std::size_t>(info.channels * bands * bands));
+      ASSERT_TRUE(cpcaReconstruct(cpca, expanded).isOk());
+      TransferPass reference;
+      int decoded = 0;
+      ASSERT_TRUE(decodeAssetPass(file, pass, bands, &reference, &decoded).isOk());
+      EXPECT_EQ(expanded, reference.coeffs) << "pass " << pass << ", " << bands << " bands";
+    }
+  }
+  CpcaTransfer cpca;
+  TransferPass info;
+  EXPECT_EQ(decodeAssetPassCpca(file, 2, 0, &cpca, &info).code(), StatusCode::kInvalidArgument);
+  Bytes damaged = file;
+  damaged[damaged.size() - 1] ^= 1;
+  EXPECT_FALSE(decodeAssetPassCpca(damaged, 1, 0, &cpca, &info).isOk());
+
+  BakedAsset q = makeSmoothAsset(3, 40);
+  encodePasses(&q, "q8");
+  Status s = decodeAssetPassCpca(encodeOrDie(q), 0, 0, &cpca, &info);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("not CPCA"), std::string::npos) << s.message();
+  s = decodeAssetPassCpca(encodeOrDie(makeSmoothAsset(3, 40)), 0, 0, &cpca, &info);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("float32"), std::string::npos) << s.message();
+}
+
 }  // namespace
 }  // namespace prt

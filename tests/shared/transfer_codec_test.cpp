@@ -556,6 +556,18 @@ TEST(TransferCodec, CpcaBandsRenderLikeTheExpandedTransfer) {
   std::vector<float> again(expanded.size());
   ASSERT_TRUE(cpcaReconstruct(cpca, again).isOk());
   EXPECT_EQ(again, expanded);
+  // The stored form (levels and per-cluster steps, which the web client folds into its
+  // per-cluster constants) gives exactly the dequantised weights.
+  EXPECT_EQ(cpca.weightBits, 8);
+  for (const CpcaBand& b : cpca.bands) {
+    ASSERT_EQ(b.steps.size(), cpca.clusterCount);
+    ASSERT_EQ(b.levels.size(), b.weights.size());
+    for (std::size_t i = 0; i < b.levels.size(); ++i) {
+      const std::size_t v = i / static_cast<std::size_t>(b.vectors);
+      ASSERT_LE(std::abs(static_cast<int>(b.levels[i])), 127);
+      ASSERT_EQ(static_cast<float>(b.levels[i]) * b.steps[cpca.clusterOf[v]], b.weights[i]) << b.band << " " << i;
+    }
+  }
 
   Pcg32 rng(1);
   std::vector<float> light(static_cast<std::size_t>(channels * order * order));  // [channel][coefficient]

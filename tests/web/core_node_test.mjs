@@ -60,6 +60,32 @@ check(!bad.ok && /checksum/.test(bad.error), `corrupted asset: ${bad.error}`);
 const garbage = core.inspectAsset(Buffer.from('PRTB and some other bytes, far too short'));
 check(!garbage.ok, 'garbage accepted');
 
+// CPCA rendering (web/src/cpca_texture.h): the per-cluster table and per-vertex weighted sum
+// the shaders compute, emulated on the CPU from the packed textures, against the plain dot
+// product with the expanded transfer, at the baked order and cut to fewer bands.
+{
+  const cpcaAsset = path.join(workDir, 'room-cpca.prt');
+  execFileSync(prtBake, ['--default', '-o', cpcaAsset, '--samples', '64', '--order', '4', '--compress', 'cpca8@0.02', '--quiet']);
+  const cpcaBytes = fs.readFileSync(cpcaAsset);
+  for (const kind of ['shadowed', 'interreflected']) {
+    for (const order of [4, 2]) {
+      const lighting = new Array(192).fill(0);
+      for (let c = 0; c < 3; c++)
+        for (let i = 0; i < order * order; i++) lighting[64 * c + i] = (i === 0 ? 3 : Math.sin(1.7 * i + c)) * (1 + 0.2 * c);
+      const r = core.cpcaRadianceCheck(cpcaBytes, kind, lighting, order);
+      if (!check(r && typeof r === 'object', `CPCA ${kind} order ${order}: ${r}`)) continue;
+      check(r.clusters >= 1 && r.weights > 0, `CPCA ${kind}: ${r.clusters} clusters, ${r.weights} weights`);
+      let peak = 0, worst = 0;
+      for (let i = 0; i < r.expanded.length; i++) peak = Math.max(peak, Math.abs(r.expanded[i]));
+      for (let i = 0; i < r.expanded.length; i++) worst = Math.max(worst, Math.abs(r.packed[i] - r.expanded[i]));
+      check(r.packed.length === r.expanded.length && peak > 0.1, `CPCA ${kind} order ${order}: ${r.packed.length} values, peak ${peak}`);
+      check(worst <= 2e-5 * peak, `CPCA ${kind} order ${order}: clusters-first radiance differs from the expanded transfer's by ${worst} (peak ${peak})`);
+    }
+  }
+  const notCpca = core.cpcaRadianceCheck(bytes, 'shadowed', new Array(192).fill(1), 4);
+  check(typeof notCpca === 'string' && /not CPCA/.test(notCpca), `a float32 asset as CPCA: ${notCpca}`);
+}
+
 // SH: band 1 closed form, and a z rotation by 90 degrees turns +x into +y.
 const y = core.evalBasis(3, 0.6, 0.0, 0.8);
 check(Math.abs(y[3] - 0.488603 * 0.6) < 1e-6 && Math.abs(y[2] - 0.488603 * 0.8) < 1e-6, `basis: ${y.slice(0, 4)}`);

@@ -171,6 +171,59 @@ const cases = {
     }
   },
 
+  // Rendering straight from CPCA (the default) against the same passes expanded on load
+  // (?cpca=expand), in two pages side by side: per-vertex exit radiance read back from the
+  // GPU and the pictures must agree, for RGB and scalar passes, at the baked order and cut.
+  async cpca_direct_matches_expanded(browser) {
+    const server = await startServer();
+    try {
+      const entry = await catalogueEntry(server.base);
+      const open = async (query) => {
+        const { page, consoleErrors } = await newPage(browser);
+        await page.goto(`${server.base}/${query}`);
+        await waitReady(page);
+        await page.waitForFunction(() => window.prtApp.error || window.prtApp.loadedBands.every((b) => b === 5), null, { timeout: 120000 });
+        return { page, consoleErrors };
+      };
+      const direct = await open('');
+      const expanded = await open('?cpca=expand');
+      const forms = await direct.page.evaluate(() => ({ forms: window.prtApp.passForms, shapes: window.prtApp.cpcaShapes, error: window.prtApp.error }));
+      const formsExpanded = await expanded.page.evaluate(() => window.prtApp.passForms);
+      check(forms.error === null, `page error: ${forms.error}`);
+      for (const kind of ['unshadowed', 'shadowed', 'interreflected']) {
+        check(forms.forms[kind] === 'cpca', `${kind} is drawn ${forms.forms[kind]}, not from its clusters`);
+        check(formsExpanded[kind] === 'expanded', `${kind} with ?cpca=expand is drawn ${formsExpanded[kind]}`);
+        const [clusters, weights] = forms.shapes[kind];
+        check(clusters >= 1 && weights >= 1 && weights <= 3 * 25, `${kind}: ${clusters} clusters, ${weights} weights per vertex`);
+      }
+      const statsLine = await direct.page.textContent('#stats');
+      check(/CPCA: \d+ clusters, \d+ weights/.test(statsLine), `stats line does not say CPCA: ${statsLine}`);
+      for (const view of [{ mode: 'interreflected', order: 5 }, { mode: 'interreflected', order: 3 }, { mode: 'shadowed', order: 5 }]) {
+        const settings = { ...VIEW, ...view };
+        const a = await capture(direct.page, settings), b = await capture(expanded.page, settings);
+        const ra = await direct.page.evaluate(() => Array.from(window.prtApp.vertexRadiance()));
+        const rb = await expanded.page.evaluate(() => Array.from(window.prtApp.vertexRadiance()));
+        const name = `${view.mode} order ${view.order}`;
+        if (!check(ra.length === entry.vertices * 3 && rb.length === ra.length, `${name}: read back ${ra.length} / ${rb.length} values for ${entry.vertices} vertices`)) continue;
+        let peak = 0, worst = 0;
+        for (let i = 0; i < rb.length; i++) peak = Math.max(peak, Math.abs(rb[i]));
+        for (let i = 0; i < rb.length; i++) worst = Math.max(worst, Math.abs(ra[i] - rb[i]));
+        check(peak > 0.05, `${name}: the expanded pass gives peak radiance ${peak}`);
+        check(worst <= 1e-4 * peak, `${name}: CPCA-direct radiance differs from expanded by ${worst} (peak ${peak})`);
+        const mean = meanAbsDifference(a, b), max = maxChannelDifference(a, b);
+        check(mean < 0.05 && max <= 2, `${name}: direct vs expanded picture: mean ${mean.toFixed(4)}, max ${max} / 255`);
+        console.log(`${name}: per-vertex max difference ${worst.toExponential(2)} of peak ${peak.toFixed(3)}; pictures mean ${mean.toFixed(4)} max ${max}`);
+      }
+      await direct.page.screenshot({ path: path.join(workDir, 'cpca-direct.png') });
+      for (const p of [direct, expanded]) {
+        check(p.consoleErrors.length === 0, `console errors: ${p.consoleErrors.join(' | ')}`);
+        await p.page.close();
+      }
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
   // A damaged band after the first picture, a truncated mesh part before it: both end in the
   // error box with the reader's words, never an uncaught exception.
   async stream_damaged_parts(browser) {

@@ -14,6 +14,8 @@ import { streamAsset } from './stream_loader.js';
 const MODES = { unshadowed: 0, shadowed: 1, interreflected: 2, lambert: 3 };
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
 const PROJECTIONS = { gpu: 0, cpu: 1 };
+const PASS_KINDS = { unshadowed: 0, shadowed: 1, interreflected: 2 };
+const FORMS = [null, 'expanded', 'cpca'];  // ClientApp::passForm
 const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
 const params = new URLSearchParams(location.search);
 const canvas = document.getElementById('view');
@@ -34,6 +36,8 @@ const state = {
   intensity: 1,
   color: '#ffffff',
   background: true,
+  // CPCA-compressed passes: rendered straight from the clusters, or expanded on load.
+  cpca: ['expand', 'expanded'].includes(params.get('cpca')) ? 'expanded' : 'direct',
 };
 // The dynamic-light settings the Lights panel edits (docs/web-client.md).
 const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
@@ -57,6 +61,7 @@ const hook = {
   frames: 0,
   error: null,
   notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
+  paused: false,  // true stops the page's own frame loop (benchmarks with several pages open)
   stats,
   // Radiance SH the last frame used: the light cube's projection plus the environment when on.
   lightSH() {
@@ -73,6 +78,14 @@ const hook = {
   get projection() { return lightSettings.projection; },
   get cubeSize() { return lightSettings.cubeSize; },
   get environment() { return lightSettings.environmentOn ? state.environment : null; },
+  // How each pass is drawn: 'cpca' (straight from the clusters, Sloan 2003), 'expanded' or
+  // null (absent); and for CPCA passes [clusters, weights per vertex].
+  get passForms() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, FORMS[app.passForm(k)]])) : null; },
+  get cpcaShapes() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, Array.from(app.cpcaShape(k))])) : null; },
+  // Exit radiance of every vertex in the last frame (flat RGB, before exposure): a GPU read-back.
+  vertexRadiance() {
+    return app && hook.ready ? Float32Array.from(app.vertexRadiance()) : null;
+  },
   // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
   // indices); returns the id to use as {shape: 'mesh', mesh: id}. Throws on bad input.
   addMesh(positions, indices) {
@@ -280,6 +293,7 @@ async function loadScene(name) {
   if (!entry) throw new Error(`No scene named '${name}' in the catalogue.`);
   document.getElementById('loading').hidden = false;
   hook.ready = false;
+  app.setCpcaDirect(state.cpca === 'direct');
   if (entry.parts) {
     // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
     // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
@@ -314,6 +328,8 @@ function buildGui() {
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
   gui.add(state, 'mode', Object.keys(MODES)).name('transfer').onChange(applyState);
+  gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
+    .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
   gui.add(state, 'order', 1, 8, 1).name('SH order').onChange(applyState);
   const envNames = ['white furnace', ...environments.filter((l) => l.usable).map((l) => l.name)];
   gui.add(state, 'environment', envNames).name('environment').onChange((n) => {
@@ -404,6 +420,14 @@ function setupInput() {
   canvas.addEventListener('dblclick', () => app && app.frameScene());
 }
 
+// " (CPCA: K clusters, N weights)" when the displayed pass is drawn from its clusters.
+function formText() {
+  const kind = PASS_KINDS[state.mode];
+  if (kind === undefined || app.passForm(kind) !== 2) return '';
+  const [clusters, weights] = app.cpcaShape(kind);
+  return ` (CPCA: ${clusters} clusters, ${weights} weights)`;
+}
+
 function frame(now) {
   const dpr = Math.min(window.devicePixelRatio || 1, 2);
   const w = Math.max(1, Math.round(canvas.clientWidth * dpr));
@@ -412,14 +436,14 @@ function frame(now) {
     canvas.width = w;
     canvas.height = h;
   }
-  if (hook.ready) {
+  if (hook.ready && !hook.paused) {
     const t0 = performance.now();
     app.render(w, h);
     hook.frames++;
     stats.frameMs = 0.9 * stats.frameMs + 0.1 * (performance.now() - t0 + (frame.last ? now - frame.last - (performance.now() - t0) : 0));
     stats.order = app.displayOrder();
     statsLine.textContent = `${stats.frameMs.toFixed(1)} ms/frame · ${stats.vertices.toLocaleString()} vertices · ` +
-      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
+      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode}${formText()} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
       `${LIGHTING_MODELS[app.lightingModel()]} lighting · ${lightSet.lights.length} light${lightSet.lights.length === 1 ? '' : 's'} ` +
       `(${lightSettings.projection} ${lightSettings.cubeSize}²)${lightSettings.environmentOn ? ' + environment' : ''}`;
   }

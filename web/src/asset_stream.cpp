@@ -34,19 +34,37 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
   return Status::ok();
 }
 
-bool AssetStream::hasKind(int kind) const {
-  for (const AssetPassInfo& p : summary_.passes)
-    if (static_cast<int>(p.kind) == kind) return true;
-  return false;
+int AssetStream::passIndex(int kind) const {
+  for (std::size_t i = 0; i < summary_.passes.size(); ++i)
+    if (static_cast<int>(summary_.passes[i].kind) == kind) return static_cast<int>(i);
+  return -1;
+}
+
+bool AssetStream::hasKind(int kind) const { return passIndex(kind) >= 0; }
+
+bool AssetStream::isCpca(int kind) const {
+  const int i = passIndex(kind);
+  if (!headerRead_ || i < 0 || !summary_.passes[static_cast<std::size_t>(i)].encoded) return false;
+  const AssetSectionInfo& section = summary_.sections[summary_.passes[static_cast<std::size_t>(i)].section];
+  // Offsets were checked against the file size by peekAssetHeader.
+  const auto blob = std::span<const std::uint8_t>(file_).subspan(static_cast<std::size_t>(section.offset),
+                                                                 static_cast<std::size_t>(section.size));
+  TransferBlobInfo info;
+  return readTransferBlobInfo(blob, &info).isOk() && info.encoding == TransferEncoding::kCpca;
 }
 
 Status AssetStream::decodePass(int kind, int bands, TransferPass* out, int* order) {
   if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
-  for (std::size_t i = 0; i < summary_.passes.size(); ++i) {
-    if (static_cast<int>(summary_.passes[i].kind) != kind) continue;
-    return decodeAssetPass(file_, static_cast<int>(i), bands, out, order);
-  }
-  return Status::error(StatusCode::kInvalidArgument, "the asset has no transfer pass of kind " + std::to_string(kind));
+  const int i = passIndex(kind);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no transfer pass of kind " + std::to_string(kind));
+  return decodeAssetPass(file_, i, bands, out, order);
+}
+
+Status AssetStream::decodePassCpca(int kind, int bands, CpcaTransfer* out, TransferPass* info) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = passIndex(kind);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no transfer pass of kind " + std::to_string(kind));
+  return decodeAssetPassCpca(file_, i, bands, out, info);
 }
 
 }  // namespace prt::web

@@ -33,7 +33,14 @@ class AssetStream {
   // order of the decoded transfer. Requires decodeGeometry first.
   Status decodePass(int kind, int bands, TransferPass* out, int* order);
 
-  // Whether the asset holds a pass of `kind`, and whether it is encoded (band-progressive).
+  // The same pass unexpanded, for rendering straight from CPCA (decodeAssetPassCpca): *info
+  // gets kind and channels. kInvalidArgument when the pass is not CPCA-encoded.
+  Status decodePassCpca(int kind, int bands, CpcaTransfer* out, TransferPass* info);
+  // Whether pass `kind` is CPCA-encoded, read from its blob's header (which arrives with the
+  // pass's first part): false before then, for other encodings and for float32 passes.
+  bool isCpca(int kind) const;
+
+  // Whether the asset holds a pass of `kind`.
   bool hasKind(int kind) const;
   const AssetSummary& summary() const { return summary_; }
   void release();  // frees the buffer (the decoded arrays live elsewhere)
@@ -42,6 +49,7 @@ class AssetStream {
   std::vector<std::uint8_t> file_;
   AssetSummary summary_;
   bool headerRead_ = false;
+  int passIndex(int kind) const;  // index into summary_.passes, or -1
 };
 
 }  // namespace prt::web

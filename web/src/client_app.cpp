@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "prt/sh_basis.h"
 #include "prt/sh_rotation.h"
@@ -57,7 +58,22 @@ std::string ClientApp::loadAsset() {
   pending_.clear();
   pending_.shrink_to_fit();
   if (!s.isOk()) return s.toString();
+  // CPCA passes go up in their compressed form (when cpcaDirect_), the others expanded.
+  std::vector<std::pair<TransferKind, CpcaTransfer>> cpca;
+  std::vector<TransferPass> expanded;
+  for (TransferPass& p : decoded.passes) {
+    CpcaTransfer c;
+    if (cpcaDirect_ && !p.encoded.empty() && decodeCpcaTransfer(p.encoded, decoded.shOrder, &c).isOk()) {
+      cpca.emplace_back(p.kind, std::move(c));
+    } else {
+      expanded.push_back(std::move(p));
+    }
+  }
+  decoded.passes = std::move(expanded);
   if (Status u = renderer_.upload(decoded); !u.isOk()) return u.message();
+  for (const auto& [kind, c] : cpca) {
+    if (Status u = renderer_.uploadCpcaPass(kind, c); !u.isOk()) return u.message();
+  }
   adoptGeometry(std::move(decoded));
   if (!renderer_.hasPass(mode_)) {
     for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
@@ -101,10 +117,17 @@ std::string ClientApp::streamPass(int kind, int bands) {
   if (!ok()) return error_;
   if (kind < 0 || kind > 2) return "streamPass: kind must be 0, 1 or 2";
   TransferPass pass;
-  int order = 0;
-  if (Status s = stream_.decodePass(kind, bands, &pass, &order); !s.isOk()) return s.toString();
-  makeCurrent();
-  if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
+  if (cpcaDirect_ && stream_.isCpca(kind)) {
+    CpcaTransfer cpca;
+    if (Status s = stream_.decodePassCpca(kind, bands, &cpca, &pass); !s.isOk()) return s.toString();
+    makeCurrent();
+    if (Status u = renderer_.uploadCpcaPass(pass.kind, cpca); !u.isOk()) return u.message();
+  } else {
+    int order = 0;
+    if (Status s = stream_.decodePass(kind, bands, &pass, &order); !s.isOk()) return s.toString();
+    makeCurrent();
+    if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
+  }
   if (kind == pendingMode_) {
     mode_ = static_cast<ShadingMode>(kind);
     pendingMode_ = -1;
@@ -292,6 +315,12 @@ std::vector<float> ClientApp::project(float x, float y, float z) const {
   const float cw = m[3] * x + m[7] * y + m[11] * z + m[15];
   if (!(std::fabs(cw) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
   return {cx / cw, cy / cw, cz / cw};
+}
+
+std::vector<float> ClientApp::vertexRadiance() const {
+  if (!ok()) return {};
+  makeCurrent();
+  return renderer_.readRadiance();
 }
 
 std::vector<float> ClientApp::lightSH() {

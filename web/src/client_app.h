@@ -48,6 +48,23 @@ class ClientApp {
   // Bands of pass `kind` on the GPU (0 when absent): the baked order once loaded whole.
   int loadedBands(int kind) const;
 
+  // ---- CPCA rendering (docs/web-client.md, "CPCA rendering") ----
+  // Whether CPCA-encoded passes are rendered straight from the clusters (Sloan 2003; the
+  // default) or expanded to plain transfer first. Applies to passes loaded afterwards.
+  void setCpcaDirect(bool on) { cpcaDirect_ = on; }
+  bool cpcaDirect() const { return cpcaDirect_; }
+  // How pass `kind` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
+  int passForm(int kind) const { return kind < 0 || kind > 2 ? 0 : renderer_.passForm(static_cast<ShadingMode>(kind)); }
+  // CPCA pass `kind`: [clusters, weights per vertex]; [0, 0] otherwise.
+  std::vector<int> cpcaShape(int kind) const {
+    if (kind < 0 || kind > 2) return {0, 0};
+    const auto s = renderer_.cpcaShape(static_cast<ShadingMode>(kind));
+    return {s[0], s[1]};
+  }
+  // Exit radiance of every vertex in the last frame, flat RGB before exposure (reads the
+  // GPU buffer back: tests and tools only).
+  std::vector<float> vertexRadiance() const;
+
   // Environment lighting: radiance SH, flat [r,g,b] per coefficient, order 1..16 (the first
   // 8 bands are kept). Returns "" or the error.
   std::string setEnvironment(const std::vector<float>& flatRgb, int order);
@@ -125,6 +142,7 @@ class ClientApp {
   GlRenderer renderer_;
   DynamicLighting lights_;
   bool environmentEnabled_ = true;
+  bool cpcaDirect_ = true;
   std::vector<std::uint8_t> pending_;
   AssetStream stream_;
   BakedAsset asset_;

@@ -65,6 +65,9 @@ val lightCenter(const ClientApp& app) {
 val rayFromScreen(const ClientApp& app, float x, float y) { return val::array(app.rayFromScreen(x, y)); }
 double weightTableBytes(const ClientApp& app) { return static_cast<double>(app.weightTableBytes()); }
 
+val cpcaShape(const ClientApp& app, int kind) { return val::array(app.cpcaShape(kind)); }
+val vertexRadiance(const ClientApp& app) { return val::array(app.vertexRadiance()); }
+
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
 
 }  // namespace
@@ -81,6 +84,11 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("streamPass", &ClientApp::streamPass)
       .function("endStream", &ClientApp::endStream)
       .function("loadedBands", &ClientApp::loadedBands)
+      .function("setCpcaDirect", &ClientApp::setCpcaDirect)
+      .function("cpcaDirect", &ClientApp::cpcaDirect)
+      .function("passForm", &ClientApp::passForm)
+      .function("cpcaShape", &cpcaShape)
+      .function("vertexRadiance", &vertexRadiance)
       .function("setEnvironment", &setEnvironment)
       .function("setWhiteFurnace", &ClientApp::setWhiteFurnace)
       .function("setEnvRotation", &ClientApp::setEnvRotation)

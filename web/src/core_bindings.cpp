@@ -1,11 +1,14 @@
 // Embind bindings of the GL-free shared code (asset decoding, SH evaluation, projection and
 // rotation). Compiled into both the browser module and the Node module the tests load.
 #include <emscripten/bind.h>
+#include <emscripten/emscripten.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
+#include "cpca_texture.h"
 #include "cube_faces.h"
 #include "emitters.h"
 #include "prt/asset.h"
@@ -15,6 +18,7 @@
 #include "prt/sh_project.h"
 #include "prt/sh_rotation.h"
 #include "prt/sh_zonal.h"
+#include "prt/transfer_codec.h"
 #include "transfer_texture.h"
 
 using emscripten::val;
@@ -71,6 +75,78 @@ val shadeConstant(const val& bytes, const std::string& kind) {
     return val::array(out);
   }
   return val::null();
+}
+
+// CPCA rendering on the CPU (cpca_texture.h's arithmetic of the two shaders) against the
+// plain dot product with the expanded transfer, for pass `kind` of an asset whose pass is
+// CPCA-encoded: {packed, expanded} exit radiance (flat RGB per vertex) under `lighting`
+// (packLighting layout, 192 floats, cut to displayOrder), or a string naming the error.
+val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& lighting, int displayOrder) {
+  const std::vector<std::uint8_t> data = bytesFrom(bytes);
+  const std::vector<float> light = emscripten::convertJSArrayToNumberVector<float>(lighting);
+  if (light.size() != 192) return val(std::string("lighting must hold 192 floats"));
+  prt::BakedAsset asset;
+  if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
+  for (const prt::TransferPass& p : asset.passes) {
+    if (kind != prt::transferKindName(p.kind)) continue;
+    if (p.encoded.empty()) return val(kind + " pass is float32, not CPCA");
+    prt::CpcaTransfer cpca;
+    if (prt::Status s = prt::decodeCpcaTransfer(p.encoded, asset.shOrder, &cpca); !s.isOk()) return val(s.toString());
+    prt::web::CpcaTextures packed;
+    if (prt::Status s = prt::web::packCpca(cpca, 16384, &packed); !s.isOk()) return val(s.toString());
+    std::vector<float> albedo;
+    for (const prt::Rgb& a : asset.albedo) albedo.insert(albedo.end(), {a.r, a.g, a.b});
+    const std::vector<float> viaClusters = prt::web::cpcaRadiance(packed, light.data(), displayOrder, albedo);
+    const std::size_t n2 = static_cast<std::size_t>(asset.shOrder * asset.shOrder);
+    const std::size_t active = static_cast<std::size_t>(std::clamp(displayOrder, 1, asset.shOrder));
+    std::vector<float> expanded(asset.positions.size() * 3);
+    for (std::size_t v = 0; v < asset.positions.size(); ++v) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        const float* t = &p.coeffs[(v * static_cast<std::size_t>(p.channels) + (p.channels == 1 ? 0 : c)) * n2];
+        double sum = 0.0;
+        for (std::size_t i = 0; i < active * active; ++i) sum += static_cast<double>(t[i]) * light[64 * c + i];
+        expanded[3 * v + c] = static_cast<float>(p.channels == 1 ? sum * albedo[3 * v + c] : sum);
+      }
+    }
+    val out = val::object();
+    out.set("packed", val::array(viaClusters));
+    out.set("expanded", val::array(expanded));
+    out.set("clusters", packed.clusters);
+    out.set("weights", packed.weightCount);
+    return out;
+  }
+  return val(std::string("the asset has no ") + kind + " pass");
+}
+
+// Benchmark: decodes a transfer-codec blob `repeats` times, each way the client can:
+// {expand: seconds per decodeTransfer to floats, cpca: seconds per decodeCpcaTransfer +
+// packCpca (direct rendering; null for other encodings), bytes, vertices}, or the error.
+val timeTransferDecode(const val& bytes, int repeats) {
+  const std::vector<std::uint8_t> blob = bytesFrom(bytes);
+  prt::TransferBlobInfo info;
+  if (prt::Status s = prt::readTransferBlobInfo(blob, &info); !s.isOk()) return val(s.toString());
+  std::vector<float> floats;
+  const double t0 = emscripten_get_now();
+  for (int r = 0; r < repeats; ++r) {
+    if (prt::Status s = prt::decodeTransfer(blob, info.order, &floats); !s.isOk()) return val(s.toString());
+  }
+  const double t1 = emscripten_get_now();
+  val out = val::object();
+  out.set("expand", (t1 - t0) / 1000.0 / repeats);
+  out.set("cpca", val::null());
+  if (info.encoding == prt::TransferEncoding::kCpca) {
+    prt::CpcaTransfer cpca;
+    prt::web::CpcaTextures packed;
+    const double t2 = emscripten_get_now();
+    for (int r = 0; r < repeats; ++r) {
+      if (prt::Status s = prt::decodeCpcaTransfer(blob, info.order, &cpca); !s.isOk()) return val(s.toString());
+      if (prt::Status s = prt::web::packCpca(cpca, 16384, &packed); !s.isOk()) return val(s.toString());
+    }
+    out.set("cpca", (emscripten_get_now() - t2) / 1000.0 / repeats);
+  }
+  out.set("bytes", static_cast<double>(blob.size()));
+  out.set("vertices", static_cast<double>(info.vertexCount));
+  return out;
 }
 
 val evalBasis(int order, float x, float y, float z) {
@@ -196,6 +272,8 @@ EMSCRIPTEN_BINDINGS(prt_core) {
   emscripten::function("sphereFaceRect", &sphereFaceRect);
   emscripten::function("inspectAsset", &inspectAsset);
   emscripten::function("shadeConstant", &shadeConstant);
+  emscripten::function("cpcaRadianceCheck", &cpcaRadianceCheck);
+  emscripten::function("timeTransferDecode", &timeTransferDecode);
   emscripten::function("evalBasis", &evalBasis);
   emscripten::function("rotateCoefficients", &rotateCoefficients);
   emscripten::function("projectCube", &projectCube);

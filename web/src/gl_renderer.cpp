@@ -1,5 +1,7 @@
 #include "gl_renderer.h"
 
+#include <webgl/webgl2.h>  // glGetBufferSubData (WebGL2, not GLES3)
+
 #include <algorithm>
 #include <vector>
 
@@ -37,13 +39,19 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->texelsPerChannel = glGetUniformLocation(p, "uTexelsPerChannel");
   out->channels = glGetUniformLocation(p, "uChannels");
   out->activeTexels = glGetUniformLocation(p, "uActiveTexels");
+  out->table = glGetUniformLocation(p, "uTable");
+  out->weights = glGetUniformLocation(p, "uWeights");
+  out->entries = glGetUniformLocation(p, "uEntries");
+  out->weightTexels = glGetUniformLocation(p, "uWeightTexels");
   return Status::ok();
 }
 
 Status GlRenderer::init() {
   if (Status s = link(shaders::k_prt_vert, shaders::k_discard_frag, &prt_, "vRadiance"); !s.isOk()) return s;
   if (Status s = link(shaders::k_radiance_vert, shaders::k_shade_frag, &radiance_); !s.isOk()) return s;
+  if (Status s = link(shaders::k_cpca_vert, shaders::k_discard_frag, &cpca_, "vRadiance"); !s.isOk()) return s;
   glGenTransformFeedbacks(1, &feedback_);
+  glGenVertexArrays(1, &tableVao_);
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
   if (Status s = link(shaders::k_background_vert, shaders::k_background_frag, &background_); !s.isOk()) return s;
   glGenVertexArrays(1, &backgroundVao_);
@@ -63,26 +71,86 @@ void GlRenderer::releaseGeometry() {
   indexCount_ = 0;
 }
 
+void GlRenderer::releasePass(PassTexture* p) {
+  for (GLuint* t : {&p->texture, &p->weights, &p->table})
+    if (*t) glDeleteTextures(1, t);
+  for (GLuint* b : {&p->tableBuffer, &p->clusterIds})
+    if (*b) glDeleteBuffers(1, b);
+  if (p->vao) glDeleteVertexArrays(1, &p->vao);
+  *p = {};
+}
+
 void GlRenderer::release() {
   releaseGeometry();
-  for (PassTexture& t : passes_) {
-    if (t.texture) glDeleteTextures(1, &t.texture);
-    t = {};
-  }
+  for (PassTexture& t : passes_) releasePass(&t);
 }
 
 void GlRenderer::setPassTexture(std::size_t kind, const TransferTexture& t, int order) {
   PassTexture& p = passes_[kind];
+  if (p.cpca) releasePass(&p);
   if (!p.texture) glGenTextures(1, &p.texture);
   glBindTexture(GL_TEXTURE_2D, p.texture);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  setNearestClamp(GL_TEXTURE_2D);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT, t.texels.data());
   p.channels = t.channels;
   p.texelsPerChannel = t.texelsPerChannel;
   p.order = order;
+}
+
+Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
+  const auto k = static_cast<std::size_t>(kind);
+  const int bands = static_cast<int>(cpca.bands.size());
+  if (k > 2 || indexCount_ == 0 || bands < 1 || bands > bakedOrder_ || cpca.vertexCount != static_cast<std::uint32_t>(vertexCount_)) {
+    return Status::error(StatusCode::kInvalidArgument, "uploadCpcaPass: no geometry, or pass kind, bands or vertex count out of range");
+  }
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  CpcaTextures packed;
+  if (Status s = packCpca(cpca, maxSize, &packed); !s.isOk()) return s;
+  PassTexture& p = passes_[k];
+  releasePass(&p);
+  setPassTexture(k, packed.entries, bands);
+  p.cpca = true;
+  p.clusters = packed.clusters;
+  p.entriesPerCluster = packed.entriesPerCluster;
+  p.weightTexels = packed.weightTexels;
+  p.weightsBefore = packed.weightsBefore;
+  p.tableHeight = packed.tableHeight;
+  glGenTextures(1, &p.weights);
+  glBindTexture(GL_TEXTURE_2D, p.weights);
+  setNearestClamp(GL_TEXTURE_2D);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (packed.weightBits == 8) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_BYTE, packed.weightData.data());
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_SHORT, packed.weightData.data());
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glGenTextures(1, &p.table);
+  glBindTexture(GL_TEXTURE_2D, p.table);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, packed.tableWidth, packed.tableHeight, 0, GL_RGB, GL_FLOAT, nullptr);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  // Sized for the whole table texture: the copy reads every row (WebGL zero-fills buffers).
+  p.tableBuffer = makeBuffer(GL_ARRAY_BUFFER, nullptr, static_cast<std::size_t>(packed.tableWidth) * packed.tableHeight * sizeof(Vec3));
+  glGenVertexArrays(1, &p.vao);
+  glBindVertexArray(p.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, albedo_);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Rgb), nullptr);
+  p.clusterIds = makeBuffer(GL_ARRAY_BUFFER, packed.clusterOf.data(), packed.clusterOf.size() * sizeof(std::uint16_t));
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    releasePass(&p);
+    return Status::error(StatusCode::kInvalidArgument,
+                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's CPCA transfer"
+                                                 : "WebGL error " + std::to_string(err) + " while uploading a CPCA pass");
+  }
+  return Status::ok();
 }
 
 void GlRenderer::makeGeometry(const BakedAsset& asset) {
@@ -186,6 +254,75 @@ bool GlRenderer::hasPass(ShadingMode mode) const {
   return passes_[static_cast<std::size_t>(mode)].texture != 0;
 }
 
+int GlRenderer::passForm(ShadingMode mode) const {
+  if (mode == ShadingMode::kLambert || !hasPass(mode)) return 0;
+  return passes_[static_cast<std::size_t>(mode)].cpca ? 2 : 1;
+}
+
+std::array<int, 2> GlRenderer::cpcaShape(ShadingMode mode) const {
+  if (passForm(mode) != 2) return {0, 0};
+  const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
+  return {t.clusters, t.weightsBefore.back()};
+}
+
+std::vector<float> GlRenderer::readRadiance() const {
+  std::vector<float> out(static_cast<std::size_t>(vertexCount_) * 3);
+  if (out.empty()) return out;
+  glBindBuffer(GL_ARRAY_BUFFER, radianceBuffer_);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return out;
+}
+
+void GlRenderer::capture(GLuint buffer, GLsizei points) {
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, points);
+  glEndTransformFeedback();
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+  glDisable(GL_RASTERIZER_DISCARD);
+}
+
+void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
+  // 1. The cluster table: prt.vert over the K * E entries (albedo 1), all in one pass;
+  // per cluster and weight the lighting's dot product with the step-scaled axis.
+  glUseProgram(prt_.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, t.texture);
+  glUniform1i(prt_.transfer, 0);
+  glUniform1i(prt_.textureWidth, kTransferTextureWidth);
+  glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
+  glUniform1i(prt_.channels, t.channels);
+  glUniform1i(prt_.activeTexels, texelsForOrder(activeOrder));
+  glBindVertexArray(tableVao_);
+  glVertexAttrib3f(1, 1.0f, 1.0f, 1.0f);
+  capture(t.tableBuffer, static_cast<GLsizei>(t.clusters * t.entriesPerCluster));
+  // 2. Into the table texture, GPU to GPU (a pixel-unpack copy, no read-back).
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, t.tableBuffer);
+  glBindTexture(GL_TEXTURE_2D, t.table);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, t.tableHeight, GL_RGB, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  // 3. Per vertex: the cluster's constant plus the weighted sum of the displayed bands' weights.
+  glUseProgram(cpca_.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, t.table);
+  glUniform1i(cpca_.table, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, t.weights);
+  glUniform1i(cpca_.weights, 1);
+  glUniform1i(cpca_.textureWidth, kTransferTextureWidth);
+  glUniform1i(cpca_.entries, t.entriesPerCluster);
+  glUniform1i(cpca_.weightTexels, t.weightTexels);
+  glUniform1i(cpca_.activeTexels, (t.weightsBefore[static_cast<std::size_t>(activeOrder)] + 3) / 4);
+  glUniform1i(cpca_.channels, t.channels);
+  glBindVertexArray(t.vao);
+  capture(radianceBuffer_, vertexCount_);
+  glActiveTexture(GL_TEXTURE0);
+}
+
 void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glViewport(0, 0, width, height);
   glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
@@ -214,29 +351,25 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   }
   const PassTexture& t = passes_[static_cast<std::size_t>(p.mode)];
   if (!t.texture) return;
-  // PRT pass: prt.vert runs once per vertex (points, rasteriser off) and its exit radiance
-  // is captured by transform feedback. Shading every vertex exactly once matters where
-  // vertices are not cached between triangles (software WebGL shades each corner anew).
-  glUseProgram(prt_.id);
-  glUniformMatrix4fv(prt_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, t.texture);
-  glUniform1i(prt_.transfer, 0);
-  glUniform1i(prt_.textureWidth, kTransferTextureWidth);
-  glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
-  glUniform1i(prt_.channels, t.channels);
-  // A pass still streaming holds fewer bands than the asset: shade with what it holds.
-  glUniform1i(prt_.activeTexels, texelsForOrder(std::clamp(std::min(p.displayOrder, t.order), 1, bakedOrder_)));
-  glBindVertexArray(feedbackVao_);
-  glEnable(GL_RASTERIZER_DISCARD);
-  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, radianceBuffer_);
-  glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_POINTS, 0, vertexCount_);
-  glEndTransformFeedback();
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
-  glDisable(GL_RASTERIZER_DISCARD);
+  // PRT pass: prt.vert (or cpca.vert) runs once per vertex (points, rasteriser off) and its
+  // exit radiance is captured by transform feedback. Shading every vertex exactly once
+  // matters where vertices are not cached between triangles (software WebGL shades each
+  // corner anew). A pass still streaming holds fewer bands than the asset: shade with those.
+  const int activeOrder = std::clamp(std::min(p.displayOrder, t.order), 1, bakedOrder_);
+  if (t.cpca) {
+    shadeCpca(t, activeOrder);
+  } else {
+    glUseProgram(prt_.id);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, t.texture);
+    glUniform1i(prt_.transfer, 0);
+    glUniform1i(prt_.textureWidth, kTransferTextureWidth);
+    glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
+    glUniform1i(prt_.channels, t.channels);
+    glUniform1i(prt_.activeTexels, texelsForOrder(activeOrder));
+    glBindVertexArray(feedbackVao_);
+    capture(radianceBuffer_, vertexCount_);
+  }
   // Draw pass with the captured radiance.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

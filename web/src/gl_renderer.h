@@ -6,7 +6,9 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
+#include "cpca_texture.h"
 #include "mat4.h"
 #include "prt/asset.h"
 #include "prt/status.h"
@@ -40,9 +42,20 @@ class GlRenderer {
   // uploaded its mode draws no scene. A pass that does not fit changes nothing.
   Status uploadGeometry(const BakedAsset& asset);
   Status uploadPass(const TransferPass& pass, int order);
+  // Uploads pass `kind` in its CPCA form, rendered straight from the clusters (Sloan 2003;
+  // cpca_texture.h), holding cpca.bands.size() bands; replaces either form of that pass. Like
+  // uploadPass, needs geometry first, and a pass that does not fit changes nothing.
+  Status uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca);
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
   bool hasPass(ShadingMode mode) const;
+  // How pass `mode` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
+  int passForm(ShadingMode mode) const;
+  // CPCA pass `mode`: {clusters, weights per vertex at its bands}; {0, 0} otherwise.
+  std::array<int, 2> cpcaShape(ShadingMode mode) const;
   void draw(int width, int height, const FrameParams& p);
+  // The exit radiance the last PRT frame computed, RGB per vertex (synchronous read-back;
+  // tests and tools only). Empty without geometry.
+  std::vector<float> readRadiance() const;
 
  private:
   struct Program {
@@ -50,21 +63,35 @@ class GlRenderer {
     GLint viewProjection = -1, lightR = -1, lightG = -1, lightB = -1, exposure = -1;
     GLint transfer = -1, textureWidth = -1, texelsPerChannel = -1, channels = -1, activeTexels = -1;
     GLint inverseViewProjection = -1;
+    GLint table = -1, weights = -1, entries = -1, weightTexels = -1;
   };
   struct PassTexture {
-    GLuint texture = 0;
+    GLuint texture = 0;  // the transfer, or for CPCA the cluster entries (both packTransfer layout)
     int channels = 0, texelsPerChannel = 0;
     int order = 0;  // bands held: the baked order, or fewer while streaming
+    // CPCA form (cpca_texture.h): integer weight levels, the per-frame table (captured into
+    // tableBuffer, copied into the table texture), cluster ids as a vertex attribute in vao.
+    bool cpca = false;
+    GLuint weights = 0, table = 0, tableBuffer = 0, clusterIds = 0, vao = 0;
+    int clusters = 0, entriesPerCluster = 0, weightTexels = 0, tableHeight = 0;
+    std::vector<int> weightsBefore;
   };
   // `feedback`: name of a varying to capture with transform feedback, or nullptr.
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks glGetError
-  // Replaces the texture of pass `kind` with `t` (packed at `order`).
+  // Replaces the texture of pass `kind` with `t` (packed at `order`), dropping a CPCA form.
   void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
+  static void releasePass(PassTexture* p);
+  // Runs the bound program once per point over `points` points of the bound VAO, rasteriser
+  // off, capturing its output into `buffer` by transform feedback.
+  void capture(GLuint buffer, GLsizei points);
+  // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
+  void shadeCpca(const PassTexture& t, int activeOrder);
 
-  Program prt_, lambert_, background_, radiance_;
+  Program prt_, lambert_, background_, radiance_, cpca_;
+  GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
   GLuint vao_ = 0, feedbackVao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, radianceBuffer_ = 0;
