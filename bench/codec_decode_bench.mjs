@@ -2,7 +2,8 @@
 // Emscripten, run by Node's V8 as a browser would run it): every blob in a directory
 // (prt-bake compress-report --save-blobs), decoded to floats and, for CPCA, to the form the
 // renderer draws from (decodeCpcaTransfer + packCpca). Prints JSON rows.
-// Usage: node codec_decode_bench.mjs PRT_CORE_NODE_JS BLOB_DIR
+// Usage: node --no-experimental-fetch codec_decode_bench.mjs PRT_CORE_NODE_JS BLOB_DIR
+// (Node 18+ would otherwise fetch() the .wasm by path, which fails.)
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';

@@ -27,17 +27,22 @@ bake_text="prt-bake dragon_vrip_res2 ${bake_args[*]}"
 settings=f32,f16,q16,q8,cpca8@0.03,cpca8@0.02,cpca8@0.01,cpca8@0.005
 rm -f "$work"/blobs/*.prtt
 $bake compress-report "$work/dragon5.prt" --settings "$settings" --json --save-blobs "$work/blobs" > "$work/report.json"
-node bench/codec_decode_bench.mjs build/wasm/web/prt_core_node.js "$work/blobs" > "$work/decode.json"
+node --no-experimental-fetch bench/codec_decode_bench.mjs build/wasm/web/prt_core_node.js "$work/blobs" > "$work/decode.json"
 
-# CPCA rendering: the same bake (deterministic) stored as cpca8@0.02, served to the page.
-[[ -f $root/dragon.prt ]] || $bake "$data/dragon-res2.glb" -o "$root/dragon.prt" "${bake_args[@]}" --compress cpca8@0.02
+# CPCA rendering: the same bake (deterministic) stored with two CPCA settings, served to the page.
+scenes=()
+for setting in cpca8@0.02 cpca8@0.005; do
+  name=dragon-${setting/@/-}
+  scenes+=("$name")
+  [[ -f $root/$name.prt ]] || $bake "$data/dragon-res2.glb" -o "$root/$name.prt" "${bake_args[@]}" --compress "$setting" --name "$name"
+done
 cp -f /usr/share/blender/datafiles/studiolights/world/forest.exr "$root/"
 port=$(node -e 'const s=require("net").createServer().listen(0,"127.0.0.1",()=>{console.log(s.address().port);s.close()})')
 build/native/server/prt-serve --root "$root" --web build/wasm/web/dist --port "$port" --quiet &
 server=$!
 trap 'kill $server 2>/dev/null' EXIT
 for _ in $(seq 100); do curl -sf "http://127.0.0.1:$port/api/scenes" >/dev/null && break; sleep 0.1; done
-node bench/cpca_frame_bench.mjs "http://127.0.0.1:$port" > "$work/frame.json"
+node bench/cpca_frame_bench.mjs "http://127.0.0.1:$port" "${scenes[@]}" > "$work/frame.json"
 
 node bench/codec_report.mjs "$work/report.json" "$work/decode.json" "$work/frame.json" \
   docs/bench/transfer-codec-dragon.json docs/bench/transfer-codec-dragon.md "Stanford dragon res2, order 5, interreflected" "$bake_text"

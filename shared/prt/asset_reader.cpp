@@ -748,26 +748,44 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out) 
   return Status::ok();
 }
 
-Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded) {
-  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetPass: out is null");
-  Parsed p;
-  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
-  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
-  if (Status s = parseTable(file, &p); !s.isOk()) return s;
-  if (pass < 0 || static_cast<std::size_t>(pass) >= p.transfer.size()) {
+namespace {
+
+// Header and table of a progressive buffer, and the table entry of transfer pass `pass`
+// with `bands` (0 = all) in range; `caller` names the function in errors.
+Status locatePass(std::span<const std::uint8_t> file, int pass, int bands, const char* caller, Parsed* p, const Entry** entry) {
+  if (Status s = parseHeader(file, p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, *p); !s.isOk()) return s;
+  if (Status s = parseTable(file, p); !s.isOk()) return s;
+  if (pass < 0 || static_cast<std::size_t>(pass) >= p->transfer.size()) {
     return Status::error(StatusCode::kInvalidArgument,
-                         "decodeAssetPass: pass " + std::to_string(pass) + " of " + std::to_string(p.transfer.size()));
+                         std::string(caller) + ": pass " + std::to_string(pass) + " of " + std::to_string(p->transfer.size()));
   }
-  if (bands < 0 || bands > static_cast<int>(p.order)) {
-    return Status::error(StatusCode::kInvalidArgument, "decodeAssetPass: bands " + std::to_string(bands) +
-                                                           " outside 0.." + std::to_string(p.order));
+  if (bands < 0 || bands > static_cast<int>(p->order)) {
+    return Status::error(StatusCode::kInvalidArgument, std::string(caller) + ": bands " + std::to_string(bands) +
+                                                           " outside 0.." + std::to_string(p->order));
   }
-  const Entry& e = p.entries[static_cast<std::size_t>(p.transfer[static_cast<std::size_t>(pass)])];
-  const auto payload = payloadOf(file, e);
+  *entry = &p->entries[static_cast<std::size_t>(p->transfer[static_cast<std::size_t>(pass)])];
+  return Status::ok();
+}
+
+TransferPass passHeader(const Entry& e) {
   TransferPass t;
   t.kind = static_cast<TransferKind>(e.arg0);
   t.channels = static_cast<int>(e.arg1);
   t.bounces = static_cast<int>(e.arg2);
+  return t;
+}
+
+}  // namespace
+
+Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetPass: out is null");
+  Parsed p;
+  const Entry* entry = nullptr;
+  if (Status s = locatePass(file, pass, bands, "decodeAssetPass", &p, &entry); !s.isOk()) return s;
+  const Entry& e = *entry;
+  const auto payload = payloadOf(file, e);
+  TransferPass t = passHeader(e);
   int decodedBands = static_cast<int>(p.order);
   if (e.type == kTypeEncodedTransfer) {
     // The blob's own header and part checksums protect a prefix; the section checksum
@@ -791,27 +809,14 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
 Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int bands, CpcaTransfer* out, TransferPass* info) {
   if (out == nullptr || info == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetPassCpca: out or info is null");
   Parsed p;
-  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
-  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
-  if (Status s = parseTable(file, &p); !s.isOk()) return s;
-  if (pass < 0 || static_cast<std::size_t>(pass) >= p.transfer.size()) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "decodeAssetPassCpca: pass " + std::to_string(pass) + " of " + std::to_string(p.transfer.size()));
-  }
-  if (bands < 0 || bands > static_cast<int>(p.order)) {
-    return Status::error(StatusCode::kInvalidArgument, "decodeAssetPassCpca: bands " + std::to_string(bands) +
-                                                           " outside 0.." + std::to_string(p.order));
-  }
-  const Entry& e = p.entries[static_cast<std::size_t>(p.transfer[static_cast<std::size_t>(pass)])];
-  if (e.type != kTypeEncodedTransfer) {
-    return Status::error(StatusCode::kInvalidArgument, sectionLabel(e) + " is float32, not CPCA");
+  const Entry* entry = nullptr;
+  if (Status s = locatePass(file, pass, bands, "decodeAssetPassCpca", &p, &entry); !s.isOk()) return s;
+  if (entry->type != kTypeEncodedTransfer) {
+    return Status::error(StatusCode::kInvalidArgument, sectionLabel(*entry) + " is float32, not CPCA");
   }
   CpcaTransfer cpca;
-  if (Status s = checkEncodedTransfer(payloadOf(file, e), e, p, bands, nullptr, nullptr, &cpca); !s.isOk()) return s;
-  *info = TransferPass{};
-  info->kind = static_cast<TransferKind>(e.arg0);
-  info->channels = static_cast<int>(e.arg1);
-  info->bounces = static_cast<int>(e.arg2);
+  if (Status s = checkEncodedTransfer(payloadOf(file, *entry), *entry, p, bands, nullptr, nullptr, &cpca); !s.isOk()) return s;
+  *info = passHeader(*entry);
   *out = std::move(cpca);
   return Status::ok();
 }

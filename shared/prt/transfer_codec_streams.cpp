@@ -147,23 +147,60 @@ double estimateStreamGroupBytes(std::span<const std::int32_t> values, std::size_
   return total;
 }
 
+namespace {
+
+// The low 8*W bits of u, sign-extended.
+template <int W>
+std::int32_t signExtend(std::uint32_t u) {
+  if constexpr (W == 1) return static_cast<std::int8_t>(static_cast<std::uint8_t>(u));
+  if constexpr (W == 2) return static_cast<std::int16_t>(static_cast<std::uint16_t>(u));
+  std::int32_t v;
+  std::memcpy(&v, &u, sizeof v);
+  return v;
+}
+
+// getStream's loop for one width and filter (the decoder's hot path: a branch-free body).
+// Deltas are summed modulo 2^32; only the low 8*W bits matter to the wrap, so this equals
+// wrapToWidth(previous + e, W) at every step.
+template <int W, bool Delta>
+void readStream(const std::uint8_t* planes, std::size_t streams, std::size_t count, std::size_t stream, std::int32_t* out) {
+  const std::uint8_t* plane[W];
+  for (int p = 0; p < W; ++p) plane[p] = planes + (static_cast<std::size_t>(p) * streams + stream) * count;
+  std::uint32_t previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t code = 0;
+    for (int p = 0; p < W; ++p) code = (code << 8) | plane[p][i];
+    std::uint32_t u = static_cast<std::uint32_t>(unzigzag(code));
+    if constexpr (Delta) u += previous;
+    previous = u;
+    out[i] = signExtend<W>(u);
+  }
+}
+
+template <int W>
+void readStream(bool delta, const std::uint8_t* planes, std::size_t streams, std::size_t count, std::size_t stream,
+                std::int32_t* out) {
+  if (delta) {
+    readStream<W, true>(planes, streams, count, stream, out);
+  } else {
+    readStream<W, false>(planes, streams, count, stream, out);
+  }
+}
+
+}  // namespace
+
 bool getStream(const std::uint8_t* group, std::size_t streams, std::size_t count, int width, std::size_t stream,
                std::span<std::int32_t> out) {
   const std::uint8_t filter = group[stream];
-  if (filter > static_cast<std::uint8_t>(StreamFilter::kDelta)) return false;
+  if (filter > static_cast<std::uint8_t>(StreamFilter::kDelta) || out.size() < count) return false;
+  const bool delta = filter == static_cast<std::uint8_t>(StreamFilter::kDelta);
   const std::uint8_t* planes = group + streams;
-  std::int64_t previous = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t code = 0;
-    for (int p = 0; p < width; ++p) {
-      code = (code << 8) | planes[(static_cast<std::size_t>(p) * streams + stream) * count + i];
-    }
-    const std::int32_t e = unzigzag(code);
-    const std::int32_t v = filter == 1 ? wrapToWidth(previous + e, width) : e;
-    out[i] = v;
-    previous = v;
+  switch (width) {
+    case 1: readStream<1>(delta, planes, streams, count, stream, out.data()); return true;
+    case 2: readStream<2>(delta, planes, streams, count, stream, out.data()); return true;
+    case 4: readStream<4>(delta, planes, streams, count, stream, out.data()); return true;
+    default: return false;
   }
-  return true;
 }
 
 }  // namespace prt::transfer_codec

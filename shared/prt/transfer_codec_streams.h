@@ -59,7 +59,8 @@ double estimateStreamGroupBytes(std::span<const std::int32_t> values, std::size_
 
 // Reads stream `stream` of a group laid out by putStreamGroup at `group` (already bounds
 // checked: streamGroupBytes(streams, count, width) bytes) into `out` (count values,
-// sign-extended). Returns false when the stream's filter byte is not a known filter.
+// sign-extended). Returns false when the stream's filter byte is not a known filter (or, a
+// caller error, when out is shorter than count or width is not 1, 2 or 4).
 bool getStream(const std::uint8_t* group, std::size_t streams, std::size_t count, int width, std::size_t stream,
                std::span<std::int32_t> out);
 

@@ -286,9 +286,7 @@ void GlRenderer::capture(GLuint buffer, GLsizei points) {
   glDisable(GL_RASTERIZER_DISCARD);
 }
 
-void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
-  // 1. The cluster table: prt.vert over the K * E entries (albedo 1), all in one pass;
-  // per cluster and weight the lighting's dot product with the step-scaled axis.
+void GlRenderer::usePrtProgram(const PassTexture& t, int activeOrder) {
   glUseProgram(prt_.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, t.texture);
@@ -297,6 +295,12 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
   glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
   glUniform1i(prt_.channels, t.channels);
   glUniform1i(prt_.activeTexels, texelsForOrder(activeOrder));
+}
+
+void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
+  // 1. The cluster table: prt.vert over the K * E entries (albedo 1), all in one pass;
+  // per cluster and weight the lighting's dot product with the step-scaled axis.
+  usePrtProgram(t, activeOrder);
   glBindVertexArray(tableVao_);
   glVertexAttrib3f(1, 1.0f, 1.0f, 1.0f);
   capture(t.tableBuffer, static_cast<GLsizei>(t.clusters * t.entriesPerCluster));
@@ -359,14 +363,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   if (t.cpca) {
     shadeCpca(t, activeOrder);
   } else {
-    glUseProgram(prt_.id);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, t.texture);
-    glUniform1i(prt_.transfer, 0);
-    glUniform1i(prt_.textureWidth, kTransferTextureWidth);
-    glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
-    glUniform1i(prt_.channels, t.channels);
-    glUniform1i(prt_.activeTexels, texelsForOrder(activeOrder));
+    usePrtProgram(t, activeOrder);
     glBindVertexArray(feedbackVao_);
     capture(radianceBuffer_, vertexCount_);
   }

@@ -87,6 +87,8 @@ class GlRenderer {
   // Runs the bound program once per point over `points` points of the bound VAO, rasteriser
   // off, capturing its output into `buffer` by transform feedback.
   void capture(GLuint buffer, GLsizei points);
+  // prt.vert in use over pass texture `t` (transfer or CPCA entries), shading `activeOrder` bands.
+  void usePrtProgram(const PassTexture& t, int activeOrder);
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
