@@ -111,6 +111,15 @@ const hook = {
     }
     return (performance.now() - t0) / n;
   },
+  // Benchmark: the per-vertex PRT pass alone (no drawing), n times back to back, ended by a
+  // 1-vertex read-back of its output; mean milliseconds per pass. NaN in Lambert mode.
+  timeShading(n) {
+    if (!app || !hook.ready) return NaN;
+    const t0 = performance.now();
+    for (let i = 0; i < n; i++) if (!app.shadeVertices()) return NaN;
+    app.finishShading();
+    return (performance.now() - t0) / n;
+  },
   // Benchmark: n samples, each the mean milliseconds of `batch` light updates back to back
   // (light cube render + SH projection). Each update ends by reading its result back
   // (cubeSH: 48 floats from the GPU on the GPU path), so its GPU work is inside the sample:
@@ -130,6 +139,20 @@ const hook = {
       samples.push((performance.now() - t0) / batch);
     }
     return samples;
+  },
+  // Reloads the current scene with CPCA passes drawn 'direct' (from their clusters) or
+  // 'expanded' (to plain transfer on load), like the panel's "CPCA rendering"; resolves once
+  // every pass has all its bands.
+  async setCpca(form) {
+    if (form !== 'direct' && form !== 'expanded') throw new Error(`setCpca: expected 'direct' or 'expanded', got ${JSON.stringify(form)}`);
+    if (!app || !hook.ready) throw new Error('setCpca: no scene is loaded yet');
+    state.cpca = form;
+    if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    await loadScene(state.scene);
+    while (!hook.error && app.streamBuffer() !== null) {  // freed once every part is applied
+      await new Promise((r) => setTimeout(r, 50));
+    }
+    if (hook.error) throw new Error(hook.error);
   },
   // Changes settings (docs/web-client.md); returns the current frame count. Every value is
   // checked first: on a bad one it throws an Error naming it and changes nothing.

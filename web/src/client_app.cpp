@@ -251,6 +251,22 @@ void ClientApp::render(int width, int height) {
   lights_.drawEmitters(viewProjection_, eye_, exposure_);
 }
 
+void ClientApp::finishShading() const {
+  if (!ok()) return;
+  makeCurrent();
+  (void)renderer_.readRadiance(1);
+}
+
+bool ClientApp::shadeVertices() {
+  if (!ok()) return false;
+  makeCurrent();
+  updateLighting();
+  static const float kNoEnvironment[3 * 64] = {};
+  syncLightView();
+  lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);  // binds the lighting block
+  return renderer_.shade(mode_, displayOrder_);
+}
+
 std::string ClientApp::setLights(const std::vector<float>& flat) {
   if (!ok()) return error_;
   return lights_.setLights(flat);
@@ -320,7 +336,7 @@ std::vector<float> ClientApp::project(float x, float y, float z) const {
 std::vector<float> ClientApp::vertexRadiance() const {
   if (!ok()) return {};
   makeCurrent();
-  return renderer_.readRadiance();
+  return renderer_.readRadiance(asset_.positions.size());
 }
 
 std::vector<float> ClientApp::lightSH() {

@@ -118,6 +118,10 @@ class ClientApp {
   // Re-renders and re-projects the light cube now, without drawing (benchmarks).
   void projectLightsNow();
   void finishGpu();  // waits until the GPU has done all queued work (benchmarks)
+  // Benchmarks: the per-vertex PRT pass of the current mode alone, as render() runs it
+  // (lighting updated first), without drawing; false when the mode has no pass.
+  bool shadeVertices();
+  void finishShading() const;  // waits for the PRT passes queued so far (a 1-vertex read-back)
   std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
   const std::string& projectionError() const { return lights_.projectionError(); }
   // World-space ray through NDC point (x, y) of the last frame: {origin (the eye), unit dir}.

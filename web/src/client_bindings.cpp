@@ -125,6 +125,8 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("cubeSH", &cubeSH)
       .function("projectLightsNow", &ClientApp::projectLightsNow)
       .function("finishGpu", &ClientApp::finishGpu)
+      .function("shadeVertices", &ClientApp::shadeVertices)
+      .function("finishShading", &ClientApp::finishShading)
       .function("weightTableBytes", &weightTableBytes)
       .function("projectionError", &ClientApp::projectionError)
       .function("rayFromScreen", &rayFromScreen);

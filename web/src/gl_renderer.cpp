@@ -265,8 +265,8 @@ std::array<int, 2> GlRenderer::cpcaShape(ShadingMode mode) const {
   return {t.clusters, t.weightsBefore.back()};
 }
 
-std::vector<float> GlRenderer::readRadiance() const {
-  std::vector<float> out(static_cast<std::size_t>(vertexCount_) * 3);
+std::vector<float> GlRenderer::readRadiance(std::size_t vertices) const {
+  std::vector<float> out(std::min(vertices, static_cast<std::size_t>(vertexCount_)) * 3);
   if (out.empty()) return out;
   glBindBuffer(GL_ARRAY_BUFFER, radianceBuffer_);
   glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
@@ -327,6 +327,25 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
   glActiveTexture(GL_TEXTURE0);
 }
 
+bool GlRenderer::shade(ShadingMode mode, int displayOrder) {
+  if (mode == ShadingMode::kLambert || indexCount_ == 0) return false;
+  const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
+  if (!t.texture) return false;
+  // PRT pass: prt.vert (or cpca.vert) runs once per vertex (points, rasteriser off) and its
+  // exit radiance is captured by transform feedback. Shading every vertex exactly once
+  // matters where vertices are not cached between triangles (software WebGL shades each
+  // corner anew). A pass still streaming holds fewer bands than the asset: shade with those.
+  const int activeOrder = std::clamp(std::min(displayOrder, t.order), 1, bakedOrder_);
+  if (t.cpca) {
+    shadeCpca(t, activeOrder);
+  } else {
+    usePrtProgram(t, activeOrder);
+    glBindVertexArray(feedbackVao_);
+    capture(radianceBuffer_, vertexCount_);
+  }
+  return true;
+}
+
 void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glViewport(0, 0, width, height);
   glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
@@ -353,20 +372,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
   }
-  const PassTexture& t = passes_[static_cast<std::size_t>(p.mode)];
-  if (!t.texture) return;
-  // PRT pass: prt.vert (or cpca.vert) runs once per vertex (points, rasteriser off) and its
-  // exit radiance is captured by transform feedback. Shading every vertex exactly once
-  // matters where vertices are not cached between triangles (software WebGL shades each
-  // corner anew). A pass still streaming holds fewer bands than the asset: shade with those.
-  const int activeOrder = std::clamp(std::min(p.displayOrder, t.order), 1, bakedOrder_);
-  if (t.cpca) {
-    shadeCpca(t, activeOrder);
-  } else {
-    usePrtProgram(t, activeOrder);
-    glBindVertexArray(feedbackVao_);
-    capture(radianceBuffer_, vertexCount_);
-  }
+  if (!shade(p.mode, p.displayOrder)) return;
   // Draw pass with the captured radiance.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

@@ -53,9 +53,13 @@ class GlRenderer {
   // CPCA pass `mode`: {clusters, weights per vertex at its bands}; {0, 0} otherwise.
   std::array<int, 2> cpcaShape(ShadingMode mode) const;
   void draw(int width, int height, const FrameParams& p);
-  // The exit radiance the last PRT frame computed, RGB per vertex (synchronous read-back;
-  // tests and tools only). Empty without geometry.
-  std::vector<float> readRadiance() const;
+  // The PRT vertex pass alone (exit radiance of every vertex into the radiance buffer, with
+  // the bound lighting block), as draw runs it; false when `mode` has no pass (or is Lambert).
+  bool shade(ShadingMode mode, int displayOrder);
+  // The exit radiance the last PRT frame computed, RGB per vertex, of the first `vertices`
+  // (at most all; synchronous read-back, so it also waits for the PRT pass: tests and
+  // benchmarks only). Empty without geometry.
+  std::vector<float> readRadiance(std::size_t vertices) const;
 
  private:
   struct Program {
