@@ -224,11 +224,7 @@ void ClientApp::syncLightView() {
 void ClientApp::render(int width, int height) {
   if (!ok() || width <= 0 || height <= 0) return;
   makeCurrent();
-  updateLighting();  // the shared SH rotation, every frame
-  static const float kNoEnvironment[3 * 64] = {};
-  const float* environment = environmentEnabled_ ? packed_ : kNoEnvironment;
-  syncLightView();
-  lights_.update(environment, displayOrder_);  // re-projects the light cube only when dirty
+  prepareLighting();
   eye_ = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
                         std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
   float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
@@ -257,13 +253,18 @@ void ClientApp::finishShading() const {
   (void)renderer_.readRadiance(1);
 }
 
+void ClientApp::prepareLighting() {
+  updateLighting();  // the shared SH rotation, every frame
+  static const float kNoEnvironment[3 * 64] = {};
+  syncLightView();
+  // Re-projects the light cube only when dirty; leaves the lighting block bound.
+  lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);
+}
+
 bool ClientApp::shadeVertices() {
   if (!ok()) return false;
   makeCurrent();
-  updateLighting();
-  static const float kNoEnvironment[3 * 64] = {};
-  syncLightView();
-  lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);  // binds the lighting block
+  prepareLighting();
   return renderer_.shade(mode_, displayOrder_);
 }
 

@@ -137,6 +137,7 @@ class ClientApp {
  private:
   bool ok() const { return error_.empty(); }
   void updateLighting();
+  void prepareLighting();  // updateLighting, the light cube and the lighting block, as a frame needs them
   void makeCurrent() const;
   void syncLightView();  // light-cube centre, near plane and order from the scene
   void adoptGeometry(BakedAsset decoded);  // bounds, order, mode, framing of a new scene
