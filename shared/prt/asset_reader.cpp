@@ -423,6 +423,20 @@ Status checkFloats(std::span<const std::uint8_t> payload, const Entry& e) {
   return Status::ok();
 }
 
+// Raw transfer: finite and within kMaxTransferMagnitude, as every encoded form must be.
+Status checkTransferFloats(std::span<const std::uint8_t> payload, const Entry& e) {
+  if (Status s = checkFloats(payload, e); !s.isOk()) return s;
+  const std::size_t count = payload.size() / 4;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float x = floatFromBits(getU32(payload.data() + 4 * i));
+    if (x > kMaxTransferMagnitude || x < -kMaxTransferMagnitude) {
+      return corrupt(sectionLabel(e) + ": value " + num(i) + " is " + std::to_string(x) +
+                     ", beyond the transfer range (65504)");
+    }
+  }
+  return Status::ok();
+}
+
 Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::uint32_t vertexCount) {
   const std::size_t count = payload.size() / 4;
   const std::uint8_t* b = payload.data();
@@ -487,8 +501,8 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
     switch (e.type) {
       case kTypePositions:
       case kTypeNormals:
-      case kTypeAlbedo:
-      case kTypeTransfer: s = checkFloats(payload, e); break;
+      case kTypeAlbedo: s = checkFloats(payload, e); break;
+      case kTypeTransfer: s = checkTransferFloats(payload, e); break;
       case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
       case kTypeMetadata: s = parseMetadata(payload, e, m); break;
       case kTypeLighting: s = parseLighting(payload, e, &m->lighting); break;
@@ -797,7 +811,7 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
       return Status::error(StatusCode::kInvalidArgument, sectionLabel(e) + " is float32: only all bands decode");
     }
     if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
-    if (Status s = checkFloats(payload, e); !s.isOk()) return s;
+    if (Status s = checkTransferFloats(payload, e); !s.isOk()) return s;
     t.coeffs.resize(static_cast<std::size_t>(e.size / 4));
     readFloats(payload, t.coeffs.data());
   }

@@ -177,6 +177,10 @@ Status checkAsset(const BakedAsset& asset) {
       if (!std::isfinite(pass.coeffs[i])) {
         return Status::error(StatusCode::kNotFinite, named + " coefficient " + std::to_string(i) + " is not finite");
       }
+      if (std::fabs(pass.coeffs[i]) > kMaxTransferMagnitude) {
+        return Status::error(StatusCode::kInvalidArgument, named + " coefficient " + std::to_string(i) + " is " +
+                                                               std::to_string(pass.coeffs[i]) + ", beyond the transfer range (65504)");
+      }
     }
   }
   if (!isValidAssetName(asset.name)) {

@@ -71,10 +71,20 @@ struct TransferEncodeReport {
   int candidatesTried = 0;          // CPCA: (cluster count, parameters) candidates evaluated
 };
 
+// Largest magnitude of any transfer value an asset may hold, in every encoding (raw float32
+// included): readers reject a pass that decodes, or could reconstruct, beyond it, so a
+// damaged or hostile file cannot make exit radiance overflow to infinity. Physical transfer
+// stays far below: |y_i| <= sqrt((2l+1)/4pi) <= 1.6 for l < 16, a cosine-weighted integral
+// of it over a hemisphere is at most that, each bounce (albedo <= 1) adds at most as much
+// again, and the paper's local weighting multiplies by at most 20 (docs/spatially-varying.md):
+// 1.6 x 20 x (1 + 1024 bounces) < 33,000. It equals float16's largest value, so float16
+// passes need no check of their own.
+inline constexpr float kMaxTransferMagnitude = 65504.0f;
+
 // Encodes `transfer` (vertexCount * channels * order^2 floats, [vertex][channel][coefficient],
 // coefficient index l(l+1)+m) into *out (replaced). order 1..16, channels 1 or 3, 1 ..
-// kMaxTransferVertices vertices, every value finite (float16: |x| <= 65504). `report` may
-// be null. Errors: kInvalidArgument (bad order, channels, settings, float16 overflow, a
+// kMaxTransferVertices vertices, every value finite and |x| <= kMaxTransferMagnitude. `report`
+// may be null. Errors: kInvalidArgument (bad order, channels, settings, |x| too large, a
 // CPCA target that the weight precision cannot reach), kSizeMismatch, kNotFinite.
 Status encodeTransfer(std::span<const float> transfer, int order, int channels, const TransferCodecSettings& settings,
                       std::vector<std::uint8_t>* out, TransferEncodeReport* report = nullptr);

@@ -1,5 +1,6 @@
 // decodeCpcaTransfer and cpcaReconstruct (prt/transfer_codec.h): the CPCA parts as the
 // renderer uses them, and their expansion to plain transfer.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -71,8 +72,9 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
   out->means.resize(K * D);
   for (std::size_t i = 0; i < K * D; ++i, p += 4) {
     out->means[i] = getF32(p);
-    if (!std::isfinite(out->means[i])) {
-      return corrupt(name + ": mean of cluster " + std::to_string(i / D) + ", dimension " + std::to_string(i % D) + " is not finite");
+    if (!(std::fabs(out->means[i]) <= kMaxTransferMagnitude)) {  // NaN fails too
+      return corrupt(name + ": mean of cluster " + std::to_string(i / D) + ", dimension " + std::to_string(i % D) +
+                     " is not finite or beyond the transfer range (65504)");
     }
   }
   out->basis.resize(K * N * D);
@@ -87,6 +89,7 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
   out->weights.resize(V * N);
   out->levels.resize(V * N);
   std::vector<std::int32_t> levelsOf(V);
+  std::vector<std::int32_t> largestLevel(K * N, 0);  // per cluster and vector: max |level| used
   for (std::size_t j = 0; j < N; ++j) {
     if (!getStream(p, N, V, weightBytes, j, levelsOf)) {
       return corrupt(name + ": weight " + std::to_string(j) + " has an unknown filter " + std::to_string(p[j]));
@@ -99,6 +102,24 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
       }
       out->weights[v * N + j] = static_cast<float>(q) * steps[clusterOf[v]];
       out->levels[v * N + j] = static_cast<std::int16_t>(q);  // |q| <= 32767: checked above
+      std::int32_t& largest = largestLevel[clusterOf[v] * N + j];
+      largest = std::max(largest, q < 0 ? -q : q);
+    }
+  }
+  // Every value a vertex of cluster k reconstructs, in any renderer's order of summation, is
+  // within |mean| + sum_j step |level_j| max|basis_j|: bounding that per cluster keeps the
+  // decoded transfer inside kMaxTransferMagnitude without reconstructing it.
+  for (std::size_t k = 0; k < K; ++k) {
+    double bound = 0.0;
+    for (std::size_t d = 0; d < D; ++d) bound = std::max(bound, std::fabs(static_cast<double>(out->means[k * D + d])));
+    for (std::size_t j = 0; j < N; ++j) {
+      double basisMax = 0.0;
+      for (std::size_t d = 0; d < D; ++d) basisMax = std::max(basisMax, std::fabs(static_cast<double>(out->basis[(k * N + j) * D + d])));
+      bound += static_cast<double>(steps[k]) * largestLevel[k * N + j] * basisMax;
+    }
+    if (bound > kMaxTransferMagnitudeRounded) {
+      return corrupt(name + ": cluster " + std::to_string(k) + " can reconstruct values up to " + std::to_string(bound) +
+                     ", beyond the transfer range (65504)");
     }
   }
   out->steps = std::move(steps);

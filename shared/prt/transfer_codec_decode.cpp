@@ -67,6 +67,10 @@ Status decodeBand(std::span<const std::uint8_t> bytes, const TransferBlobInfo& i
         if (!std::isfinite(x)) {
           return Status::error(StatusCode::kCorrupt, what + ", vertex " + std::to_string(v) + ": not a finite float32");
         }
+        if (std::fabs(x) > kMaxTransferMagnitude) {
+          return Status::error(StatusCode::kCorrupt, what + ", vertex " + std::to_string(v) + ": " + std::to_string(x) +
+                                                         " is beyond the transfer range (65504)");
+        }
       }
       out[(v * static_cast<std::size_t>(C) + c) * b2 + first + m] = x;
     }

@@ -32,8 +32,12 @@ Status checkPartCrc(std::span<const std::uint8_t> bytes, std::size_t index, cons
 }
 
 Status checkStep(float step, int levels, const std::string& what) {
-  if (!std::isfinite(step) || step < 0.0f || !std::isfinite(step * static_cast<float>(levels))) {
+  if (!std::isfinite(step) || step < 0.0f) {
     return Status::error(StatusCode::kCorrupt, what + " is " + std::to_string(step) + " (expected a finite step >= 0)");
+  }
+  if (static_cast<double>(step) * levels > kMaxTransferMagnitudeRounded) {
+    return Status::error(StatusCode::kCorrupt, what + " is " + std::to_string(step) + ": its " + std::to_string(levels) +
+                                                   " levels reach beyond the transfer range (65504)");
   }
   return Status::ok();
 }

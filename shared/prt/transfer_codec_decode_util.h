@@ -19,7 +19,12 @@ Status checkBandRequest(const TransferBlobInfo& info, int bands);
 // kChecksumMismatch unless the part's bytes have its CRC-32C (bounds already validated).
 Status checkPartCrc(std::span<const std::uint8_t> bytes, std::size_t index, const TransferPartInfo& part);
 
-// kCorrupt unless `step` is finite, >= 0 and step * levels is finite; `what` names it.
+// kMaxTransferMagnitude with room for the rounding of a step (max|x| / levels, as a float)
+// and of the sums a reconstruction makes.
+inline constexpr double kMaxTransferMagnitudeRounded = kMaxTransferMagnitude * (1.0 + 1e-5);
+
+// kCorrupt unless `step` is finite, >= 0 and step * levels stays within the transfer range
+// (kMaxTransferMagnitudeRounded); `what` names it.
 Status checkStep(float step, int levels, const std::string& what);
 
 }  // namespace prt::transfer_codec

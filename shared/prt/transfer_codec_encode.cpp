@@ -17,9 +17,6 @@ namespace {
 
 using namespace transfer_codec;  // NOLINT: the codec's own internals
 
-// CPCA's sums of squares stay far from overflow below this magnitude.
-constexpr double kMaxCpcaValue = 1e18;
-
 Status invalid(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
 
 std::string where(std::size_t index, int channels, int n2) {
@@ -61,13 +58,9 @@ Status checkInput(std::span<const float> transfer, int order, int channels, cons
   for (std::size_t i = 0; i < transfer.size(); ++i) {
     const float x = transfer[i];
     if (!std::isfinite(x)) return Status::error(StatusCode::kNotFinite, "transfer value at " + where(i, channels, n2) + " is not finite");
-    if (s.encoding == TransferEncoding::kFloat16 && std::fabs(x) > kMaxHalf) {
-      // Values up to 65519.99 would round down to 65504, but such transfer is a bug upstream.
+    if (std::fabs(x) > kMaxTransferMagnitude) {
       return invalid("transfer value " + std::to_string(x) + " at " + where(i, channels, n2) +
-                     " is beyond the float16 range (65504)");
-    }
-    if (s.encoding == TransferEncoding::kCpca && std::fabs(x) > kMaxCpcaValue) {
-      return invalid("transfer value " + std::to_string(x) + " at " + where(i, channels, n2) + " is beyond CPCA's range (1e18)");
+                     " is beyond the largest an asset may hold (65504, kMaxTransferMagnitude)");
     }
   }
   return Status::ok();
@@ -131,6 +124,13 @@ Status encodeTransfer(std::span<const float> transfer, int order, int channels, 
   if (settings.encoding == TransferEncoding::kCpca) {
     TransferEncodeReport r;
     if (Status s = encodeCpca(transfer, order, channels, settings, out, &r); !s.isOk()) return s;
+    // The reader bounds what a cluster can reconstruct (kMaxTransferMagnitude); transfer
+    // within the range can still exceed that bound through its principal vectors.
+    CpcaTransfer check;
+    if (Status s = decodeCpcaTransfer(*out, order, &check); !s.isOk()) {
+      out->clear();
+      return invalid("the transfer cannot be stored as CPCA within the transfer range: " + s.message());
+    }
     if (report) *report = std::move(r);
     return Status::ok();
   }
@@ -143,11 +143,12 @@ Status encodeTransfer(std::span<const float> transfer, int order, int channels, 
   for (int l = 0; l < order; ++l) parts.push_back(bandPart(transfer, order, channels, l, settings.encoding));
   std::vector<std::uint8_t> blob;
   assembleBlob(header, parts, &blob);
+  // Always decoded once: the encoder never writes what the reader would reject.
+  std::vector<float> decoded(transfer.size());
+  if (Status s = decodeTransfer(blob, order, decoded); !s.isOk()) {
+    return invalid("the encoded transfer does not decode: " + s.toString());
+  }
   if (report) {
-    std::vector<float> decoded(transfer.size());
-    if (Status s = decodeTransfer(blob, order, decoded); !s.isOk()) {
-      return invalid("internal error: the encoded blob does not decode: " + s.toString());
-    }
     double sum = 0.0, energy = 0.0, maxAbs = 0.0;
     for (std::size_t i = 0; i < transfer.size(); ++i) {
       const double e = static_cast<double>(decoded[i]) - transfer[i];

@@ -7,6 +7,7 @@
 // `reseal` recomputes every checksum after a deliberate edit, so the reader's semantic
 // checks are reached rather than stopped at the checksum.
 #include "prt/asset.h"
+#include "prt/transfer_codec.h"
 
 #include <gtest/gtest.h>
 
@@ -163,7 +164,7 @@ Bytes build(const RawAsset& r) {
 float nextValue(Pcg32& rng) { return (rng.nextFloat() - 0.5f) * 4.0f; }
 
 // A small closed mesh-like asset with every field populated. Awkward float values (negative
-// zero, denormals, the largest finite float) check that the round trip is bit-exact.
+// zero, denormals, the largest finite float, the largest transfer value) check that the round trip is bit-exact.
 BakedAsset makeAsset(int order, std::size_t vertexCount, std::size_t triangleCount, bool allPasses = true) {
   Pcg32 rng(static_cast<std::uint64_t>(order) * 1000 + vertexCount);
   BakedAsset a;
@@ -189,7 +190,8 @@ BakedAsset makeAsset(int order, std::size_t vertexCount, std::size_t triangleCou
   }
   a.positions[0].x = -0.0f;
   a.albedo[0].g = 1e-40f;  // denormal
-  a.passes[0].coeffs[0] = std::numeric_limits<float>::max();
+  a.positions[1].y = std::numeric_limits<float>::max();
+  a.passes[0].coeffs[0] = -kMaxTransferMagnitude;  // transfer's own limit (transfer_codec.h)
   a.passes[0].coeffs.back() = -std::numeric_limits<float>::denorm_min();
   a.samples = 0x1234567890ULL;  // above 32 bits on purpose
   a.seed = 0xFEDCBA9876543210ULL;

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "prt/asset.h"
 #include "prt/checksum.h"
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
@@ -441,7 +442,7 @@ TEST(TransferCodec, Float32IsBitExact) {
   std::vector<float> t = makeTransfer(300, 4, 3, 1);
   t[0] = -0.0f;
   t[1] = 1e-40f;  // subnormal
-  t[2] = -3e38f;
+  t[2] = -kMaxTransferMagnitude;  // the largest magnitude the format holds
   t[3] = std::numeric_limits<float>::min();
   const std::vector<float> back = decodeAll(encode(t, 4, 3, setting("f32")), 4);
   ASSERT_EQ(back.size(), t.size());
@@ -876,6 +877,8 @@ TEST(TransferCodec, CraftedContentErrorsAreNamed) {
   expectRejected(cpca, [&](Bytes& b) { wr32(b, band1 + 4, bitsOf(-2.0f)); }, StatusCode::kCorrupt, "weight step of cluster 0");
   expectRejected(cpca, [&](Bytes& b) { wr32(b, band1 + 4 + 4 * K, bitsOf(std::numeric_limits<float>::infinity())); },
                  StatusCode::kCorrupt, "mean of cluster 0, dimension 0 is not finite");
+  expectRejected(cpca, [&](Bytes& b) { wr32(b, band1 + 4 + 4 * K, bitsOf(1e30f)); }, StatusCode::kCorrupt,
+                 "mean of cluster 0, dimension 0 is not finite or beyond the transfer range");
   if (rd32(cpca, band1) > 0) {
     expectRejected(cpca, [&](Bytes& b) { wr16(b, band1 + 4 + 4 * K + 36 * K, 0x7e00); }, StatusCode::kCorrupt,
                    "principal vector 0 of cluster 0 is not finite");
@@ -883,6 +886,59 @@ TEST(TransferCodec, CraftedContentErrorsAreNamed) {
 
   CpcaTransfer out;
   EXPECT_EQ(decodeCpcaTransfer(q8, 2, &out).code(), StatusCode::kInvalidArgument);
+}
+
+// Finite values that overflow once reconstructed (a huge step times its levels, or a huge
+// mean) are rejected by every reader, not left to turn exit radiance into infinity.
+TEST(TransferCodec, OverflowingCpcaIsRejectedByEveryReader) {
+  const std::vector<float> t = makeTransfer(30, 2, 3, 23);
+  const Bytes cpca = encode(t, 2, 3, setting("cpca8@0.05"));
+  const std::size_t band1 = partOffset(cpca, 2), K = rd32(cpca, kHdrClusters);
+  ASSERT_GT(rd32(cpca, band1), 0u) << "band 1 needs a principal vector for this test";
+  for (float step : {1e30f, 1e10f, 2000.0f}) {  // 2000 x 127 levels: finite, beyond 65504
+    Bytes bad = cpca;
+    for (std::size_t k = 0; k < K; ++k) wr32(bad, band1 + 4 + 4 * k, bitsOf(step));
+    reseal(bad);
+    std::vector<float> out;
+    Status s = decodeTransfer(bad, 2, &out);
+    EXPECT_EQ(s.code(), StatusCode::kCorrupt) << step;
+    EXPECT_NE(s.message().find("beyond the transfer range"), std::string::npos) << s.message();
+    CpcaTransfer direct;  // the renderer's path, which never reconstructs
+    s = decodeCpcaTransfer(bad, 2, &direct);
+    EXPECT_EQ(s.code(), StatusCode::kCorrupt) << step;
+    EXPECT_NE(s.message().find("beyond the transfer range"), std::string::npos) << s.message();
+
+    // In an asset: the writer copies the blob (it checks only its shape), the reader refuses it.
+    BakedAsset a;
+    a.shOrder = 2;
+    for (int v = 0; v < 30; ++v) {
+      a.positions.push_back({static_cast<float>(v), 0, 0});
+      a.normals.push_back({0, 1, 0});
+      a.albedo.push_back({0.5f, 0.5f, 0.5f});
+    }
+    a.indices = {0, 1, 2};
+    a.sampling = "hammersley";
+    a.passes.push_back({TransferKind::kInterreflected, 3, 1, t, bad});
+    Bytes file;
+    ASSERT_TRUE(encodeAsset(a, &file).isOk());
+    EXPECT_EQ(verifyAsset(file, nullptr).code(), StatusCode::kCorrupt);
+    BakedAsset decoded;
+    EXPECT_EQ(decodeAsset(file, &decoded).code(), StatusCode::kCorrupt);
+  }
+  // Raw float32 transfer beyond the range is refused when written and when read.
+  BakedAsset a;
+  a.shOrder = 1;
+  a.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  a.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  a.albedo = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+  a.indices = {0, 1, 2};
+  a.sampling = "hammersley";
+  a.passes.push_back({TransferKind::kShadowed, 1, 0, {1.0f, 2.0f, 65504.0f}, {}});
+  Bytes file;
+  ASSERT_TRUE(encodeAsset(a, &file).isOk());
+  ASSERT_TRUE(verifyAsset(file, nullptr).isOk());
+  a.passes[0].coeffs[2] = 1e30f;
+  EXPECT_EQ(encodeAsset(a, &file).code(), StatusCode::kInvalidArgument);
 }
 
 TEST(TransferCodec, DecoderArgumentsAreChecked) {
@@ -931,11 +987,15 @@ TEST(TransferCodec, EncoderInputIsChecked) {
   EXPECT_EQ(s.code(), StatusCode::kNotFinite);
   EXPECT_NE(s.message().find("vertex 0, channel 1, coefficient 3"), std::string::npos) << s.message();
   bad = t;
-  bad[13] = 70000.0f;
-  s = encodeTransfer(bad, 2, 3, setting("f16"), &out);
-  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(s.message().find("float16 range"), std::string::npos) << s.message();
+  bad[13] = 70000.0f;  // beyond kMaxTransferMagnitude, in every encoding
+  for (const char* name : kAllSettings) {
+    s = encodeTransfer(bad, 2, 3, setting(name), &out);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument) << name;
+    EXPECT_NE(s.message().find("(65504, kMaxTransferMagnitude)"), std::string::npos) << s.message();
+  }
+  bad[13] = 65504.0f;
   EXPECT_TRUE(encodeTransfer(bad, 2, 3, setting("q8"), &out).isOk());
+  EXPECT_TRUE(encodeTransfer(bad, 2, 3, setting("f16"), &out).isOk());
   TransferCodecSettings c = setting("cpca8");
   c.cpcaWeightBits = 12;
   EXPECT_EQ(encodeTransfer(t, 2, 3, c, &out).code(), StatusCode::kInvalidArgument);
