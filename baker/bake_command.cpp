@@ -303,6 +303,10 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   }
   BakeCli c;
   if (Status s = parseBakeArgs(args, &c); !s.isOk()) return fail(err, kExitUsageError, s.message());
+  std::vector<std::string> inputs;
+  if (!c.scene.empty()) inputs.push_back(c.scene);
+  // Before the bake, not after it: a bad -o must not cost the user a long bake.
+  if (Status s = checkOutputPath(c.output, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
 
   const auto t0 = std::chrono::steady_clock::now();
   bake::Scene scene;
@@ -352,7 +356,7 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     }
     if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return fail(err, kExitInputError, "cannot encode asset: " + s.message());
   }
-  if (Status s = writeFileAtomically(c.output, bytes); !s.isOk()) return fail(err, kExitInputError, s.message());
+  if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!c.quiet) {
     std::fprintf(err, "prt-bake: wrote %s (%zu bytes, %d bounces) in %.2f s, peak memory %.0f MiB\n", c.output.c_str(),

@@ -322,7 +322,8 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     r.bytes = blob.size();
     if (!o.saveBlobs.empty()) {
       const std::string path = o.saveBlobs + "/" + r.setting + ".prtt";
-      if (Status s = writeFileAtomically(path, blob); !s.isOk()) return fail(err, kExitInputError, "'" + path + "': " + s.message());
+      const std::string inputs[] = {o.asset};
+      if (Status s = writeFileAtomically(path, blob, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
     }
     if (Status s = zstdCompressedSize(blob, kReportZstdLevel, &r.zstdBytes); !s.isOk()) return fail(err, kExitInputError, s.message());
     if (Status s = brotliCompressedSize(blob, kReportBrotliQuality, kReportBrotliWindow, &r.brotliBytes); !s.isOk()) {

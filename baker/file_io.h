@@ -1,4 +1,4 @@
-// Whole-file reads and atomic writes for the baker's outputs.
+// Whole-file reads and atomic, non-destructive writes for the native tools' outputs.
 #pragma once
 
 #include <cstdint>
@@ -14,9 +14,21 @@ namespace prt {
 // file, unreadable, or larger than maxBytes.
 Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out);
 
-// Writes `bytes` to a temporary file beside `path`, flushes it to disk, then renames it
-// over `path`: readers see the old file or the complete new one, never a partial one, and
-// an interrupted write leaves `path` untouched (the temporary is removed on failure).
-Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes);
+// Checks that `output` may receive a new file without destroying anything else: it does not
+// exist yet, or it is a regular file (a symbolic link to one counts as that file) that is
+// not the same file (device and inode) as any of `inputs`. Fails naming the path otherwise:
+// a device node, FIFO, socket or directory, a dangling link, or an input. Call it before
+// long work so a bad -o fails at once; writeFileAtomically checks again.
+Status checkOutputPath(const std::string& output, std::span<const std::string> inputs = {});
+
+// Writes `bytes` to a new temporary file beside `path` (named `<path>.prt-partial-XXXXXX`),
+// flushes it, renames it over `path` (or, when `path` is a symbolic link, over the file it
+// points to, so the link survives) and flushes the directory, so that after a crash readers
+// see the old file or the complete new one, never a partial one. Refuses what
+// checkOutputPath refuses. The temporary is removed on failure and on SIGINT, SIGTERM and
+// SIGHUP (the signal then ends the process as it would have); only SIGKILL or a power loss
+// can leave one. One write at a time per process (the signal cleanup tracks one file).
+Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
+                           std::span<const std::string> inputs = {});
 
 }  // namespace prt
