@@ -13,7 +13,7 @@ constexpr float kCellsPerMetre = 16.0f;
 constexpr float kRoomHalfWidth = 2.0f;  // x and z in [-2, 2]
 constexpr float kRoomHeight = 3.0f;
 
-// Albedos, all below 1 (see kMaxAlbedo in gltf_loader.h) and each surface its own, so the
+// Albedos like real paints (all below 1) and each surface its own, so the
 // colour bleeding in a bake can be traced to its source.
 constexpr Rgb kFloor{0.75f, 0.75f, 0.75f};
 constexpr Rgb kBackWall{0.75f, 0.72f, 0.68f};

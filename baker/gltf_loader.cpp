@@ -22,6 +22,7 @@
 #include <set>
 
 #include "gltf_accessor.h"
+#include "gltf_json_check.h"
 #include "gltf_texture.h"
 #include "mesh_cleanup.h"
 #include "mesh_normals.h"
@@ -204,10 +205,12 @@ void readTextureTransform(const tinygltf::ExtensionMap& extensions, BaseColor* o
   if (texCoord.IsInt()) out->texCoord = texCoord.GetNumberAsInt();
 }
 
-float clampAlbedo(float v) {
-  // Written so that NaN becomes 0.
-  if (!(v > 0.0f)) return 0.0f;
-  return v < kMaxAlbedo ? v : kMaxAlbedo;
+// glTF's albedo range, [0, 1]; albedo 1 stays 1 (a white furnace must return its light).
+// Counts the values it had to change. NaN becomes 0.
+float albedoInRange(float v, std::size_t* outOfRange) {
+  if (v >= 0.0f && v <= 1.0f) return v;
+  ++*outOfRange;
+  return v > 1.0f ? 1.0f : 0.0f;
 }
 
 // ---- node transforms --------------------------------------------------------------------
@@ -233,6 +236,7 @@ struct Counters {
   std::size_t morphedPrimitives = 0;
   std::size_t nonOpaquePrimitives = 0;
   std::size_t unnormalisedRotations = 0;
+  std::size_t albedoOutOfRange = 0;  // channel values, before removal of unused vertices
 };
 
 class SceneBuilder {
@@ -612,7 +616,8 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
       const float* c = &color.values[static_cast<std::size_t>(color.components) * v];
       a = {a.r * c[0], a.g * c[1], a.b * c[2]};
     }
-    albedo_.push_back({clampAlbedo(a.r), clampAlbedo(a.g), clampAlbedo(a.b)});
+    std::size_t& bad = counters_.albedoOutOfRange;
+    albedo_.push_back({albedoInRange(a.r, &bad), albedoInRange(a.g, &bad), albedoInRange(a.b, &bad)});
   }
   ++counters_.trianglePrimitives;
   return Status::ok();
@@ -703,6 +708,9 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   if (c.unnormalisedRotations)
     warn(plural(c.unnormalisedRotations, "node rotation was", "node rotations were") +
          " not unit quaternions: normalised");
+  if (c.albedoOutOfRange)
+    warn(plural(c.albedoOutOfRange, "albedo channel value lies", "albedo channel values lie") +
+         " outside glTF's [0, 1] (base colour x texture x COLOR_0): brought to the nearest bound");
   for (const std::string& note : notes_) warn(note);
   *out = std::move(scene);
   return Status::ok();
@@ -734,9 +742,10 @@ Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::s
   if (hasGlbMagic(bytes)) {
     std::size_t length = 0;
     if (Status s = checkGlbContainer(bytes, &length, &notes); !s.isOk()) return failFile(s.message());
-    parsed = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(length), baseDir);
     jsonText.assign(reinterpret_cast<const char*>(bytes.data()) + 20,
                     std::min<std::size_t>(readU32(bytes, 12), length - 20));
+    if (Status s = checkGltfJson(jsonText, &notes); !s.isOk()) return failFile(s.message());
+    parsed = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(length), baseDir);
   } else if (extension == ".glb") {
     char shown[64];
     std::snprintf(shown, sizeof shown, "%02x %02x %02x %02x", bytes.size() > 0 ? bytes[0] : 0,
@@ -745,9 +754,10 @@ Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::s
   } else if (!looksLikeJsonObject(bytes)) {
     return failFile("neither glTF JSON (no '{' at the start) nor binary glTF (no 'glTF' magic)");
   } else {
+    jsonText.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (Status s = checkGltfJson(jsonText, &notes); !s.isOk()) return failFile(s.message());
     parsed = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                         static_cast<unsigned int>(bytes.size()), baseDir);
-    jsonText.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   }
   imageLog.model = nullptr;
   if (!parsed) {

@@ -6,7 +6,8 @@
 // (matrix or TRS) composed down the hierarchy; normals from NORMAL through the
 // inverse-transpose, computed (mesh_normals.h) where missing or unusable; albedo =
 // baseColorFactor × baseColorTexture (sRGB, bilinear, wrap modes, KHR_texture_transform) ×
-// COLOR_0, clamped to [0, kMaxAlbedo]. Mirroring transforms keep counter-clockwise front faces.
+// COLOR_0, as the file says it: glTF's range is [0, 1], and a value outside it (a COLOR_0
+// above 1, say) is brought into it with a warning that counts them. Mirroring transforms keep counter-clockwise front faces.
 //
 // What is not: POINTS and LINES primitives (skipped with a warning; an error if nothing
 // else is left), skins and morph targets (the bind pose and base geometry are used, with a
@@ -29,11 +30,6 @@
 #include "scene.h"
 
 namespace prt::bake {
-
-// Albedo ceiling. Diffuse interreflection sums the bounce series ρ + ρ² + …; at ρ = 1 in a
-// closed scene it never converges and a truncated sum depends on the bounce count, so
-// surfaces must absorb something. glTF's default white (baseColorFactor 1) becomes this.
-inline constexpr float kMaxAlbedo = 0.95f;
 
 // Scene-size limits, checked before memory is committed: vertex and triangle counts of the
 // whole flattened scene (each node instance of a mesh counts again) and the input file size.

@@ -10,12 +10,15 @@
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
+# nlohmann-json3-dev (header-only) for the checks tinygltf does not make (gltf_json_check.h).
+find_package(nlohmann_json CONFIG REQUIRED)
 
 # prt_stb (Debian's prebuilt stb_image) is defined by baker/CMakeLists.txt before this file.
 
 add_library(prt_scene STATIC
   ${CMAKE_CURRENT_LIST_DIR}/gltf_loader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_accessor.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf_json_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_texture.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_normals.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_cleanup.cpp
@@ -25,5 +28,5 @@ add_library(prt_scene STATIC
 target_include_directories(prt_scene PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 # tiny_gltf.h, GLM and stb live under /usr/include, which GCC and Clang treat as system
 # headers, so their warnings stay out of -Werror.
-target_link_libraries(prt_scene PUBLIC prt_shared PRIVATE TinyGLTF::TinyGLTF glm::glm prt_stb meshoptimizer::meshoptimizer)
+target_link_libraries(prt_scene PUBLIC prt_shared PRIVATE TinyGLTF::TinyGLTF nlohmann_json::nlohmann_json glm::glm prt_stb meshoptimizer::meshoptimizer)
 target_compile_options(prt_scene PRIVATE ${PRT_STRICT_WARNINGS})

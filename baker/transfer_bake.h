@@ -71,7 +71,8 @@ struct BakeResult {
   std::size_t verticesOutsideLight = 0;
 };
 
-// Bakes all passes for `scene` (normals unit length, albedo in [0, 1)). Deterministic for
+// Bakes all passes for `scene` (normals unit length, albedo in [0, 1]; in a closed scene of albedo 1 the bounce
+// series converges only as far as maxBounces allows). Deterministic for
 // a given (scene, options) whatever options.threads. Memory: the outputs plus, with
 // interreflection, 12 bytes per occluded ray (hit triangle, barycentrics, weight).
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);

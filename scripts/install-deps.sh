@@ -14,11 +14,17 @@ packages=(
   libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
   # vertex and index order for cache and compression locality
   libmeshoptimizer-dev
+  # JSON checks of glTF files that tinygltf does not make (header-only)
+  nlohmann-json3-dev
   # the server: Boost.Beast/Asio (header-only), and the encoders of its precompressed
   # variants (gzip, zstd, brotli)
   libboost-dev zlib1g-dev libzstd-dev libbrotli-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
+  # a corpus of real glTF files, valid and malformed (glTF 1.0 among them), for loader tests
+  assimp-testmodels
+  # syscall traces: the atomic-write test checks the directory is flushed after the rename
+  strace
   # headless browser for the web client's tests (driven by playwright-core from npm)
   chromium
 )

@@ -86,8 +86,8 @@ void expectUnitTriangle(const Scene& s) {
   expectVec(s.positions[2], {0, 1, 0}, 0);
   EXPECT_EQ(s.indices, (std::vector<std::uint32_t>{0, 1, 2}));
   for (const Vec3& n : s.normals) expectVec(n, {0, 0, 1});
-  // glTF's default material is white; the loader caps albedo at kMaxAlbedo.
-  for (const Rgb& a : s.albedo) expectRgb(a, {kMaxAlbedo, kMaxAlbedo, kMaxAlbedo}, 0);
+  // glTF's default material is white, and white stays 1 (no cap: a white furnace returns 1).
+  for (const Rgb& a : s.albedo) expectRgb(a, {1, 1, 1}, 0);
 }
 
 TEST(GltfLoad, TriangleWithDataUriBuffer) {
@@ -364,9 +364,9 @@ TEST(GltfLoad, NormalizedIntegerAttributes) {
   ASSERT_EQ(s.positions.size(), 3u);
   expectVec(s.positions[1], {1, 0, 0}, 0);
   expectVec(s.positions[2], {0, 1, 0}, 0);
-  expectRgb(s.albedo[0], {kMaxAlbedo, 0, 0.2f});
-  expectRgb(s.albedo[1], {0.4f, kMaxAlbedo, 0});
-  expectRgb(s.albedo[2], {0, 0, kMaxAlbedo});
+  expectRgb(s.albedo[0], {1.0f, 0, 0.2f});
+  expectRgb(s.albedo[1], {0.4f, 1.0f, 0});
+  expectRgb(s.albedo[2], {0, 0, 1.0f});
 }
 
 TEST(GltfLoad, AlbedoIsBaseColorFactorTimesVertexColourClamped) {
@@ -376,16 +376,19 @@ TEST(GltfLoad, AlbedoIsBaseColorFactorTimesVertexColourClamped) {
   const int c = w.addFloats({0.5f, 1, 0.2f, 1, 2, 2, 2, 1, -1, 0.5f, 0, 1}, "VEC4");
   w.materials = {"{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,1,1]}}"};
   w.addMesh("\"POSITION\":" + std::to_string(p) + ",\"COLOR_0\":" + std::to_string(c), -1, 4, 0);
-  const Scene s = loadOk(dir.write("colour.gltf", w.json(BufferStorage::kDataUri)));
+  std::vector<std::string> warnings;
+  const Scene s = loadOk(dir.write("colour.gltf", w.json(BufferStorage::kDataUri)), &warnings);
   expectRgb(s.albedo[0], {0.25f, 0.25f, 0.2f});
-  expectRgb(s.albedo[1], {kMaxAlbedo, 0.5f, kMaxAlbedo});  // clamped below 1
-  expectRgb(s.albedo[2], {0, 0.125f, 0});                  // and above 0
+  expectRgb(s.albedo[1], {1, 0.5f, 1});   // 0.5 x 2 = 1 stays, 1 x 2 is brought into [0, 1]
+  expectRgb(s.albedo[2], {0, 0.125f, 0});  // and from -0.5
   for (const Rgb& a : s.albedo) {
     for (float ch : {a.r, a.g, a.b}) {
       EXPECT_GE(ch, 0.0f);
-      EXPECT_LT(ch, 1.0f);
+      EXPECT_LE(ch, 1.0f);
     }
   }
+  // Not silently: the warning counts the two values it changed (2 and -0.5).
+  EXPECT_TRUE(anyContains(warnings, "2 albedo channel values lie outside glTF's [0, 1]")) << joined(warnings);
 }
 
 constexpr float kGrey128 = 0.2158605f;  // sRGB 128/255 in linear
@@ -411,8 +414,8 @@ TEST(GltfLoad, BaseColorTextureIsSampledAtTexelCentresInLinear) {
       loadOk(dir.write("tex.gltf", texturedTriangle({0.25f, 0.25f, 0.75f, 0.25f, 0.25f, 0.75f}, "")), &warnings);
   EXPECT_FALSE(anyContains(warnings, "image") || anyContains(warnings, "texture")) << joined(warnings);
   expectRgb(s.albedo[0], {kGrey128, kGrey128, kGrey128});
-  expectRgb(s.albedo[1], {kMaxAlbedo, 0, 0});
-  expectRgb(s.albedo[2], {0, kMaxAlbedo, 0});
+  expectRgb(s.albedo[1], {1.0f, 0, 0});
+  expectRgb(s.albedo[2], {0, 1.0f, 0});
   // Half way between the grey and the red texel: the average of linear values.
   const Scene mid = loadOk(dir.write("mid.gltf", texturedTriangle({0.5f, 0.25f, 0.5f, 0.25f, 0.5f, 0.25f}, "")));
   expectRgb(mid.albedo[0], {(kGrey128 + 1) / 2, kGrey128 / 2, kGrey128 / 2});
@@ -422,7 +425,7 @@ TEST(GltfLoad, SamplerWrapModesAreHonoured) {
   GltfDir dir;
   // u = -0.25 and u = 1.75 on the top row.
   const std::vector<float> uvs = {-0.25f, 0.25f, 1.75f, 0.25f, 0.25f, 0.75f};
-  const Rgb grey{kGrey128, kGrey128, kGrey128}, red{kMaxAlbedo, 0, 0};
+  const Rgb grey{kGrey128, kGrey128, kGrey128}, red{1.0f, 0, 0};
   struct Case {
     const char* sampler;
     Rgb first, second;
@@ -446,7 +449,7 @@ TEST(GltfLoad, TextureTransformExtensionMovesUvs) {
   const std::string transform = ",\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,0]}}";
   const Scene s =
       loadOk(dir.write("xf.gltf", texturedTriangle({0.25f, 0.25f, 0.25f, 0.25f, 0.25f, 0.25f}, "", transform)));
-  expectRgb(s.albedo[0], {kMaxAlbedo, 0, 0});  // (0.25, 0.25) + (0.5, 0) is the red texel
+  expectRgb(s.albedo[0], {1.0f, 0, 0});  // (0.25, 0.25) + (0.5, 0) is the red texel
 }
 
 TEST(GltfLoad, UndecodableTextureIsIgnoredWithAWarning) {

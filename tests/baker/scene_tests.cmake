@@ -5,9 +5,13 @@
 add_executable(prt_scene_tests
   ${CMAKE_CURRENT_LIST_DIR}/scene_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_malformed_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf_corpus_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_geometry_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/default_scene_test.cpp
 )
 target_link_libraries(prt_scene_tests PRIVATE prt_scene prt_stb GTest::gtest_main)
 target_compile_options(prt_scene_tests PRIVATE ${PRT_STRICT_WARNINGS})
+# Debian's assimp-testmodels: real glTF 1.0/2.0 files, valid and malformed (gltf_corpus_test.cpp).
+set(PRT_ASSIMP_MODELS_DIR /usr/share/assimp/models CACHE PATH "assimp-testmodels' model directory (tests/baker)")
+target_compile_definitions(prt_scene_tests PRIVATE PRT_ASSIMP_MODELS_DIR="${PRT_ASSIMP_MODELS_DIR}")
 add_test(NAME scene_tests COMMAND prt_scene_tests)

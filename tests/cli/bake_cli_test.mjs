@@ -4,6 +4,8 @@ import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 
+import { bowlGltf } from './bowl_gltf.mjs';
+
 const [caseName, bake, workDir] = process.argv.slice(2);
 if (!workDir) {
   console.error('usage: node bake_cli_test.mjs CASE PRT_BAKE WORK_DIR');
@@ -20,8 +22,8 @@ function check(ok, message) {
   if (!ok) failures.push(message);
   return ok;
 }
-function run(args) {
-  const r = spawnSync(bake, args, { encoding: 'utf8', timeout: 240000, maxBuffer: 256 << 20 });
+function run(args, env = process.env) {
+  const r = spawnSync(bake, args, { encoding: 'utf8', timeout: 240000, maxBuffer: 256 << 20, env });
   if (r.error) throw new Error(`cannot run ${bake}: ${r.error.message}`);
   return { code: r.status, stdout: r.stdout, stderr: r.stderr, args };
 }
@@ -218,6 +220,147 @@ const cases = {
     check(code === 'SIGINT' || code !== 0, `bake should die on SIGINT, got ${code}`);
     const left = fs.readdirSync(workDir);
     check(left.length === 0, `files left behind: ${left.join(', ')}`);
+  },
+  white_furnace() {
+    // A bowl of albedo 1 under constant radiance 1 (bowl_gltf.mjs): every point sees half
+    // bowl, half sky, so after N bounces B = 1 - 2^-(N+1) everywhere, tending to 1. An albedo
+    // ceiling below 1 shows here at once (0.95 gives 0.905 in the limit).
+    const scene = work('bowl.gltf');
+    fs.writeFileSync(scene, bowlGltf({ albedo: 1 }));
+    const bakeBowl = (name, bounces) => {
+      const out = work(name);
+      expectExit([scene, '-o', out, '--order', '2', '--samples', '4096', '--passes', 'interreflected',
+                  '--bounces', String(bounces), '--quiet'], 0);
+      return json(expectExit(['shade', out, '--light', 'constant', '--pass', 'interreflected', '--json'], 0));
+    };
+    for (const bounces of [2, 16]) {
+      const expected = 1 - 2 ** -(bounces + 1);
+      const r = bakeBowl(`bowl-${bounces}.prt`, bounces);
+      if (!r) continue;
+      const values = r.vertices.map((v) => v.radiance[0]);
+      const mean = values.reduce((a, b) => a + b, 0) / values.length;
+      const bottom = r.vertices.reduce((a, v) => (v.position[1] < a.position[1] ? v : a));
+      check(Math.abs(mean - expected) < 0.01, `${bounces} bounces: mean exit radiance ${mean}, expected ${expected}`);
+      check(Math.abs(bottom.radiance[0] - expected) < 0.02,
+            `${bounces} bounces: bottom exit radiance ${bottom.radiance[0]}, expected ${expected}`);
+      const worst = Math.max(...values.map((x) => Math.abs(x - expected)));
+      check(worst < 0.05, `${bounces} bounces: a vertex is ${worst} from ${expected}`);
+      check(r.vertices.every((v) => v.radiance[0] === v.radiance[1] && v.radiance[1] === v.radiance[2]), 'grey in, grey out');
+    }
+    // Not a special case for 1: albedo 1/2 converges to (1/4) / (1 - 1/4) = 1/3.
+    fs.writeFileSync(scene, bowlGltf({ albedo: 0.5 }));
+    const half = bakeBowl('bowl-half.prt', 16);
+    if (half) {
+      const mean = half.vertices.reduce((a, v) => a + v.radiance[0], 0) / half.vertices.length;
+      check(Math.abs(mean - 1 / 3) < 0.01, `albedo 0.5: mean exit radiance ${mean}, expected 1/3`);
+    }
+  },
+
+  output_safety() {
+    // -o never destroys what is not a regular file, nor any input; the check runs before the
+    // bake. Each refusal names the path.
+    const scene = work('scene.gltf');
+    fs.writeFileSync(scene, bowlGltf({ rings: 4, slices: 8 }));
+    const sceneBytes = fs.readFileSync(scene);
+    const quickBowl = ['--order', '2', '--samples', '16', '--quiet'];
+    const refused = (out, pattern) => {
+      const r = expectExit([scene, '-o', out, ...quickBowl], 1, pattern);
+      check(r.stderr.includes(`'${out}'`), `the refusal names ${out}: ${r.stderr}`);
+    };
+    const fifo = work('fifo');
+    check(spawnSync('mkfifo', [fifo]).status === 0, 'mkfifo failed');
+    refused(fifo, /exists and is a FIFO; refusing to replace it/);
+    check(fs.lstatSync(fifo).isFIFO(), 'the FIFO was replaced');
+    fs.mkdirSync(work('dir'));
+    refused(work('dir'), /exists and is a directory; refusing/);
+    // A link to a device must not replace the link nor write to the device.
+    fs.symlinkSync('/dev/null', work('null-link'));
+    refused(work('null-link'), /exists and is a character device; refusing/);
+    check(fs.lstatSync(work('null-link')).isSymbolicLink() && fs.statSync('/dev/null').isCharacterDevice(),
+          'the link to /dev/null or /dev/null itself was replaced');
+    // A device node itself (root can make one; CI runs as root).
+    if (spawnSync('mknod', [work('devnode'), 'c', '1', '3']).status === 0) {
+      refused(work('devnode'), /exists and is a character device; refusing/);
+      check(fs.lstatSync(work('devnode')).isCharacterDevice(), 'the device node was replaced');
+    } else {
+      console.log('output_safety: not root, so no device node of our own; the link to /dev/null covers devices');
+    }
+    // The input itself, by the same name, a hard link or a symbolic link.
+    refused(scene, /is the input '.*scene\.gltf'; refusing to overwrite it/);
+    fs.linkSync(scene, work('hard.gltf'));
+    refused(work('hard.gltf'), /is the input/);
+    fs.symlinkSync(scene, work('alias.gltf'));
+    refused(work('alias.gltf'), /is the input/);
+    fs.symlinkSync(work('missing.prt'), work('dangling'));
+    refused(work('dangling'), /symbolic link to a missing/);
+    check(Buffer.compare(fs.readFileSync(scene), sceneBytes) === 0, 'the input scene changed');
+
+    // What is allowed: replacing a regular file, and writing through a link to one (the link stays).
+    fs.writeFileSync(work('old.prt'), 'old');
+    expectExit([scene, '-o', work('old.prt'), ...quickBowl], 0);
+    expectExit(['info', work('old.prt')], 0);
+    fs.writeFileSync(work('target.prt'), 'old');
+    fs.symlinkSync(work('target.prt'), work('link.prt'));
+    expectExit([scene, '-o', work('link.prt'), ...quickBowl], 0);
+    check(fs.lstatSync(work('link.prt')).isSymbolicLink(), 'the link to the output was replaced by a file');
+    expectExit(['info', work('target.prt')], 0);
+    const left = fs.readdirSync(workDir).filter((f) => f.includes('.prt-partial-'));
+    check(left.length === 0, `temporaries left: ${left.join(', ')}`);
+  },
+
+  durable_write() {
+    // The file is flushed before the rename and its directory after it (strace shows the calls).
+    const scene = work('scene.gltf');
+    fs.writeFileSync(scene, bowlGltf({ rings: 4, slices: 8 }));
+    const out = work('out.prt'), trace = work('trace.txt');
+    const r = spawnSync('strace', ['-f', '-o', trace, '-e', 'trace=openat,fsync,fdatasync,rename,renameat,renameat2',
+                                   bake, scene, '-o', out, '--order', '2', '--samples', '16', '--quiet'], { encoding: 'utf8' });
+    if (!check(r.status === 0, `strace prt-bake failed (is strace installed?): ${r.error?.message ?? r.stderr.slice(-400)}`)) return;
+    const lines = fs.readFileSync(trace, 'utf8').split('\n');
+    const renameAt = lines.findIndex((l) => /rename/.test(l) && l.includes('.prt-partial-') && l.includes(`"${out}"`) && / = 0$/.test(l));
+    if (!check(renameAt >= 0, `no successful rename of a temporary onto ${out} in the trace`)) return;
+    const fsyncsBefore = lines.slice(0, renameAt).filter((l) => /fsync\(\d+\)\s+= 0/.test(l));
+    check(fsyncsBefore.length >= 1, 'the temporary is not flushed before the rename');
+    const after = lines.slice(renameAt + 1);
+    const dirOpen = after.map((l) => l.match(new RegExp(`openat\\(AT_FDCWD, "${workDir.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}", [^)]*O_DIRECTORY[^)]*\\)\\s+= (\\d+)`))).find(Boolean);
+    if (!check(dirOpen, `the output's directory is not opened after the rename:\n${after.slice(0, 10).join('\n')}`)) return;
+    check(after.some((l) => new RegExp(`fsync\\(${dirOpen[1]}\\)\\s+= 0`).test(l)), 'the directory is not flushed after the rename');
+  },
+
+  async signal_window() {
+    // Killed with its temporary complete but not yet renamed (the test hook holds it there),
+    // the baker removes the temporary, the old output stays as it was, and the process still
+    // dies of the signal.
+    const scene = work('scene.gltf');
+    fs.writeFileSync(scene, bowlGltf({ rings: 4, slices: 8 }));
+    for (const signal of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
+      const out = work(`out-${signal}.prt`);
+      fs.writeFileSync(out, 'old');
+      const child = spawn(bake, [scene, '-o', out, '--order', '2', '--samples', '16', '--quiet'],
+                          { env: { ...process.env, PRT_TEST_STALL_BEFORE_RENAME_MS: '60000' } });
+      let stderr = '';
+      const stalled = new Promise((resolve) => child.stderr.on('data', (d) => {
+        stderr += d;
+        if (stderr.includes('stalling before renaming')) resolve(true);
+      }));
+      const exited = new Promise((resolve) => child.on('exit', (c, s) => resolve(s || c)));
+      let timer;
+      const timeout = new Promise((r) => { timer = setTimeout(() => r('timeout'), 60000); });
+      const first = await Promise.race([stalled, exited, timeout]);
+      clearTimeout(timer);  // or the pending timer keeps node alive for its full minute
+      if (!check(first === true, `${signal}: the bake never reached the rename (${first}): ${stderr}`)) {
+        child.kill('SIGKILL');
+        continue;
+      }
+      const partial = fs.readdirSync(workDir).filter((f) => f.startsWith(`out-${signal}.prt.prt-partial-`));
+      check(partial.length === 1, `${signal}: expected one temporary while stalled, found ${partial.join(', ')}`);
+      child.kill(signal);
+      const how = await exited;
+      check(how === signal, `${signal}: the baker should die of the signal, got ${how}`);
+      const left = fs.readdirSync(workDir).filter((f) => f.includes('.prt-partial-'));
+      check(left.length === 0, `${signal}: temporaries left: ${left.join(', ')}`);
+      check(fs.readFileSync(out, 'utf8') === 'old', `${signal}: the old output was changed`);
+    }
   },
 };
 
