@@ -10,22 +10,15 @@
 #include <vector>
 
 #include "gltf_loader.h"
+#include "warning_lines.h"
 
 namespace prt::bake {
 namespace {
 
+using test::anyContains;
+using test::joined;
+
 const std::string kModels = PRT_ASSIMP_MODELS_DIR;
-
-std::string joined(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const std::string& l : lines) s += "\n  " + l;
-  return s;
-}
-
-bool anyContains(const std::vector<std::string>& lines, const std::string& fragment) {
-  return std::any_of(lines.begin(), lines.end(),
-                     [&](const std::string& l) { return l.find(fragment) != std::string::npos; });
-}
 
 std::vector<std::string> corpus() {
   std::vector<std::string> files;

@@ -10,10 +10,14 @@
 #include <vector>
 
 #include "gltf_loader.h"
+#include "warning_lines.h"
 #include "gltf_test_files.h"
 
 namespace prt::bake {
 namespace {
+
+using test::anyContains;
+using test::joined;
 
 using test::BufferStorage;
 using test::GltfDir;
@@ -21,17 +25,6 @@ using test::GltfWriter;
 
 const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-
-std::string joined(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const std::string& l : lines) s += "\n  " + l;
-  return s;
-}
-
-bool anyContains(const std::vector<std::string>& lines, const std::string& fragment) {
-  return std::any_of(lines.begin(), lines.end(),
-                     [&](const std::string& l) { return l.find(fragment) != std::string::npos; });
-}
 
 // Loading `path` fails with a message containing `fragment` and the file name, and leaves
 // the scene empty.

@@ -9,10 +9,14 @@
 #include <vector>
 
 #include "gltf_loader.h"
+#include "warning_lines.h"
 #include "gltf_test_files.h"
 
 namespace prt::bake {
 namespace {
+
+using test::anyContains;
+using test::joined;
 
 using test::BufferStorage;
 using test::GltfDir;
@@ -40,17 +44,6 @@ void expectRgb(Rgb actual, Rgb expected, float tolerance = 1e-4f) {
   EXPECT_NEAR(actual.r, expected.r, tolerance);
   EXPECT_NEAR(actual.g, expected.g, tolerance);
   EXPECT_NEAR(actual.b, expected.b, tolerance);
-}
-
-bool anyContains(const std::vector<std::string>& lines, const std::string& fragment) {
-  return std::any_of(lines.begin(), lines.end(),
-                     [&](const std::string& l) { return l.find(fragment) != std::string::npos; });
-}
-
-std::string joined(const std::vector<std::string>& lines) {
-  std::string s;
-  for (const std::string& l : lines) s += "\n  " + l;
-  return s;
 }
 
 Scene loadOk(const std::string& path, std::vector<std::string>* warnings = nullptr) {
