@@ -10,6 +10,7 @@
 #include "image_io.h"
 #include "json_text.h"
 #include "prt/asset.h"
+#include "prt/exit_radiance.h"
 #include "prt/sh_basis.h"
 
 namespace prt {
@@ -173,26 +174,18 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     if (Status s = projectLayout(*layout, order, image, &lighting); !s.isOk()) return fail(err, kExitInputError, "shade", s.message());
   }
 
-  const int n2 = shCoeffCount(asset.shOrder), used = shCoeffCount(order);
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
+  std::vector<float> exit(3 * asset.positions.size());
+  if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {
+    return fail(err, kExitInputError, "shade", prefixed(path, s));
+  }
   const bool json = p.has("--json");
   std::string text = json ? "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + transferKindName(pass->kind) +
                                 "\",\n  \"order\": " + std::to_string(order) + ",\n  \"light\": " + jsonString(*light) +
                                 ",\n  \"vertices\": [\n"
                           : "";
   for (std::size_t v = 0; v < asset.positions.size(); ++v) {
-    Rgb radiance;
-    if (pass->channels == 1) {
-      const float* t = &pass->coeffs[v * n2];
-      for (int i = 0; i < used; ++i) radiance = radiance + lighting[i] * t[i];
-      radiance = {radiance.r * asset.albedo[v].r, radiance.g * asset.albedo[v].g, radiance.b * asset.albedo[v].b};
-    } else {
-      const float* t = &pass->coeffs[v * 3 * n2];
-      for (int i = 0; i < used; ++i) {
-        radiance.r += lighting[i].r * t[i];
-        radiance.g += lighting[i].g * t[n2 + i];
-        radiance.b += lighting[i].b * t[2 * n2 + i];
-      }
-    }
+    const Rgb radiance{exit[3 * v], exit[3 * v + 1], exit[3 * v + 2]};
     const Vec3 x = asset.positions[v];
     if (json) {
       text += "    {\"position\": [" + jsonNumber(x.x) + ", " + jsonNumber(x.y) + ", " + jsonNumber(x.z) +

@@ -13,6 +13,7 @@
 #include "file_io.h"
 #include "json_text.h"
 #include "prt/asset.h"
+#include "prt/exit_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 
@@ -89,35 +90,12 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
   return Status::ok();
 }
 
-// Exit radiance of every vertex and channel ([vertex][rgb]) of `transfer` under `light`.
-void exitRadiance(const TransferPass& pass, std::span<const float> transfer, const std::vector<Rgb>& albedo, int order,
-                  const std::vector<Rgb>& light, std::vector<double>* out) {
-  const std::size_t n2 = static_cast<std::size_t>(order * order), V = albedo.size();
-  out->assign(V * 3, 0.0);
-  for (std::size_t v = 0; v < V; ++v) {
-    double r = 0, g = 0, b = 0;
-    if (pass.channels == 1) {
-      const float* t = &transfer[v * n2];
-      for (std::size_t i = 0; i < n2; ++i) {
-        r += static_cast<double>(t[i]) * light[i].r;
-        g += static_cast<double>(t[i]) * light[i].g;
-        b += static_cast<double>(t[i]) * light[i].b;
-      }
-      r *= albedo[v].r;
-      g *= albedo[v].g;
-      b *= albedo[v].b;
-    } else {
-      const float* t = &transfer[v * 3 * n2];
-      for (std::size_t i = 0; i < n2; ++i) {
-        r += static_cast<double>(t[i]) * light[i].r;
-        g += static_cast<double>(t[n2 + i]) * light[i].g;
-        b += static_cast<double>(t[2 * n2 + i]) * light[i].b;
-      }
-    }
-    (*out)[3 * v] = r;
-    (*out)[3 * v + 1] = g;
-    (*out)[3 * v + 2] = b;
-  }
+// Exit radiance of every vertex and channel ([vertex][rgb]) of `transfer` under `light`,
+// summed in double (prt/exit_radiance.h).
+Status passExitRadiance(const TransferPass& pass, std::span<const float> transfer, const std::vector<Rgb>& albedo, int order,
+                        const std::vector<Rgb>& light, std::vector<double>* out) {
+  out->assign(albedo.size() * 3, 0.0);
+  return exitRadianceDouble(transfer, pass.channels, static_cast<std::size_t>(order * order), albedo, light, *out);
 }
 
 struct LightingError {
@@ -300,7 +278,9 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return fail(err, kExitInputError, s.message());
   std::vector<std::vector<double>> reference(lightings.size());
   for (std::size_t i = 0; i < lightings.size(); ++i) {
-    exitRadiance(*pass, pass->coeffs, asset.albedo, order, lightings[i].coeffs, &reference[i]);
+    if (Status s = passExitRadiance(*pass, pass->coeffs, asset.albedo, order, lightings[i].coeffs, &reference[i]); !s.isOk()) {
+      return fail(err, kExitInputError, s.message());
+    }
   }
 
   std::vector<Row> rows;
@@ -333,7 +313,9 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     double psnrSum = 0.0;
     std::size_t finite = 0;
     for (std::size_t i = 0; i < lightings.size(); ++i) {
-      exitRadiance(*pass, decoded, asset.albedo, order, lightings[i].coeffs, &radiance);
+      if (Status s = passExitRadiance(*pass, decoded, asset.albedo, order, lightings[i].coeffs, &radiance); !s.isOk()) {
+        return fail(err, kExitInputError, s.message());
+      }
       const LightingError e = compareRadiance(reference[i], radiance);
       if (o.perLighting) r.perLighting.push_back(e);
       r.psnrWorst = std::min(r.psnrWorst, e.psnrDb);

@@ -14,6 +14,7 @@
 #include "prt/asset.h"
 #include "prt/cube_sh_weights.h"
 #include "prt/cubemap.h"
+#include "prt/exit_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_project.h"
 #include "prt/sh_rotation.h"
@@ -63,15 +64,11 @@ val shadeConstant(const val& bytes, const std::string& kind) {
   if (!prt::decodeAsset(data, &asset).isOk()) return val::null();
   for (const prt::TransferPass& p : asset.passes) {
     if (kind != prt::transferKindName(p.kind)) continue;
-    const int n2 = prt::shCoeffCount(asset.shOrder);
-    const float l0 = static_cast<float>(2.0 * std::sqrt(prt::kPi));
+    const std::size_t n2 = static_cast<std::size_t>(prt::shCoeffCount(asset.shOrder));
+    const float l0 = static_cast<float>(2.0 * std::sqrt(prt::kPi));  // radiance 1 everywhere
+    const prt::Rgb lighting[] = {{l0, l0, l0}};
     std::vector<float> out(asset.positions.size() * 3);
-    for (std::size_t v = 0; v < asset.positions.size(); ++v) {
-      for (int c = 0; c < 3; ++c) {
-        const float albedo = c == 0 ? asset.albedo[v].r : c == 1 ? asset.albedo[v].g : asset.albedo[v].b;
-        out[3 * v + c] = p.channels == 1 ? albedo * l0 * p.coeffs[v * n2] : l0 * p.coeffs[(v * 3 + c) * n2];
-      }
-    }
+    if (!prt::exitRadiance(p.coeffs, p.channels, n2, asset.albedo, lighting, out).isOk()) return val::null();
     return val::array(out);
   }
   return val::null();
@@ -99,15 +96,13 @@ val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& ligh
     const std::vector<float> viaClusters = prt::web::cpcaRadiance(packed, light.data(), displayOrder, albedo);
     const std::size_t n2 = static_cast<std::size_t>(asset.shOrder * asset.shOrder);
     const std::size_t active = static_cast<std::size_t>(std::clamp(displayOrder, 1, asset.shOrder));
-    std::vector<float> expanded(asset.positions.size() * 3);
-    for (std::size_t v = 0; v < asset.positions.size(); ++v) {
-      for (std::size_t c = 0; c < 3; ++c) {
-        const float* t = &p.coeffs[(v * static_cast<std::size_t>(p.channels) + (p.channels == 1 ? 0 : c)) * n2];
-        double sum = 0.0;
-        for (std::size_t i = 0; i < active * active; ++i) sum += static_cast<double>(t[i]) * light[64 * c + i];
-        expanded[3 * v + c] = static_cast<float>(p.channels == 1 ? sum * albedo[3 * v + c] : sum);
-      }
+    std::vector<prt::Rgb> rgbLight(active * active);
+    for (std::size_t i = 0; i < rgbLight.size(); ++i) rgbLight[i] = {light[i], light[64 + i], light[128 + i]};
+    std::vector<double> reference(asset.positions.size() * 3);
+    if (prt::Status s = prt::exitRadianceDouble(p.coeffs, p.channels, n2, asset.albedo, rgbLight, reference); !s.isOk()) {
+      return val(s.toString());
     }
+    const std::vector<float> expanded(reference.begin(), reference.end());
     val out = val::object();
     out.set("packed", val::array(viaClusters));
     out.set("expanded", val::array(expanded));

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "prt/exit_radiance.h"
 #include "prt/sh_basis.h"
 
 namespace prt::web {
@@ -116,17 +117,14 @@ std::vector<float> cpcaRadiance(const CpcaTextures& p, const float* lighting, in
   const std::size_t perChannel = static_cast<std::size_t>(p.entries.texelsPerChannel) * 4;
   const int active = std::clamp(displayOrder, 1, p.order);
   const std::size_t activeCoeffs = static_cast<std::size_t>(active * active);
-  // The table pass (prt.vert on the entries, albedo 1).
-  std::vector<float> table(static_cast<std::size_t>(p.clusters) * E * 3, 0.0f);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(p.clusters) * E; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const std::size_t channel = p.channels == 1 ? 0 : static_cast<std::size_t>(c);
-      const float* entry = &p.entries.texels[(i * static_cast<std::size_t>(p.channels) + channel) * perChannel];
-      float sum = 0.0f;
-      for (std::size_t k = 0; k < activeCoeffs; ++k) sum += entry[k] * lighting[64 * c + static_cast<int>(k)];
-      table[3 * i + static_cast<std::size_t>(c)] = sum;
-    }
-  }
+  // The table pass (prt.vert on the entries, albedo 1): the entries are transfer vectors
+  // with a padded stride, so this is the shared exit radiance.
+  std::vector<Rgb> rgbLight(activeCoeffs);
+  for (std::size_t i = 0; i < activeCoeffs; ++i) rgbLight[i] = {lighting[i], lighting[64 + i], lighting[128 + i]};
+  const std::size_t entries = static_cast<std::size_t>(p.clusters) * E;
+  std::vector<float> table(entries * 3, 0.0f);
+  const std::span<const float> entryTexels(p.entries.texels.data(), entries * static_cast<std::size_t>(p.channels) * perChannel);
+  if (!exitRadiance(entryTexels, p.channels, perChannel, {}, rgbLight, table).isOk()) return {};
   // The vertex pass (cpca.vert).
   const std::size_t weights = static_cast<std::size_t>(p.weightsBefore[static_cast<std::size_t>(active)]);
   const std::size_t perVertex = static_cast<std::size_t>(p.weightTexels) * 4, bytesPerLevel = p.weightBits == 8 ? 1 : 2;
