@@ -1,5 +1,5 @@
-// Environment-map layouts and their SH projection, shared by `prt-bake probe` and
-// `prt-bake shade` (and, later, the server's /api/lights).
+// Environment-map layouts and their SH projection, shared by `prt-bake probe`,
+// `prt-bake shade` and the server's /api/lights.
 #pragma once
 
 #include <optional>

@@ -1,4 +1,4 @@
-// prt-bench-bake: bakes a glTF scene the way the benchmark asks (order 5, 1024
+// prt-bench-bake: bakes a glTF scene the way the baker's benchmark asks (order 5, 1024
 // samples, shadowed + 3 bounces) and casts the same direct-pass rays as bare Embree
 // occlusion queries in the same run, so the direct pass is reported as a fraction of
 // Embree's own throughput on this machine. Prints a table; --json/--md write results.

@@ -45,7 +45,7 @@ constexpr std::size_t kDirections = 4096;
 constexpr int kOrders[] = {3, 5, 8};
 constexpr std::uint32_t kSeed = 20240607u;
 
-// Targets (the acceptance numbers).
+// Targets: the SH library's acceptance numbers (ns per direction).
 constexpr double kTargetOrder5Ns = 10.0;
 constexpr double kTargetOrder8Ns = 30.0;
 constexpr double kTargetSpeedup = 20.0;

@@ -226,7 +226,7 @@ md += '- *three.js, sync read-back* (the headline): the same `fromCubeRenderTarg
 md += `- *render + read-back only*: the cube render and a synchronous read-back of the six faces, no SH at all: a floor for any projection ` +
   `done in JS after a three.js cube render. Our GPU path at 64², order 5, is ${headline.speedup_gpu_vs_three_render_readback.toFixed(1)}x faster than that floor.\n\n`;
 if (headline.speedup_gpu < 10 && headline.speedup_cpu < 10) {
-  md += `**Against LightProbeGenerator as shipped (the issue's reference) the ≥ 10x target is met ` +
+  md += `**Against LightProbeGenerator as shipped (the reference the light-update target names) the ≥ 10x target is met ` +
     `(${headline.speedup_gpu_vs_as_shipped.toFixed(0)}x); against the stricter synchronous variant it is not met here.** With software WebGL the cube render itself dominates: three.js's render + read-back ` +
     `alone takes ${f(three64.render_readback_median_ms)} ms at 64², the same order as our whole update, so no projection, however fast, ` +
     'can make the update 10x cheaper than three.js\'s on this machine; what remains of three.js\'s time is its JS projection ' +

@@ -14,7 +14,7 @@
 namespace prt {
 
 inline constexpr int kMinShOrder = 1;
-inline constexpr int kMaxShOrder = 16;  // l <= 15; the issue asks for 1..12, more costs nothing
+inline constexpr int kMaxShOrder = 16;  // l <= 15: 12 were asked for, more costs nothing
 
 // Number of coefficients of an order-n expansion (n bands): n*n.
 constexpr int shCoeffCount(int order) { return order * order; }

@@ -1,7 +1,8 @@
 #version 300 es
 // PRT shading in the vertex shader: exit radiance_c = sum_i T_ci L_ci (docs/web-client.md).
-// Transfer is read from a float texture by gl_VertexID: each vertex owns `uTexelsPerVertex`
-// RGBA32F texels, laid out [channel][coefficient] with each channel padded to whole texels.
+// Transfer is read from a float texture by gl_VertexID: each vertex owns
+// uTexelsPerChannel * uChannels RGBA32F texels, laid out [channel][coefficient] with each
+// channel padded to whole texels.
 // Scalar passes (1 channel) are multiplied by the vertex albedo; RGB passes carry it.
 precision highp float;
 precision highp int;
