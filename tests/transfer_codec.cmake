@@ -4,6 +4,8 @@
 
 add_executable(prt_transfer_codec_tests ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_test.cpp)
 target_link_libraries(prt_transfer_codec_tests PRIVATE prt_test_support ${PRT_GTEST_MAIN})
+# The tests check the codec's internals (streams, half floats, k-means, eigen) too.
+target_include_directories(prt_transfer_codec_tests PRIVATE ${PROJECT_SOURCE_DIR}/shared/prt/codec)
 target_compile_options(prt_transfer_codec_tests PRIVATE ${PRT_STRICT_WARNINGS})
 if(EMSCRIPTEN)
   target_link_options(prt_transfer_codec_tests PRIVATE -sENVIRONMENT=node -sEXIT_RUNTIME=1 -sALLOW_MEMORY_GROWTH=1)
@@ -26,7 +28,7 @@ if(PRT_FUZZ AND NOT EMSCRIPTEN)
   get_target_property(prt_shared_dir prt_shared SOURCE_DIR)
   list(TRANSFORM prt_shared_sources PREPEND "${prt_shared_dir}/" REGEX "^[^/]")
   add_executable(prt_transfer_codec_fuzz ${CMAKE_CURRENT_LIST_DIR}/fuzz/transfer_codec_fuzz.cpp ${prt_shared_sources})
-  target_include_directories(prt_transfer_codec_fuzz PRIVATE ${prt_shared_dir})
+  target_include_directories(prt_transfer_codec_fuzz PRIVATE ${prt_shared_dir} ${prt_shared_dir}/prt/codec)
   target_compile_options(prt_transfer_codec_fuzz PRIVATE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
                                                          -ffp-contract=off ${PRT_STRICT_WARNINGS})
   target_link_options(prt_transfer_codec_fuzz PRIVATE -fsanitize=fuzzer,address,undefined)

@@ -26,10 +26,10 @@
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_zonal.h"
-#include "prt/transfer_codec_eigen.h"
-#include "prt/transfer_codec_half.h"
-#include "prt/transfer_codec_kmeans.h"
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_eigen.h"
+#include "transfer_codec_half.h"
+#include "transfer_codec_kmeans.h"
+#include "transfer_codec_streams.h"
 
 namespace prt {
 namespace {

@@ -1,4 +1,4 @@
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_streams.h"
 
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "prt/transfer_codec_eigen.h"
+#include "transfer_codec_eigen.h"
 
 #include <algorithm>
 #include <cmath>

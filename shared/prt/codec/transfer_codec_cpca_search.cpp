@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "prt/transfer_codec_cpca.h"
+#include "transfer_codec_cpca.h"
 
 namespace prt::transfer_codec {
 namespace {

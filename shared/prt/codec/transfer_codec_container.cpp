@@ -2,7 +2,7 @@
 // checks"). Reading order follows the asset reader's: magic and version first, then the
 // header checksum before any header field is trusted, the table checksum before any entry
 // is, and all offset arithmetic in 64 bits after comparisons that rule out overflow.
-#include "prt/transfer_codec_container.h"
+#include "transfer_codec_container.h"
 
 #include <algorithm>
 #include <cstring>
@@ -10,7 +10,7 @@
 
 #include "prt/checksum.h"
 #include "prt/sh_basis.h"
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_streams.h"
 
 namespace prt::transfer_codec {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "prt/status.h"
-#include "prt/transfer_codec_container.h"
+#include "transfer_codec_container.h"
 
 namespace prt::transfer_codec {
 

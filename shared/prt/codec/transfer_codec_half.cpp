@@ -1,4 +1,4 @@
-#include "prt/transfer_codec_half.h"
+#include "transfer_codec_half.h"
 
 #include <cstring>
 

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <limits>
 
-#include "prt/transfer_codec_cpca.h"
-#include "prt/transfer_codec_eigen.h"
-#include "prt/transfer_codec_half.h"
-#include "prt/transfer_codec_kmeans.h"
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_cpca.h"
+#include "transfer_codec_eigen.h"
+#include "transfer_codec_half.h"
+#include "transfer_codec_kmeans.h"
+#include "transfer_codec_streams.h"
 
 namespace prt::transfer_codec {
 namespace {

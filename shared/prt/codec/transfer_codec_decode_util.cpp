@@ -1,4 +1,4 @@
-#include "prt/transfer_codec_decode_util.h"
+#include "transfer_codec_decode_util.h"
 
 #include <cmath>
 

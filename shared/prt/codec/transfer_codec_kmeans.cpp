@@ -1,4 +1,4 @@
-#include "prt/transfer_codec_kmeans.h"
+#include "transfer_codec_kmeans.h"
 
 #include <algorithm>
 #include <limits>

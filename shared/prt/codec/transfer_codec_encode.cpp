@@ -7,10 +7,10 @@
 
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
-#include "prt/transfer_codec_container.h"
-#include "prt/transfer_codec_cpca.h"
-#include "prt/transfer_codec_half.h"
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_container.h"
+#include "transfer_codec_cpca.h"
+#include "transfer_codec_half.h"
+#include "transfer_codec_streams.h"
 
 namespace prt {
 namespace {

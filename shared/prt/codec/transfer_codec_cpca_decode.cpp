@@ -5,10 +5,10 @@
 #include <string>
 
 #include "prt/transfer_codec.h"
-#include "prt/transfer_codec_container.h"
-#include "prt/transfer_codec_decode_util.h"
-#include "prt/transfer_codec_half.h"
-#include "prt/transfer_codec_streams.h"
+#include "transfer_codec_container.h"
+#include "transfer_codec_decode_util.h"
+#include "transfer_codec_half.h"
+#include "transfer_codec_streams.h"
 
 namespace prt {
 namespace {
