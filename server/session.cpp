@@ -13,6 +13,7 @@
 
 #include <cerrno>
 
+#include "request_checks.h"
 #include "respond.h"
 
 namespace prt::serve {
@@ -161,6 +162,16 @@ void Session::onHead(beast::error_code ec) {
       if (buffer_.size() > 0 || parser_->got_some()) logRequest(408, 0);
       return closeNow();
     }
+    if (ec == http::error::bad_version) {
+      // Beast rejects every version but 1.0 and 1.1 alike; RFC 9110 §15.6.6 wants 505 for a
+      // well-formed version the server does not support, 400 stays for a malformed one.
+      const std::string_view data(static_cast<const char*>(buffer_.data().data()), buffer_.size());
+      if (wellFormedButUnsupportedVersion(data.substr(0, data.find('\n')))) {
+        return send(errorReply(11, http::status::http_version_not_supported,
+                               "only HTTP/1.0 and HTTP/1.1 are served", false, true),
+                    false);
+      }
+    }
     if (ec != http::error::partial_message && ec != http::error::end_of_stream && isHttpParseError(ec)) {
       return send(errorReply(11, http::status::bad_request, "malformed request: " + ec.message(), false, true), false);
     }
@@ -172,15 +183,13 @@ void Session::onHead(beast::error_code ec) {
   target_ = std::string(request.target());
   Reply reply;
   const bool getOrHead = request.method() == http::verb::get || request.method() == http::verb::head;
-  if (request.version() != 10 && request.version() != 11) {
-    reply = errorReply(11, http::status::http_version_not_supported, "only HTTP/1.0 and HTTP/1.1 are served", false,
-                       true);
+  // (The parser has already refused every version but 1.0 and 1.1.)
+  if (const std::string_view problem = requestHeadProblem(request); !problem.empty()) {
+    reply = errorReply(request.version(), http::status::bad_request, problem, false, true);
   } else if (!parser_->is_done() && getOrHead) {
     // A body on GET/HEAD has no meaning here, and not reading it leaves no way to find
     // the next request: refuse and close.
     reply = errorReply(request.version(), http::status::bad_request, "GET and HEAD requests take no body", false, true);
-  } else if (request.version() == 11 && request.find(http::field::host) == request.end()) {
-    reply = errorReply(request.version(), http::status::bad_request, "HTTP/1.1 requests need a Host field", false, true);
   } else {
     reply = context_.router.handle(request);
     // Any other method with a body: 405, and the unread body makes the connection unusable.
