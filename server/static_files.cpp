@@ -7,6 +7,7 @@
 
 #include "encoded_variants.h"
 #include "mime_types.h"
+#include "page_policy.h"
 
 namespace prt::serve {
 namespace {
@@ -107,7 +108,9 @@ Reply StaticFiles::serve(const RequestHead& request, std::string_view path, std:
   if (isCompressibleType(resource.contentType) && stamp.size >= kMinCompressBytes && stamp.size <= kMaxCompressBytes) {
     for (Variant& v : variantsFor(file, stamp, tag)) resource.variants.push_back(std::move(v));
   }
-  return respond(request, resource);
+  Reply reply = respond(request, resource);
+  addDocumentPolicy(resource.contentType, reply.head);
+  return reply;
 }
 
 }  // namespace prt::serve

@@ -315,6 +315,34 @@ TEST(StaticFiles, ContentTypesIndexesAndRedirects) {
   EXPECT_EQ(unzstd(fetch(s.port, "/big.js", {{"Accept-Encoding", "zstd"}}).body), s.tree.bigJs);
 }
 
+TEST(StaticFiles, PagesCarryBrowserProtections) {
+  SharedServer& s = sharedServer();
+  const HttpResponse first = fetch(s.port, "/");
+  ASSERT_EQ(first.status, 200);
+  const HttpResponse revalidated = fetch(s.port, "/", {{"If-None-Match", first.header("etag")}});
+  EXPECT_EQ(revalidated.status, 304);
+  for (const auto& [what, r] : {std::pair{"/", first}, std::pair{"/index.html", fetch(s.port, "/index.html")},
+                                std::pair{"/docs/", fetch(s.port, "/docs/")}, std::pair{"304 of /", revalidated},
+                                std::pair{"/icon.svg", fetch(s.port, "/icon.svg")}}) {
+    const std::string csp = r.header("content-security-policy");
+    // The page compiles wasm: 'wasm-unsafe-eval' allows exactly that, 'unsafe-eval' would
+    // allow eval() and new Function() as well.
+    EXPECT_NE(csp.find("script-src 'self' 'wasm-unsafe-eval'"), std::string::npos) << what << ": " << csp;
+    EXPECT_EQ(csp.find("'unsafe-eval'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("default-src 'self'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("frame-ancestors 'none'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("object-src 'none'"), std::string::npos) << what;
+    EXPECT_EQ(r.header("x-frame-options"), "DENY") << what;
+    EXPECT_EQ(r.header("referrer-policy"), "no-referrer") << what;
+    EXPECT_EQ(r.header("x-content-type-options"), "nosniff") << what;
+  }
+  // Everything else still says nosniff.
+  for (const std::string& t : {std::string("/app.js"), std::string("/core.wasm"), std::string("/api/scenes"),
+                               std::string("/missing")}) {
+    EXPECT_EQ(fetch(s.port, t).header("x-content-type-options"), "nosniff") << t;
+  }
+}
+
 TEST(Lights, ProjectedAtTheRequestedOrder) {
   SharedServer& s = sharedServer();
   int status = 0;
