@@ -9,6 +9,7 @@
 #include "content_hash.h"
 #include "encoded_variants.h"
 #include "json_text.h"
+#include "public_error.h"
 #include "request_target.h"
 
 namespace prt::serve {
@@ -126,6 +127,20 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
   }
   e->usable = true;
   return e;
+}
+
+// The catalogue is public: an error that would show where the server keeps its files is
+// replaced (and logged in full). The reader's messages name no paths; this is the wall in
+// case one ever does.
+std::shared_ptr<const CatalogueEntry> withPublicError(std::shared_ptr<const CatalogueEntry> entry,
+                                                      const ScannedFile& scanned, const RootDir& root) {
+  const std::string safe = publicMessage(entry->error, scanned.absPath, scanned.relPath, root.path(),
+                                         "cannot be used (the server's log has the details)");
+  if (safe == entry->error) return entry;
+  logDetail("asset '" + scanned.relPath + "'", entry->error);
+  auto copy = std::make_shared<CatalogueEntry>(*entry);
+  copy->error = safe;
+  return copy;
 }
 
 // {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P][,"band":l]}
@@ -255,6 +270,7 @@ void Catalogue::refresh() {
     const bool same = it != previous.end() && f.problem.empty() && !(it->second->stamp == FileStamp{}) &&
                       it->second->stamp == f.stamp;
     std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &pool, &snap->retry);
+    if (!same && !entry->usable) entry = withPublicError(entry, f, root_);
     if (entry->usable) {
       ++snap->usableCount;
       snap->byPath.emplace("/assets/" + entry->hash + "/" + baseName(entry->file), entry);

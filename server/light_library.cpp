@@ -7,6 +7,7 @@
 #include "image_io.h"
 #include "json_text.h"
 #include "light_preview.h"
+#include "public_error.h"
 
 namespace prt::serve {
 namespace {
@@ -45,6 +46,13 @@ std::shared_ptr<const Resource> jsonResource(const std::string& text) {
 }
 
 }  // namespace
+
+std::string LightLibrary::publicError(const ScannedFile& file, const std::string& detail) const {
+  // The loader names the file by its absolute path, and OpenEXR's messages repeat it.
+  logDetail("environment map '" + file.relPath + "'", detail);
+  return publicMessage(detail, file.absPath, file.relPath, root_.path(),
+                       "cannot be read as an image (the server's log has the details)");
+}
 
 LightLibrary::LightLibrary(RootDir root, std::chrono::milliseconds recheck) : root_(std::move(root)), recheck_(recheck) {
   std::lock_guard lock(mutex_);
@@ -90,7 +98,7 @@ void LightLibrary::ensureProjected(Light& light, int order) {
   if (!light.error.empty() || light.coefficients.count(order)) return;
   RgbImage image;
   if (Status s = loadImage(light.scanned.absPath, &image); !s.isOk()) {
-    light.error = s.message();
+    light.error = publicError(light.scanned, s.message());
     light.loaded = true;
     return;
   }
@@ -124,7 +132,7 @@ void LightLibrary::ensureProjected(Light& light, int order) {
   }
   std::vector<Rgb> coeffs;
   if (Status s = projectLayout(light.layout, order, image, &coeffs); !s.isOk()) {
-    light.error = s.message();
+    light.error = publicError(light.scanned, s.message());
     return;
   }
   light.coefficients.emplace(order, std::move(coeffs));

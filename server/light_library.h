@@ -51,6 +51,8 @@ class LightLibrary {
     std::shared_ptr<const Resource> previewResource;
   };
 
+  // The message a response may carry for `detail` (no server paths); the detail is logged.
+  std::string publicError(const ScannedFile& file, const std::string& detail) const;
   void refreshLocked();
   void ensureProjected(Light& light, int order);
 

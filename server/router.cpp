@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "prt/sh_basis.h"
+#include "public_error.h"
 #include "request_target.h"
 
 namespace prt::serve {
@@ -21,7 +22,9 @@ Reply Router::handle(const RequestHead& request) noexcept {
   try {
     return route(request);
   } catch (const std::exception& e) {
-    return errorReply(request.version(), http::status::internal_server_error, e.what(), false, true);
+    // Exception text can carry paths and library internals: the log gets it, the client not.
+    logDetail("internal error in a handler", e.what());
+    return errorReply(request.version(), http::status::internal_server_error, "internal error", false, true);
   } catch (...) {
     return errorReply(request.version(), http::status::internal_server_error, "internal error", false, true);
   }

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <thread>
 
 #include "mini_json.h"
+#include "public_error.h"
 #include "serve_env.h"
 
 namespace prt::serve::test {
@@ -393,6 +395,63 @@ TEST(Lights, ProjectedAtTheRequestedOrder) {
   EXPECT_EQ(a.body, b.body);
   EXPECT_EQ(a.header("etag"), b.header("etag"));
   EXPECT_EQ(fetch(s.port, "/api/lights?order=3", {{"If-None-Match", a.header("etag")}}).status, 304);
+}
+
+TEST(Lights, ErrorsNameNoServerPaths) {
+  SharedServer& s = sharedServer();
+  std::vector<std::string> secrets{s.tree.dir, s.tree.root, workDir()};
+  std::error_code ec;
+  secrets.push_back(std::filesystem::canonical(s.tree.dir, ec).string());
+  auto expectNoPath = [&](const std::string& what, const std::string& body) {
+    for (const std::string& p : secrets) {
+      if (!p.empty()) {
+        EXPECT_EQ(body.find(p), std::string::npos) << what << " leaks " << p << ":\n" << body;
+      }
+    }
+  };
+  // Every error string the documents carry: the unusable maps (an unknown format, OpenEXR's
+  // own message, an oversized .hdr) and the unusable assets.
+  int errors = 0;
+  for (const std::string& target : {std::string("/api/lights"), std::string("/api/lights?order=3")}) {
+    const HttpResponse r = fetch(s.port, target);
+    ASSERT_EQ(r.status, 200);
+    expectNoPath(target, r.body);
+    Json doc;
+    std::string error;
+    ASSERT_TRUE(parseJson(r.body, &doc, &error)) << error;
+    for (const char* file : {"damaged.exr", "sub/notimage.exr", "bad.hdr"}) {
+      const Json* l = findByFile(doc["lights"], file);
+      ASSERT_NE(l, nullptr) << file;
+      EXPECT_FALSE((*l)["usable"].boolean) << file;
+      const std::string message = (*l)["error"].string;
+      EXPECT_FALSE(message.empty()) << file;
+      EXPECT_FALSE(mentionsAbsolutePath(message)) << file << ": " << message;
+      ++errors;
+    }
+  }
+  const HttpResponse cat = fetch(s.port, "/api/scenes");
+  expectNoPath("/api/scenes", cat.body);
+  Json scenes;
+  std::string error;
+  ASSERT_TRUE(parseJson(cat.body, &scenes, &error));
+  for (const Json& e : scenes["scenes"].array) {
+    if (e.has("error")) {
+      EXPECT_FALSE(mentionsAbsolutePath(e["error"].string)) << e["error"].string;
+    }
+  }
+  EXPECT_EQ(errors, 6);
+  // Error pages, through a client and raw.
+  for (const std::string& t : {std::string("/nothing"), std::string("/api/nothing"), std::string("/assets/x/y.prt"),
+                               std::string("/parts/0123"), std::string("/api/lights?order=99"), std::string("/docs"),
+                               std::string("/leak.txt"), std::string("/api/lights/preview/x.png")}) {
+    expectNoPath(t, fetch(s.port, t).body);
+  }
+  for (const std::string& raw : {std::string("POST / HTTP/1.1\r\nHost: x\r\n\r\n"), std::string("GET /.. HTTP/1.1\r\nHost: x\r\n\r\n"),
+                                 std::string("GET / HTTP/2.0\r\n\r\n"), std::string("JUNK\r\n\r\n")}) {
+    expectNoPath(raw, rawExchange(s.port, raw, std::chrono::seconds(5)).received);
+  }
+  // The operator still gets the detail, on stderr.
+  EXPECT_NE(s.server->log().find("environment map 'damaged.exr'"), std::string::npos);
 }
 
 TEST(Lights, PreviewImages) {

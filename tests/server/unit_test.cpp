@@ -8,6 +8,7 @@
 #include "content_hash.h"
 #include "mime_types.h"
 #include "negotiation.h"
+#include "public_error.h"
 #include "request_checks.h"
 #include "request_target.h"
 
@@ -109,6 +110,26 @@ TEST(RequestHead, VersionsWorthA505) {
                            "GET /  HTTP/2.0", "GET HTTP/2.0", "GET / HTTP/2.0 x", "", " / HTTP/2.0"}) {
     EXPECT_FALSE(wellFormedButUnsupportedVersion(line)) << line;
   }
+}
+
+TEST(PublicError, PathsStayOnTheServer) {
+  const std::string abs = "/srv/prt/maps/sub/bad.exr";
+  EXPECT_EQ(publicMessage("'" + abs + "': unknown image format (starts with 68 65)", abs, "sub/bad.exr", "/srv/prt/maps", "F"),
+            "unknown image format (starts with 68 65)");
+  EXPECT_EQ(publicMessage("'" + abs + "': cannot read: Cannot read image file \"" + abs + "\". Bad magic.", abs,
+                          "sub/bad.exr", "/srv/prt/maps", "F"),
+            "cannot read: Cannot read image file \"sub/bad.exr\". Bad magic.");
+  EXPECT_EQ(publicMessage("cannot open /etc/OpenEXR/x.conf", abs, "sub/bad.exr", "/srv/prt/maps", "F"), "F");
+  EXPECT_EQ(publicMessage("under /srv/prt/maps", abs, "sub/bad.exr", "/srv/prt/maps", "F"), "F");
+  EXPECT_EQ(publicMessage("truncated: asset is 1000 bytes but its header declares 4879144", "", "", "/", "F"),
+            "truncated: asset is 1000 bytes but its header declares 4879144");
+  EXPECT_EQ(publicMessage("its size 3x7 matches no layout (2:1 equirect, 1:1 angular map, 4:3 or 3:4 cross)", abs, "x",
+                          "/srv", "F"),
+            "its size 3x7 matches no layout (2:1 equirect, 1:1 angular map, 4:3 or 3:4 cross)");
+  for (const char* yes : {"/etc/passwd", "at '/srv/x'", "file \"/a\"", "(/tmp/x)", "path=/x", "x: /y"}) {
+    EXPECT_TRUE(mentionsAbsolutePath(yes)) << yes;
+  }
+  for (const char* no : {"a/b", "sub/bad.exr", "1/2", "w / h", "", "/", "and/or"}) EXPECT_FALSE(mentionsAbsolutePath(no)) << no;
 }
 
 TEST(Negotiation, PicksTheBestAcceptableEncoding) {
