@@ -12,7 +12,9 @@
 #include <boost/beast/http/serializer.hpp>
 
 #include <cerrno>
+#include <cstring>
 
+#include "public_error.h"
 #include "request_checks.h"
 #include "respond.h"
 
@@ -259,10 +261,18 @@ void Session::sendFileSome() {
       });
       return;
     }
-    // n == 0: the file ended early (truncated on disk after the head went out). The
-    // client was promised more bytes; closing is the only honest signal left.
-    return onSent(n == 0 ? beast::error_code(asio::error::eof) : beast::error_code(errno, beast::system_category()),
-                  bodySent_);
+    if (n < 0 && (errno == EPIPE || errno == ECONNRESET)) {
+      return onSent(beast::error_code(errno, beast::system_category()), bodySent_);  // the client left
+    }
+    // n == 0: the file ended early; n < 0: a read error (EIO). The client was promised
+    // more bytes. A reset rather than a FIN, so no client or cache in between can take the
+    // bytes it has for a whole, shorter body.
+    const int err = n == 0 ? EIO : errno;
+    logRequest(reply_.head.result_int(), bodySent_);
+    logDetail("sending " + target_ + " failed after " + std::to_string(bodySent_) + " body bytes",
+              std::strerror(err));
+    reply_ = Reply{};
+    return abortNow();
   }
   onSent({}, bodySent_);
 }
@@ -296,6 +306,13 @@ void Session::drain() {
     if (ec || self->drained_ > kMaxDrainBytes || self->state_ != State::kClosing) return self->closeNow();
     self->drain();
   });
+}
+
+void Session::abortNow() {
+  // SO_LINGER with a zero timeout: close() sends RST and drops whatever is still queued.
+  beast::error_code ignored;
+  stream_.socket().set_option(asio::socket_base::linger(true, 0), ignored);
+  closeNow();
 }
 
 void Session::closeNow() {

@@ -85,6 +85,8 @@ class Session : public std::enable_shared_from_this<Session> {
   void closeGracefully();
   void drain();
   void closeNow();
+  // Ends the connection with a TCP reset: for a body that cannot be completed as promised.
+  void abortNow();
   void logRequest(unsigned status, std::uint64_t bytes);
 
   beast::tcp_stream stream_;

@@ -62,6 +62,10 @@ std::vector<Variant> StaticFiles::variantsFor(const FileRef& file, const FileSta
   c.stamp = stamp;
   std::vector<std::uint8_t> bytes;
   if (!readAll(file->fd(), stamp.size, &bytes)) return {};
+  // Rewritten while being read: the bytes may be half old, half new, and must not be
+  // cached under the old version's stamp.
+  struct stat after {};
+  if (::fstat(file->fd(), &after) != 0 || !(stampOf(after) == stamp)) return {};
   c.variants = makeEncodedVariants(bytes, baseTag, VariantStorage::kMemory, nullptr);
   for (const Variant& v : c.variants) c.bytes += v.body.size;
   std::lock_guard lock(mutex_);

@@ -3,11 +3,15 @@
 // HEAD and each content coding.
 #include <gtest/gtest.h>
 
+#include <boost/asio/write.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <thread>
+
+#include <unistd.h>
 
 #include "mini_json.h"
 #include "public_error.h"
@@ -139,6 +143,57 @@ TEST(Assets, UnknownVersionsAndBadAssetsAre404) {
   EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(corrupt) + "/corrupt.prt").status, 404);
   EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(s.tree.small) + "/escape.prt").status, 404);
   EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Assets, InPlaceRewriteDuringADownloadNeverDeliversOtherBytes) {
+  // A slow client is mid-way through the room when the file is overwritten in place with
+  // as many different bytes: what it receives under the hash URL (immutable, strong ETag)
+  // must be the hashed bytes, or else an aborted body, never a complete wrong one.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "inplace.log");
+  ASSERT_TRUE(server);
+  const std::string url = "/assets/" + hexHash(tree.room) + "/room.prt";
+  const std::string room = asString(tree.room);
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::socket sock(ioc);
+  boost::system::error_code ec;
+  sock.open(boost::asio::ip::tcp::v4(), ec);
+  // Before connect, so the window stays small and the server is stuck mid-body.
+  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
+  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
+  ASSERT_FALSE(ec);
+  const std::string req = "GET " + url + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+  boost::asio::write(sock, boost::asio::buffer(req), ec);
+  ASSERT_FALSE(ec);
+  std::string got;
+  char buf[16384];
+  while (got.size() < 65536 && !ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  ASSERT_FALSE(ec) << ec.message();
+
+  std::string changed = room;
+  for (char& c : changed) c = static_cast<char>(c ^ 0x5a);
+  {
+    std::FILE* f = std::fopen((tree.root + "/room.prt").c_str(), "r+b");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fwrite(changed.data(), 1, changed.size(), f), changed.size());
+    std::fclose(f);
+  }
+  while (!ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  const std::size_t bodyAt = got.find("\r\n\r\n");
+  ASSERT_NE(bodyAt, std::string::npos);
+  ASSERT_TRUE(got.starts_with("HTTP/1.1 200 OK")) << got.substr(0, 200);
+  EXPECT_NE(got.find("\r\nContent-Length: " + std::to_string(room.size()) + "\r\n"), std::string::npos);
+  const std::string body = got.substr(bodyAt + 4);
+  if (body.size() == room.size()) {
+    EXPECT_TRUE(body == room) << "a complete body with bytes that do not match its hash URL";
+  } else {
+    EXPECT_LT(body.size(), room.size()) << "more bytes than Content-Length";
+  }
+  // This server keeps a private copy, so the download completes with the verified bytes.
+  EXPECT_EQ(body.size(), room.size());
+  // And the old URL is no longer served once the rewrite is noticed.
+  EXPECT_EQ(fetch(server->port(), url).status, 404);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
 TEST(Assets, EachEncodingDecodesToTheSameBytes) {
@@ -343,6 +398,34 @@ TEST(StaticFiles, PagesCarryBrowserProtections) {
                                std::string("/missing")}) {
     EXPECT_EQ(fetch(s.port, t).header("x-content-type-options"), "nosniff") << t;
   }
+}
+
+TEST(StaticFiles, FileTruncatedWhileSendingEndsInAReset) {
+  // The head promised 24 MB; when the file shrinks under a slow download the server cannot
+  // keep that promise and resets the connection, rather than ending it as if complete.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "truncated.log");
+  ASSERT_TRUE(server);
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::socket sock(ioc);
+  boost::system::error_code ec;
+  sock.open(boost::asio::ip::tcp::v4(), ec);
+  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
+  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
+  ASSERT_FALSE(ec);
+  boost::asio::write(sock, boost::asio::buffer(std::string("GET /huge.bin HTTP/1.1\r\nHost: x\r\n\r\n")), ec);
+  std::string got;
+  char buf[16384];
+  while (got.size() < 65536 && !ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  ASSERT_FALSE(ec);
+  ASSERT_EQ(::truncate((tree.web + "/huge.bin").c_str(), 1 << 20), 0);
+  while (!ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  EXPECT_EQ(ec, boost::asio::error::connection_reset) << ec.message();
+  EXPECT_LT(got.size(), tree.huge.size());
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_NE(server->log().find("sending /huge.bin failed after"), std::string::npos) << server->log();
+  EXPECT_TRUE(healthy(server->port()));
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
 TEST(Lights, ProjectedAtTheRequestedOrder) {
