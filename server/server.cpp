@@ -181,6 +181,9 @@ int run(const ServeOptions& options) {
   }
   ioc.stop();
   for (std::thread& t : pool) t.join();
+  // Before the io_context goes: waiting lights requests hold sessions, whose sockets
+  // belong to it.
+  lights->stop();
   if (left == 0) {
     std::fprintf(stderr, "prt-serve: stopped\n");
   } else {

@@ -193,12 +193,29 @@ void Session::onHead(beast::error_code ec) {
     // the next request: refuse and close.
     reply = errorReply(request.version(), http::status::bad_request, "GET and HEAD requests take no body", false, true);
   } else {
-    reply = context_.router.handle(request);
+    Answer answer = context_.router.handle(request);
+    if (answer.deferred) return awaitReply(std::move(answer.deferred), request.method() == http::verb::head,
+                                           request.keep_alive(), !parser_->is_done());
+    reply = std::move(answer.reply);
     // Any other method with a body: 405, and the unread body makes the connection unusable.
     if (!parser_->is_done()) reply.close = true;
   }
   if (request.method() == http::verb::head) reply.length = 0;
   send(std::move(reply), request.keep_alive() && !stopping_);
+}
+
+void Session::awaitReply(std::function<void(ReplySink)> work, bool isHead, bool keepAlive, bool unreadBody) {
+  // Neither reading nor writing: the reply is being made elsewhere. A stop lets it finish,
+  // like a response being written; the sink brings it back onto this connection's strand.
+  state_ = State::kWaiting;
+  work([self = shared_from_this(), isHead, keepAlive, unreadBody](Reply reply) {
+    asio::post(self->stream_.get_executor(), [self, reply = std::move(reply), isHead, keepAlive, unreadBody]() mutable {
+      if (self->state_ != State::kWaiting) return;
+      if (isHead) reply.length = 0;
+      if (unreadBody) reply.close = true;
+      self->send(std::move(reply), keepAlive && !self->stopping_);
+    });
+  });
 }
 
 void Session::send(Reply reply, bool keepAlive) {

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -74,10 +75,12 @@ class Session : public std::enable_shared_from_this<Session> {
   void stop();
 
  private:
-  enum class State { kReading, kWriting, kClosing, kClosed };
+  enum class State { kReading, kWaiting, kWriting, kClosing, kClosed };
 
   void readHead();
   void onHead(beast::error_code ec);
+  // Hands `work` a sink for the reply it makes off the I/O threads, and sends it when it comes.
+  void awaitReply(std::function<void(ReplySink)> work, bool isHead, bool keepAlive, bool unreadBody);
   void send(Reply reply, bool keepAlive);
   void onHeadSent(beast::error_code ec);
   void sendFileSome();
