@@ -142,7 +142,8 @@ int run(const ServeOptions& options) {
   signals.async_wait(onSignal);
 
   auto listener = std::make_shared<Listener>(ioc, std::move(acceptor), *context,
-                                             static_cast<std::size_t>(options.maxConnections));
+                                             static_cast<std::size_t>(options.maxConnections),
+                                             static_cast<std::size_t>(options.perClientLimit()));
   listener->start();
 
   std::vector<std::thread> pool;

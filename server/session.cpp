@@ -50,54 +50,15 @@ bool isHttpParseError(const beast::error_code& ec) {
 
 }  // namespace
 
-// ---- SessionRegistry ------------------------------------------------------------------
-
-void SessionRegistry::add(Session* session, const std::shared_ptr<Session>& shared, bool refusing) {
-  std::lock_guard lock(mutex_);
-  sessions_.emplace(session, shared);
-  if (refusing) ++refusing_;
-}
-
-void SessionRegistry::remove(Session* session, bool refusing) {
-  std::lock_guard lock(mutex_);
-  sessions_.erase(session);
-  if (refusing) --refusing_;
-  if (sessions_.empty()) empty_.notify_all();
-}
-
-std::size_t SessionRegistry::active() const {
-  std::lock_guard lock(mutex_);
-  return sessions_.size() - refusing_;
-}
-
-std::size_t SessionRegistry::refusing() const {
-  std::lock_guard lock(mutex_);
-  return refusing_;
-}
-
-void SessionRegistry::stopAll() {
-  std::vector<std::shared_ptr<Session>> live;
-  {
-    std::lock_guard lock(mutex_);
-    for (auto& [raw, weak] : sessions_) {
-      if (auto s = weak.lock()) live.push_back(std::move(s));
-    }
-  }
-  for (auto& s : live) s->stop();
-}
-
-bool SessionRegistry::waitEmpty(std::chrono::steady_clock::time_point deadline) {
-  std::unique_lock lock(mutex_);
-  return empty_.wait_until(lock, deadline, [&] { return sessions_.empty(); });
-}
-
 // ---- Session --------------------------------------------------------------------------
 
-Session::Session(tcp::socket socket, SessionContext& context, bool refuse)
+Session::Session(tcp::socket socket, SessionContext& context, std::string client, Admission admission)
     : stream_(std::move(socket)),
       timer_(stream_.get_executor()),
       context_(context),
-      refuse_(refuse),
+      client_(std::move(client)),
+      admission_(admission),
+      refuse_(admission != Admission::kServe),
       buffer_(kReadBufferBytes) {
   beast::error_code ec;
   const tcp::endpoint remote = stream_.socket().remote_endpoint(ec);
@@ -109,19 +70,23 @@ Session::Session(tcp::socket socket, SessionContext& context, bool refuse)
 }
 
 Session::~Session() {
-  if (registered_) context_.registry.remove(this, refuse_);
+  if (registered_) context_.registry.remove(this);
 }
 
 void Session::start() {
-  context_.registry.add(this, shared_from_this(), refuse_);
+  context_.registry.add(this, shared_from_this(), client_, refuse_);
   registered_ = true;
   asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
     if (self->refuse_) {
       self->method_ = "-";
       self->target_ = "-";
       self->started_ = std::chrono::steady_clock::now();
-      self->send(errorReply(11, http::status::service_unavailable, "too many connections; try again", false, true),
-                 false);
+      const char* why = self->admission_ == Admission::kRefuseClient
+                            ? "too many connections from your address; reuse or close some and try again"
+                            : "too many connections; try again";
+      Reply reply = errorReply(11, http::status::service_unavailable, why, false, true);
+      reply.head.set(http::field::retry_after, "1");
+      self->send(std::move(reply), false);
     } else {
       self->readHead();
     }
@@ -131,18 +96,51 @@ void Session::start() {
 void Session::stop() {
   asio::post(stream_.get_executor(), [self = shared_from_this()] {
     self->stopping_ = true;
-    // A response being written finishes (onSent then closes); a wait for the next
-    // request, or a lingering close, ends now.
-    if (self->state_ == State::kReading || self->state_ == State::kClosing) self->closeNow();
+    // A response being written or made finishes (onSent then closes); a wait for the
+    // next request, or a lingering close, ends now.
+    const State st = self->state_;
+    if (st == State::kIdle || st == State::kReading || st == State::kClosing) self->closeNow();
+  });
+}
+
+void Session::evict() {
+  asio::post(stream_.get_executor(), [self = shared_from_this()] {
+    // Closed like a keep-alive timeout: a client retries an idempotent request it may
+    // have sent meanwhile (RFC 9112 §9.3.1). Past kIdle, onReadable closes instead.
+    if (self->state_ == State::kIdle) self->closeNow();
   });
 }
 
 void Session::readHead() {
   if (stopping_) return closeGracefully();
+  const auto deadline = std::chrono::steady_clock::now() + context_.readTimeout;
+  if (buffer_.size() > 0) return readHeadUntil(deadline);  // a pipelined request is here already
+  // Idle until the first byte: only now may the registry evict this connection to make
+  // room, and the read timeout (idle time included) runs from here.
+  state_ = State::kIdle;
+  headDeadline_ = deadline;
+  context_.registry.markIdle(this);
+  timer_.expires_at(deadline);
+  timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    if (!ec && self->state_ == State::kIdle) self->closeNow();  // idle too long: nothing to log
+  });
+  stream_.socket().async_wait(tcp::socket::wait_read,
+                              [self = shared_from_this()](beast::error_code ec) { self->onReadable(ec); });
+}
+
+void Session::onReadable(beast::error_code ec) {
+  if (state_ != State::kIdle) return;  // closed: timed out, evicted or stopped
+  timer_.cancel();
+  if (!context_.registry.leaveIdle(this)) return closeNow();  // evicted meanwhile
+  if (ec) return closeNow();
+  readHeadUntil(headDeadline_);
+}
+
+void Session::readHeadUntil(std::chrono::steady_clock::time_point deadline) {
   state_ = State::kReading;
   parser_.emplace();
   parser_->header_limit(kMaxHeadBytes);
-  stream_.expires_after(context_.readTimeout);
+  stream_.expires_at(deadline);
   http::async_read_header(stream_, buffer_, *parser_,
                           [self = shared_from_this()](beast::error_code ec, std::size_t) { self->onHead(ec); });
 }

@@ -280,21 +280,27 @@ TEST(Hostile, SlowClientsAreCutOffAndDoNotHoldTheServer) {
   EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
-TEST(Hostile, ConnectionCapAnswers503AndRecovers) {
+TEST(Hostile, ConnectionCapAnswers503WhenNoneIsIdleAndRecovers) {
   const TestTree tree = makeTestTree(workDir());
-  auto server = startServer(tree, {"--max-connections", "8", "--read-timeout", "30"}, "cap.log");
+  auto server = startServer(tree, {"--max-connections", "8", "--max-connections-per-client", "8", "--read-timeout", "30"},
+                            "cap.log");
   ASSERT_TRUE(server);
   const int port = server->port();
-  std::vector<std::unique_ptr<HttpConnection>> held;
+  // Eight connections each in the middle of a request head: busy, so none can be evicted.
+  std::vector<std::unique_ptr<RawConnection>> held;
   for (int i = 0; i < 8; ++i) {
-    held.push_back(std::make_unique<HttpConnection>(port));
-    ASSERT_EQ(held.back()->request("GET", "/api/scenes").status, 200);  // registered and served
+    held.push_back(std::make_unique<RawConnection>(port));
+    ASSERT_TRUE(held.back()->send("GET /api/scenes HTTP/1.1\r\nHost: x\r\n"));
   }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the server has seen their bytes
   for (int i = 0; i < 5; ++i) {
-    const RawResult over = rawExchange(port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    const RawResult over = rawExchangeFrom(i % 2 ? "127.0.0.2" : "127.0.0.1", port, rawGet("/api/scenes"),
+                                           std::chrono::seconds(5));
     EXPECT_EQ(rawStatus(over.received), 503) << over.received.substr(0, 100);
+    EXPECT_NE(over.received.find("Retry-After: 1\r\n"), std::string::npos);
     EXPECT_TRUE(over.closedByServer);
   }
+  for (const auto& c : held) EXPECT_FALSE(c->closedWithin(std::chrono::milliseconds(50)));
   held.clear();  // the held connections close; their slots free up
   bool recovered = false;
   for (int i = 0; i < 50 && !recovered; ++i) {
@@ -302,6 +308,86 @@ TEST(Hostile, ConnectionCapAnswers503AndRecovers) {
     if (!recovered) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   EXPECT_TRUE(recovered);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Hostile, IdleConnectionsMakeRoomOldestFirst) {
+  // The report: 1,024 idle sockets locked every other client out until the read timeout.
+  // At the cap, a new client now gets the slot of the oldest idle connection.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--max-connections", "8", "--max-connections-per-client", "8", "--read-timeout", "30"},
+                            "idle-cap.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  std::vector<std::unique_ptr<HttpConnection>> keptAlive;  // idle after one request each, oldest first
+  for (int i = 0; i < 4; ++i) {
+    keptAlive.push_back(std::make_unique<HttpConnection>(port, std::chrono::seconds(2)));
+    ASSERT_EQ(keptAlive.back()->request("GET", "/api/scenes").status, 200);
+  }
+  std::vector<std::unique_ptr<RawConnection>> silent;  // connected, nothing sent
+  for (int i = 0; i < 4; ++i) silent.push_back(std::make_unique<RawConnection>(port));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+
+  // Other clients, each keeping its connection: every one is served, and the kept-alive
+  // connections make room, oldest first, then the silent ones.
+  std::vector<std::unique_ptr<RawConnection>> others;
+  const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
+  for (int i = 0; i < 8; ++i) {
+    others.push_back(std::make_unique<RawConnection>(port, i < 4 ? "127.0.0.2" : "127.0.0.3"));
+    ASSERT_TRUE(others.back()->send(keepAliveGet));
+    EXPECT_FALSE(others.back()->closedWithin(std::chrono::milliseconds(200))) << i;
+    EXPECT_EQ(rawStatus(others.back()->received()), 200) << i << ": " << others.back()->received().substr(0, 100);
+    if (i < 4) {
+      // Closed by the server: the next request on it gets no response.
+      EXPECT_EQ(keptAlive[static_cast<std::size_t>(i)]->request("GET", "/api/scenes").status, 0) << i;
+    } else {
+      EXPECT_TRUE(silent[static_cast<std::size_t>(i - 4)]->closedWithin(std::chrono::seconds(2))) << i;
+    }
+  }
+  // Now every connection is a served one that became idle after its response: the next
+  // client takes the oldest of those.
+  EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
+  EXPECT_TRUE(others[0]->closedWithin(std::chrono::seconds(2)));
+  EXPECT_FALSE(others[1]->closedWithin(std::chrono::milliseconds(50)));
+  EXPECT_TRUE(healthy(port));
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Hostile, PerClientCapLeavesRoomForOtherClients) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--max-connections", "16", "--max-connections-per-client", "4", "--read-timeout", "30"},
+                            "client-cap.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  {
+    // Four busy connections from one address: its fifth is refused, another address is served.
+    std::vector<std::unique_ptr<RawConnection>> busy;
+    for (int i = 0; i < 4; ++i) {
+      busy.push_back(std::make_unique<RawConnection>(port));
+      ASSERT_TRUE(busy.back()->send("GET /api/scenes HTTP/1.1\r\nHost: x\r\n"));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const RawResult fifth = rawExchange(port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(fifth.received), 503) << fifth.received.substr(0, 100);
+    EXPECT_NE(fifth.received.find("from your address"), std::string::npos);
+    EXPECT_TRUE(fifth.closedByServer);
+    const RawResult other = rawExchangeFrom("127.0.0.2", port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(other.received), 200);
+    for (const auto& c : busy) EXPECT_FALSE(c->closedWithin(std::chrono::milliseconds(50)));
+  }
+  // With its share held idle, a client's new connection takes the place of its oldest idle
+  // one (another address, so the connections above, still closing, do not count).
+  std::vector<std::unique_ptr<RawConnection>> idle;
+  const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
+  for (int i = 0; i < 4; ++i) {
+    idle.push_back(std::make_unique<RawConnection>(port, "127.0.0.4"));
+    ASSERT_TRUE(idle.back()->send(keepAliveGet));
+    EXPECT_FALSE(idle.back()->closedWithin(std::chrono::milliseconds(200))) << i;
+    ASSERT_EQ(rawStatus(idle.back()->received()), 200) << i;
+  }
+  EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
+  EXPECT_TRUE(idle[0]->closedWithin(std::chrono::seconds(2)));  // the oldest made room
+  for (std::size_t i = 1; i < 4; ++i) EXPECT_FALSE(idle[i]->closedWithin(std::chrono::milliseconds(50))) << i;
   EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
