@@ -1,5 +1,7 @@
 #include "session.h"
 
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
 #include <sys/sendfile.h>
 
 #include <boost/asio/dispatch.hpp>
@@ -11,6 +13,7 @@
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/serializer.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -27,6 +30,8 @@ constexpr std::size_t kMaxSendfileChunk = 1u << 30;  // below sendfile's 0x7ffff
 constexpr std::size_t kMaxDrainBytes = 1u << 20;
 constexpr auto kDrainTimeout = std::chrono::seconds(2);
 constexpr auto kStoppingDrainTimeout = std::chrono::milliseconds(300);
+constexpr std::chrono::microseconds kFirstAckPoll{200};
+constexpr std::chrono::microseconds kMaxAckPoll{20000};
 
 // The head as bytes, written by Beast's serializer.
 std::string serializeHead(http::response<http::empty_body>& head) {
@@ -59,7 +64,8 @@ Session::Session(tcp::socket socket, SessionContext& context, std::string client
       client_(std::move(client)),
       admission_(admission),
       refuse_(admission != Admission::kServe),
-      buffer_(kReadBufferBytes) {
+      buffer_(kReadBufferBytes),
+      ackTimer_(stream_.get_executor()) {
   beast::error_code ec;
   const tcp::endpoint remote = stream_.socket().remote_endpoint(ec);
   peer_ = ec ? "-" : remote.address().to_string() + ":" + std::to_string(remote.port());
@@ -70,6 +76,7 @@ Session::Session(tcp::socket socket, SessionContext& context, std::string client
 }
 
 Session::~Session() {
+  flushLogs(true);  // at exit, responses still waiting for their acknowledgement
   if (registered_) context_.registry.remove(this);
 }
 
@@ -119,13 +126,36 @@ void Session::readHead() {
   // room, and the read timeout (idle time included) runs from here.
   state_ = State::kIdle;
   headDeadline_ = deadline;
+  idleUnacknowledged_ = 0;
   context_.registry.markIdle(this);
-  timer_.expires_at(deadline);
-  timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
-    if (!ec && self->state_ == State::kIdle) self->closeNow();  // idle too long: nothing to log
-  });
+  awaitIdleDeadline();
   stream_.socket().async_wait(tcp::socket::wait_read,
                               [self = shared_from_this()](beast::error_code ec) { self->onReadable(ec); });
+}
+
+void Session::awaitIdleDeadline() {
+  timer_.expires_at(headDeadline_);
+  timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    if (ec || self->state_ != State::kIdle) return;
+    // The last write finished long ago, but a slow client may still be receiving the
+    // response from the socket buffers (megabytes of them): its idle time has not begun.
+    // While it makes progress the deadline moves on; a client that stopped reading goes.
+    const std::uint64_t unacknowledged = self->unacknowledgedBytes();
+    if (unacknowledged > 0 && unacknowledged != self->idleUnacknowledged_) {
+      self->idleUnacknowledged_ = unacknowledged;
+      self->headDeadline_ = std::chrono::steady_clock::now() + self->context_.readTimeout;
+      return self->awaitIdleDeadline();
+    }
+    self->closeNow();  // idle too long: nothing to log
+  });
+}
+
+std::uint64_t Session::unacknowledgedBytes() {
+  // SIOCOUTQ: bytes written to the socket that the peer has not acknowledged yet (sent
+  // or still queued). A slow client can leave megabytes there after the last write.
+  int n = 0;
+  if (::ioctl(stream_.socket().native_handle(), SIOCOUTQ, &n) != 0 || n < 0) return 0;
+  return static_cast<std::uint64_t>(n);
 }
 
 void Session::onReadable(beast::error_code ec) {
@@ -229,12 +259,19 @@ void Session::send(Reply reply, bool keepAlive) {
     const std::array<asio::const_buffer, 2> buffers{
         asio::buffer(head_), asio::buffer(reply_.body.memory->data() + reply_.offset, reply_.length)};
     asio::async_write(stream_, buffers, [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
       self->onSent(ec, n > self->head_.size() ? n - self->head_.size() : 0);
     });
   } else if (reply_.length > 0 && reply_.body.file) {
-    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onHeadSent(ec); });
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
+      self->onHeadSent(ec);
+    });
   } else {
-    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onSent(ec, 0); });
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
+      self->onSent(ec, 0);
+    });
   }
 }
 
@@ -257,6 +294,7 @@ void Session::sendFileSome() {
       fileOffset_ += static_cast<std::uint64_t>(n);
       remaining_ -= static_cast<std::uint64_t>(n);
       bodySent_ += static_cast<std::uint64_t>(n);
+      written_ += static_cast<std::uint64_t>(n);
       continue;
     }
     if (n < 0 && errno == EINTR) continue;
@@ -332,16 +370,42 @@ void Session::abortNow() {
 
 void Session::closeNow() {
   if (state_ == State::kClosed) return;
+  flushLogs(true);
   state_ = State::kClosed;
   timer_.cancel();
+  ackTimer_.cancel();
   stream_.close();
 }
 
 void Session::logRequest(unsigned status, std::uint64_t bytes) {
   if (!context_.log.enabled()) return;
-  const auto micros =
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - started_).count();
-  context_.log.write({peer_, method_, target_, status, bytes, static_cast<std::int64_t>(micros)});
+  pendingLogs_.push_back({written_, status, bytes, method_, target_, started_});
+  flushLogs(false);
+}
+
+void Session::flushLogs(bool all) {
+  const std::uint64_t acknowledged = all ? written_ : written_ - std::min(written_, unacknowledgedBytes());
+  const auto now = std::chrono::steady_clock::now();
+  while (!pendingLogs_.empty() && (all || pendingLogs_.front().end <= acknowledged)) {
+    const PendingLog& p = pendingLogs_.front();
+    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(now - p.started).count();
+    context_.log.write({peer_, p.method, p.target, p.status, p.bytes, static_cast<std::int64_t>(micros)});
+    pendingLogs_.pop_front();
+  }
+  if (pendingLogs_.empty()) {
+    ackPoll_ = kFirstAckPoll;
+    return;
+  }
+  if (ackTimerArmed_) return;
+  // No event says "acknowledged": look again soon, then less often (the error in the
+  // logged time stays under kMaxAckPoll, or half the time waited).
+  ackTimerArmed_ = true;
+  ackTimer_.expires_after(ackPoll_);
+  ackPoll_ = std::min<std::chrono::microseconds>(ackPoll_ * 2, kMaxAckPoll);
+  ackTimer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    self->ackTimerArmed_ = false;
+    if (!ec && self->state_ != State::kClosed) self->flushLogs(false);
+  });
 }
 
 }  // namespace prt::serve

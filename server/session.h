@@ -12,6 +12,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -60,7 +61,11 @@ class Session : public std::enable_shared_from_this<Session> {
 
   // Waits for the next request: for its first byte (idle) unless one is buffered already.
   void readHead();
+  // Closes the idle connection at headDeadline_, unless the client is still receiving.
+  void awaitIdleDeadline();
   void onReadable(beast::error_code ec);
+  // Bytes written to the socket and not yet acknowledged by the client.
+  std::uint64_t unacknowledgedBytes();
   void readHeadUntil(std::chrono::steady_clock::time_point deadline);
   void onHead(beast::error_code ec);
   // Hands `work` a sink for the reply it makes off the I/O threads, and sends it when it comes.
@@ -74,7 +79,11 @@ class Session : public std::enable_shared_from_this<Session> {
   void closeNow();
   // Ends the connection with a TCP reset: for a body that cannot be completed as promised.
   void abortNow();
+  // Logs the request once the client has acknowledged the last byte of what was written
+  // for it (the access log's time is to the last byte received, not to the last write).
   void logRequest(unsigned status, std::uint64_t bytes);
+  // Writes the pending lines whose bytes are acknowledged (all of them when `all`).
+  void flushLogs(bool all);
 
   beast::tcp_stream stream_;
   asio::steady_timer timer_;  // deadlines Beast's stream does not keep: idle wait, sendfile
@@ -84,6 +93,7 @@ class Session : public std::enable_shared_from_this<Session> {
   const bool refuse_;
   bool registered_ = false;
   std::chrono::steady_clock::time_point headDeadline_;
+  std::uint64_t idleUnacknowledged_ = 0;  // at the last idle deadline, to tell progress
   std::string peer_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::empty_body>> parser_;
@@ -100,6 +110,21 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string method_;
   std::string target_;
   std::chrono::steady_clock::time_point started_;
+
+  // Access-log lines waiting for their response's last byte to be acknowledged.
+  struct PendingLog {
+    std::uint64_t end;  // written_ after the response's last byte
+    unsigned status;
+    std::uint64_t bytes;
+    std::string method;
+    std::string target;
+    std::chrono::steady_clock::time_point started;
+  };
+  std::uint64_t written_ = 0;  // bytes written to the socket, all responses together
+  std::deque<PendingLog> pendingLogs_;
+  asio::steady_timer ackTimer_;
+  bool ackTimerArmed_ = false;
+  std::chrono::microseconds ackPoll_{200};
 
   std::array<char, 4096> drainBuffer_{};
   std::size_t drained_ = 0;
