@@ -319,29 +319,36 @@ TEST(Hostile, IdleConnectionsMakeRoomOldestFirst) {
                             "idle-cap.log");
   ASSERT_TRUE(server);
   const int port = server->port();
-  std::vector<std::unique_ptr<HttpConnection>> keptAlive;  // idle after one request each, oldest first
+  // Idle connections, oldest first: four that never send anything, then four kept alive
+  // after one request each. The server accepts in arrival order, so once the last kept-
+  // alive one is answered all eight are registered (the test cannot ask the server).
+  std::vector<std::unique_ptr<RawConnection>> silent;
+  for (int i = 0; i < 4; ++i) silent.push_back(std::make_unique<RawConnection>(port));
+  // A connection turns idle when the server has finished its response, which can be a
+  // moment after the client has it: the pauses keep "oldest idle" in the order below.
+  const auto settle = [] { std::this_thread::sleep_for(std::chrono::milliseconds(50)); };
+  std::vector<std::unique_ptr<HttpConnection>> keptAlive;
   for (int i = 0; i < 4; ++i) {
     keptAlive.push_back(std::make_unique<HttpConnection>(port, std::chrono::seconds(2)));
     ASSERT_EQ(keptAlive.back()->request("GET", "/api/scenes").status, 200);
+    settle();
   }
-  std::vector<std::unique_ptr<RawConnection>> silent;  // connected, nothing sent
-  for (int i = 0; i < 4; ++i) silent.push_back(std::make_unique<RawConnection>(port));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
 
-  // Other clients, each keeping its connection: every one is served, and the kept-alive
-  // connections make room, oldest first, then the silent ones.
+  // Other clients, each keeping its connection: every one is served, and the idle
+  // connections make room in the order they became idle.
   std::vector<std::unique_ptr<RawConnection>> others;
   const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
   for (int i = 0; i < 8; ++i) {
     others.push_back(std::make_unique<RawConnection>(port, i < 4 ? "127.0.0.2" : "127.0.0.3"));
     ASSERT_TRUE(others.back()->send(keepAliveGet));
-    EXPECT_FALSE(others.back()->closedWithin(std::chrono::milliseconds(200))) << i;
+    EXPECT_TRUE(others.back()->awaitResponse(std::chrono::seconds(5))) << i;
     EXPECT_EQ(rawStatus(others.back()->received()), 200) << i << ": " << others.back()->received().substr(0, 100);
+    settle();
     if (i < 4) {
-      // Closed by the server: the next request on it gets no response.
-      EXPECT_EQ(keptAlive[static_cast<std::size_t>(i)]->request("GET", "/api/scenes").status, 0) << i;
+      EXPECT_TRUE(silent[static_cast<std::size_t>(i)]->closedWithin(std::chrono::seconds(2))) << i;
     } else {
-      EXPECT_TRUE(silent[static_cast<std::size_t>(i - 4)]->closedWithin(std::chrono::seconds(2))) << i;
+      // Closed by the server: the next request on it gets no response.
+      EXPECT_EQ(keptAlive[static_cast<std::size_t>(i - 4)]->request("GET", "/api/scenes").status, 0) << i;
     }
   }
   // Now every connection is a served one that became idle after its response: the next
@@ -382,8 +389,9 @@ TEST(Hostile, PerClientCapLeavesRoomForOtherClients) {
   for (int i = 0; i < 4; ++i) {
     idle.push_back(std::make_unique<RawConnection>(port, "127.0.0.4"));
     ASSERT_TRUE(idle.back()->send(keepAliveGet));
-    EXPECT_FALSE(idle.back()->closedWithin(std::chrono::milliseconds(200))) << i;
+    EXPECT_TRUE(idle.back()->awaitResponse(std::chrono::seconds(5))) << i;
     ASSERT_EQ(rawStatus(idle.back()->received()), 200) << i;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // idle once the server has finished it
   }
   EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
   EXPECT_TRUE(idle[0]->closedWithin(std::chrono::seconds(2)));  // the oldest made room

@@ -11,6 +11,7 @@
 #include <boost/beast/http/write.hpp>
 
 #include <cctype>
+#include <cstdlib>
 
 namespace prt::serve::test {
 
@@ -149,6 +150,27 @@ bool RawConnection::send(std::string_view bytes) {
 
 bool RawConnection::closedWithin(std::chrono::milliseconds timeout) {
   return connected_ && readUntilClosed(socket_, &received_, timeout);
+}
+
+bool RawConnection::awaitResponse(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  char buf[4096];
+  while (connected_ && std::chrono::steady_clock::now() < deadline) {
+    const std::size_t end = received_.find("\r\n\r\n");
+    if (end != std::string::npos) {
+      const std::string head = lower(received_.substr(0, end));
+      const std::size_t at = head.find("\r\ncontent-length:");
+      const std::size_t length = at == std::string::npos ? 0 : std::strtoull(head.c_str() + at + 17, nullptr, 10);
+      if (received_.size() >= end + 4 + length) return true;
+    }
+    const ssize_t n = ::recv(socket_.native_handle(), buf, sizeof buf, 0);
+    if (n > 0) {
+      received_.append(buf, static_cast<std::size_t>(n));
+    } else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      return false;
+    }
+  }
+  return false;
 }
 
 int rawStatus(std::string_view received) {

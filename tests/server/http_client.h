@@ -70,6 +70,9 @@ class RawConnection {
   bool send(std::string_view bytes);
   // Reads until the server closes (EOF or reset: true) or `timeout` passes (false).
   bool closedWithin(std::chrono::milliseconds timeout);
+  // Reads until received() holds a whole response (head and Content-Length body: true),
+  // or the server closes or `timeout` passes (false).
+  bool awaitResponse(std::chrono::milliseconds timeout);
   const std::string& received() const { return received_; }
 
  private:
