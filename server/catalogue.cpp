@@ -9,7 +9,9 @@
 #include "content_hash.h"
 #include "encoded_variants.h"
 #include "json_text.h"
+#include "public_error.h"
 #include "request_target.h"
+#include "temp_file.h"
 
 namespace prt::serve {
 namespace {
@@ -109,7 +111,17 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
   // The URL changes whenever the content does, so any cache may keep it for good.
   resource->cacheControl = "public, max-age=31536000, immutable";
   Variant identity;
-  identity.body.file = std::move(file);
+  // Sent from a private copy written from the very bytes just verified and hashed, not
+  // from the file: sendfile reads the page cache at send time (and TCP keeps referring to
+  // those pages until they are acknowledged), so an in-place write during a download
+  // would otherwise go out under the old hash, immutable, for a year of caching.
+  const std::string_view verified(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (Status s = writeTempFile(verified, &identity.body.file); !s.isOk()) {
+    logDetail("asset '" + scanned.relPath + "'", s.message());
+    e->error = "the server could not store its private copy (temporary directory full or unwritable; see its log)";
+    return e;
+  }
+  e->source = std::move(file);
   identity.body.size = e->bytes;
   identity.etag = etagFor(e->hash, Encoding::kIdentity);
   resource->variants.push_back(std::move(identity));
@@ -126,6 +138,20 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
   }
   e->usable = true;
   return e;
+}
+
+// The catalogue is public: an error that would show where the server keeps its files is
+// replaced (and logged in full). The reader's messages name no paths; this is the wall in
+// case one ever does.
+std::shared_ptr<const CatalogueEntry> withPublicError(std::shared_ptr<const CatalogueEntry> entry,
+                                                      const ScannedFile& scanned, const RootDir& root) {
+  const std::string safe = publicMessage(entry->error, scanned.absPath, scanned.relPath, root.path(),
+                                         "cannot be used (the server's log has the details)");
+  if (safe == entry->error) return entry;
+  logDetail("asset '" + scanned.relPath + "'", entry->error);
+  auto copy = std::make_shared<CatalogueEntry>(*entry);
+  copy->error = safe;
+  return copy;
 }
 
 // {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P][,"band":l]}
@@ -222,7 +248,7 @@ std::shared_ptr<const CatalogueEntry> Catalogue::findAsset(std::string_view path
   if (it == snap->byPath.end()) return nullptr;
   const CatalogueEntry& e = *it->second;
   struct stat st {};
-  if (::fstat(e.resource->variants[0].body.file->fd(), &st) != 0 || !(stampOf(st) == e.stamp)) {
+  if (::fstat(e.source->fd(), &st) != 0 || !(stampOf(st) == e.stamp)) {
     nextCheck_.store(0);  // rewritten in place: the next request rescans
     return nullptr;
   }
@@ -255,6 +281,7 @@ void Catalogue::refresh() {
     const bool same = it != previous.end() && f.problem.empty() && !(it->second->stamp == FileStamp{}) &&
                       it->second->stamp == f.stamp;
     std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &pool, &snap->retry);
+    if (!same && !entry->usable) entry = withPublicError(entry, f, root_);
     if (entry->usable) {
       ++snap->usableCount;
       snap->byPath.emplace("/assets/" + entry->hash + "/" + baseName(entry->file), entry);

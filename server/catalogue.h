@@ -32,7 +32,11 @@ struct CatalogueEntry {
   AssetSummary summary;
   std::string hash;  // 16 hex digits of XXH64 over the file, when usable
   std::string url;   // /assets/<hash>/<file name, percent-encoded>
-  std::shared_ptr<const Resource> resource;  // identity from the verified descriptor + variants
+  // Every representation is the server's own copy of the verified bytes (identity and
+  // variants in anonymous temporary files, parts in memory): nothing done to the file
+  // under the root can change what goes out under the content-addressed URL.
+  std::shared_ptr<const Resource> resource;
+  FileRef source;  // the file as verified; its stamp tells an in-place rewrite
   std::vector<ServedPart> parts;  // the file cut into parts, in file order; empty: served whole only
 };
 
@@ -69,7 +73,8 @@ class Catalogue {
   std::shared_ptr<const CatalogueSnapshot> current();
 
   // The usable entry at decoded URL `path`, provided its file still is the verified version
-  // (an in-place rewrite is noticed here, and triggers a rescan); null otherwise.
+  // (an in-place rewrite is noticed here, and triggers a rescan); null otherwise. Responses
+  // already under way keep sending the private copy, so they stay byte-exact.
   std::shared_ptr<const CatalogueEntry> findAsset(std::string_view path);
 
   // The part at decoded URL path ("/parts/<hash>") in the current snapshot; null otherwise.

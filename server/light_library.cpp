@@ -7,6 +7,7 @@
 #include "image_io.h"
 #include "json_text.h"
 #include "light_preview.h"
+#include "public_error.h"
 
 namespace prt::serve {
 namespace {
@@ -46,10 +47,35 @@ std::shared_ptr<const Resource> jsonResource(const std::string& text) {
 
 }  // namespace
 
+std::string LightLibrary::publicError(const ScannedFile& file, const std::string& detail) const {
+  // The loader names the file by its absolute path, and OpenEXR's messages repeat it.
+  logDetail("environment map '" + file.relPath + "'", detail);
+  return publicMessage(detail, file.absPath, file.relPath, root_.path(),
+                       "cannot be read as an image (the server's log has the details)");
+}
+
 LightLibrary::LightLibrary(RootDir root, std::chrono::milliseconds recheck) : root_(std::move(root)), recheck_(recheck) {
-  std::lock_guard lock(mutex_);
-  refreshLocked();
-  nextCheck_ = std::chrono::steady_clock::now() + recheck_;
+  {
+    std::lock_guard lock(mutex_);
+    refreshLocked();
+    nextCheck_ = std::chrono::steady_clock::now() + recheck_;
+  }
+  worker_ = std::thread([this] { work(); });
+}
+
+LightLibrary::~LightLibrary() { stop(); }
+
+void LightLibrary::stop() {
+  std::map<int, std::vector<DocumentCallback>> dropped;
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    queue_.clear();
+    dropped.swap(waiting_);
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  // `dropped` goes here, outside the lock: the callbacks hold sessions.
 }
 
 std::size_t LightLibrary::count() {
@@ -79,6 +105,7 @@ void LightLibrary::refreshLocked() {
   }
   lights_ = std::move(lights);
   listing_ = std::move(listing);
+  ++generation_;
   documents_.clear();
   previews_.clear();
   for (const auto& l : lights_) {
@@ -90,7 +117,7 @@ void LightLibrary::ensureProjected(Light& light, int order) {
   if (!light.error.empty() || light.coefficients.count(order)) return;
   RgbImage image;
   if (Status s = loadImage(light.scanned.absPath, &image); !s.isOk()) {
-    light.error = s.message();
+    light.error = publicError(light.scanned, s.message());
     light.loaded = true;
     return;
   }
@@ -117,6 +144,7 @@ void LightLibrary::ensureProjected(Light& light, int order) {
       v.body = memoryBody(std::move(png));
       v.etag = etagFor(tag, Encoding::kIdentity);
       r->variants.push_back(std::move(v));
+      std::lock_guard lock(mutex_);
       light.previewPath = "/api/lights/preview/" + tag + ".png";
       light.previewResource = r;
       previews_.emplace(light.previewPath, r);
@@ -124,23 +152,78 @@ void LightLibrary::ensureProjected(Light& light, int order) {
   }
   std::vector<Rgb> coeffs;
   if (Status s = projectLayout(light.layout, order, image, &coeffs); !s.isOk()) {
-    light.error = s.message();
+    light.error = publicError(light.scanned, s.message());
     return;
   }
   light.coefficients.emplace(order, std::move(coeffs));
 }
 
-std::shared_ptr<const Resource> LightLibrary::document(int order) {
+std::shared_ptr<const Resource> LightLibrary::cachedDocument(int order) {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
   if (now >= nextCheck_) {
     refreshLocked();
     nextCheck_ = now + recheck_;
   }
-  if (const auto it = documents_.find(order); it != documents_.end()) return it->second;
+  const auto it = documents_.find(order);
+  return it == documents_.end() ? nullptr : it->second;
+}
+
+void LightLibrary::documentLater(int order, DocumentCallback done) {
+  std::shared_ptr<const Resource> ready;
+  {
+    std::lock_guard lock(mutex_);
+    if (const auto it = documents_.find(order); it != documents_.end()) {
+      ready = it->second;
+    } else {
+      std::vector<DocumentCallback>& waiters = waiting_[order];
+      if (waiters.empty()) queue_.push_back(order);
+      waiters.push_back(std::move(done));
+    }
+  }
+  if (ready) return done(std::move(ready));
+  wake_.notify_one();
+}
+
+void LightLibrary::work() {
+  for (;;) {
+    int order = 0;
+    std::vector<std::shared_ptr<Light>> lights;
+    std::uint64_t generation = 0;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      order = queue_.front();
+      queue_.pop_front();
+      lights = lights_;
+      generation = generation_;
+    }
+    std::shared_ptr<const Resource> doc;
+    try {
+      doc = makeDocument(order, lights);
+    } catch (const std::exception& e) {
+      logDetail("making the lights document for order " + std::to_string(order) + " failed", e.what());
+    }
+    std::vector<DocumentCallback> waiters;
+    {
+      std::lock_guard lock(mutex_);
+      // Made from the listing of its time: served to those who asked meanwhile, but not
+      // kept once the maps have changed.
+      if (doc && generation == generation_) documents_.emplace(order, doc);
+      if (const auto it = waiting_.find(order); it != waiting_.end()) {
+        waiters = std::move(it->second);
+        waiting_.erase(it);
+      }
+    }
+    for (DocumentCallback& w : waiters) w(doc);
+  }
+}
+
+std::shared_ptr<const Resource> LightLibrary::makeDocument(int order, const std::vector<std::shared_ptr<Light>>& lights) {
   std::string j = "{\"order\":" + std::to_string(order) + ",\"lights\":[";
-  for (std::size_t i = 0; i < lights_.size(); ++i) {
-    Light& l = *lights_[i];
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Light& l = *lights[i];
     ensureProjected(l, order);
     j += std::string(i ? "," : "") + "\n{\"name\":" + jsonString(stemOf(l.scanned.relPath)) +
          ",\"file\":" + jsonString(l.scanned.relPath) + ",\"usable\":" + (l.error.empty() ? "true" : "false");
@@ -159,9 +242,7 @@ std::shared_ptr<const Resource> LightLibrary::document(int order) {
     j += "]}";
   }
   j += "\n]}\n";
-  auto doc = jsonResource(j);
-  documents_.emplace(order, doc);
-  return doc;
+  return jsonResource(j);
 }
 
 std::shared_ptr<const Resource> LightLibrary::preview(std::string_view path) {

@@ -4,23 +4,31 @@
 #include <boost/asio/post.hpp>
 
 #include <cstdio>
+#include <string>
 
 namespace prt::serve {
 namespace {
 
-// Connections beyond the cap that may be waiting for their 503 at once; past this they
-// are closed without a word (a flood should not cost memory).
-constexpr std::size_t kMaxRefusing = 64;
+// The key of the per-client cap: the peer's address, an IPv4-mapped IPv6 one as IPv4.
+std::string clientOf(const tcp::socket& socket) {
+  beast::error_code ec;
+  asio::ip::address a = socket.remote_endpoint(ec).address();
+  if (ec) return "-";
+  if (a.is_v6() && a.to_v6().is_v4_mapped()) a = asio::ip::make_address_v4(asio::ip::v4_mapped, a.to_v6());
+  return a.to_string();
+}
 
 }  // namespace
 
-Listener::Listener(asio::io_context& ioc, tcp::acceptor acceptor, SessionContext& context, std::size_t maxConnections)
+Listener::Listener(asio::io_context& ioc, tcp::acceptor acceptor, SessionContext& context, std::size_t maxConnections,
+                   std::size_t maxPerClient)
     : ioc_(ioc),
       strand_(asio::make_strand(ioc)),
       acceptor_(std::move(acceptor)),
       retry_(strand_),
       context_(context),
-      maxConnections_(maxConnections) {}
+      maxConnections_(maxConnections),
+      maxPerClient_(maxPerClient) {}
 
 void Listener::start() {
   asio::dispatch(strand_, [self = shared_from_this()] { self->accept(); });
@@ -56,12 +64,13 @@ void Listener::onAccept(beast::error_code ec, tcp::socket socket) {
     });
     return;
   }
-  const bool refuse = context_.registry.active() >= maxConnections_;
-  if (refuse && context_.registry.refusing() >= kMaxRefusing) {
+  std::string client = clientOf(socket);
+  const Admission admission = context_.registry.admit(client, maxConnections_, maxPerClient_);
+  if (admission == Admission::kDrop) {
     beast::error_code ignored;
     socket.close(ignored);
   } else {
-    std::make_shared<Session>(std::move(socket), context_, refuse)->start();
+    std::make_shared<Session>(std::move(socket), context_, std::move(client), admission)->start();
   }
   accept();
 }

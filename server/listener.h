@@ -1,5 +1,5 @@
-// Accepting connections, and the connection cap: a client beyond it gets a quick 503
-// rather than a hang in the listen backlog.
+// Accepting connections, and the connection caps (the registry decides): a client beyond
+// them gets a quick 503 rather than a hang in the listen backlog.
 #pragma once
 
 #include <boost/asio/ip/tcp.hpp>
@@ -16,7 +16,8 @@ namespace prt::serve {
 class Listener : public std::enable_shared_from_this<Listener> {
  public:
   // `acceptor` is bound and listening.
-  Listener(asio::io_context& ioc, tcp::acceptor acceptor, SessionContext& context, std::size_t maxConnections);
+  Listener(asio::io_context& ioc, tcp::acceptor acceptor, SessionContext& context, std::size_t maxConnections,
+           std::size_t maxPerClient);
 
   // Starts the accept loop on the listener's strand.
   void start();
@@ -33,6 +34,7 @@ class Listener : public std::enable_shared_from_this<Listener> {
   asio::steady_timer retry_;
   SessionContext& context_;
   std::size_t maxConnections_;
+  std::size_t maxPerClient_;
   bool stopped_ = false;
 };
 

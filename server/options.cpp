@@ -53,7 +53,11 @@ const char* serveHelpText() {
          "  --bind ADDR            address to listen on (default 127.0.0.1; 0.0.0.0 or :: for all)\n"
          "  --port N               TCP port (default 8080; 0 picks a free one and prints it)\n"
          "  --threads N            I/O threads (default: one per hardware thread)\n"
-         "  --max-connections N    open connections served at once; more get 503 (default 1024)\n"
+         "  --max-connections N    open connections served at once; when all are busy more get 503,\n"
+         "                         when some are idle the oldest idle one is closed (default 1024)\n"
+         "  --max-connections-per-client N\n"
+         "                         connections one client address may hold (default: a quarter of\n"
+         "                         --max-connections, 256); behind a proxy, set it to --max-connections\n"
          "  --read-timeout S       seconds a client has to send a request head, idle time\n"
          "                         between keep-alive requests included (default 15)\n"
          "  --write-timeout S      seconds a client may stall a response before it is dropped (default 30)\n"
@@ -91,8 +95,8 @@ Status parseServeOptions(std::span<const std::string> args, ServeOptions* out) {
       continue;
     }
     static constexpr std::string_view kValued[] = {"--root", "--web", "--bind", "--port", "--threads",
-                                                   "--max-connections", "--read-timeout", "--write-timeout",
-                                                   "--max-parts-mib"};
+                                                   "--max-connections", "--max-connections-per-client",
+                                                   "--read-timeout", "--write-timeout", "--max-parts-mib"};
     bool known = false;
     for (std::string_view k : kValued) known = known || flag == k;
     if (!known) {
@@ -109,6 +113,9 @@ Status parseServeOptions(std::span<const std::string> args, ServeOptions* out) {
     else if (flag == "--port") s = parseInt(flag, value, 0, 65535, &out->port);
     else if (flag == "--threads") s = parseInt(flag, value, 1, 256, &out->threads);
     else if (flag == "--max-connections") s = parseInt(flag, value, 1, 1000000, &out->maxConnections);
+    else if (flag == "--max-connections-per-client") {
+      s = parseInt(flag, value, 1, 1000000, &out->maxConnectionsPerClient);
+    }
     else if (flag == "--read-timeout") s = parseSeconds(flag, value, &out->readTimeoutSeconds);
     else if (flag == "--write-timeout") s = parseSeconds(flag, value, &out->writeTimeoutSeconds);
     else if (flag == "--max-parts-mib") s = parseInt(flag, value, 0, 1024, &out->maxPartsMiB);

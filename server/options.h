@@ -1,6 +1,7 @@
 // prt-serve's command line.
 #pragma once
 
+#include <algorithm>
 #include <span>
 #include <string>
 
@@ -20,12 +21,18 @@ struct ServeOptions {
   int port = 8080;                  // --port; 0 picks a free port (printed at start)
   int threads = 0;                  // --threads; 0 = one per hardware thread
   int maxConnections = 1024;        // --max-connections
+  int maxConnectionsPerClient = 0;  // --max-connections-per-client; 0: a quarter of maxConnections
   double readTimeoutSeconds = 15;   // --read-timeout: to receive a request head
   double writeTimeoutSeconds = 30;  // --write-timeout: without progress while sending
   int maxPartsMiB = 64;             // --max-parts-mib: larger assets are served whole only
   bool quiet = false;               // --quiet: no access log
   bool help = false;
   bool version = false;
+
+  // Connections one client address may hold: the option, else a quarter of the cap (at least 1).
+  int perClientLimit() const {
+    return maxConnectionsPerClient > 0 ? maxConnectionsPerClient : std::max(1, maxConnections / 4);
+  }
 };
 
 // The text --help prints.

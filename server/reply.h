@@ -7,6 +7,8 @@
 #include <boost/beast/http/message.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <utility>
 
 #include "resource.h"
 
@@ -20,6 +22,19 @@ struct Reply {
   std::uint64_t offset = 0;               // first byte of `body` to send
   std::uint64_t length = 0;               // bytes to send after the head
   bool close = false;                     // close the connection after this reply
+};
+
+// Hands over a reply that was made off the I/O threads; callable from any thread, once.
+using ReplySink = std::function<void(Reply)>;
+
+// What the router answers a request with: a reply now, or work that will hand the reply
+// to the sink the session gives it (so a slow document never holds an I/O thread).
+struct Answer {
+  Answer(Reply now) : reply(std::move(now)) {}  // NOLINT(google-explicit-constructor): the common case
+  explicit Answer(std::function<void(ReplySink)> later) : deferred(std::move(later)) {}
+
+  Reply reply;                              // when !deferred
+  std::function<void(ReplySink)> deferred;  // set: call it once with the sink
 };
 
 }  // namespace prt::serve

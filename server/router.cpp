@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "prt/sh_basis.h"
+#include "public_error.h"
 #include "request_target.h"
 
 namespace prt::serve {
@@ -17,17 +18,19 @@ constexpr std::string_view kPreviewPrefix = "/api/lights/preview/";
 Router::Router(Catalogue& catalogue, LightLibrary& lights, StaticFiles* web)
     : catalogue_(catalogue), lights_(lights), web_(web) {}
 
-Reply Router::handle(const RequestHead& request) noexcept {
+Answer Router::handle(const RequestHead& request) noexcept {
   try {
     return route(request);
   } catch (const std::exception& e) {
-    return errorReply(request.version(), http::status::internal_server_error, e.what(), false, true);
+    // Exception text can carry paths and library internals: the log gets it, the client not.
+    logDetail("internal error in a handler", e.what());
+    return errorReply(request.version(), http::status::internal_server_error, "internal error", false, true);
   } catch (...) {
     return errorReply(request.version(), http::status::internal_server_error, "internal error", false, true);
   }
 }
 
-Reply Router::route(const RequestHead& request) {
+Answer Router::route(const RequestHead& request) {
   const unsigned version = request.version();
   if (request.method() != http::verb::get && request.method() != http::verb::head) {
     Reply r = errorReply(version, http::status::method_not_allowed, "only GET and HEAD are served", false);
@@ -64,7 +67,7 @@ Reply Router::route(const RequestHead& request) {
   return errorReply(version, http::status::not_found, "not found (no --web directory)", false);
 }
 
-Reply Router::lightsDocument(const RequestHead& request, std::string_view query) {
+Answer Router::lightsDocument(const RequestHead& request, std::string_view query) {
   int order = 5;
   std::string text;
   if (queryValue(query, "order", &text)) {
@@ -77,7 +80,22 @@ Reply Router::lightsDocument(const RequestHead& request, std::string_view query)
                         true);
     }
   }
-  return respond(request, *lights_.document(order));
+  if (const auto doc = lights_.cachedDocument(order)) return respond(request, *doc);
+  // Projecting the maps takes a large fraction of a second each: done on the lights
+  // worker, and the session sends the reply when it is ready.
+  return Answer([this, head = request, order](ReplySink sink) {
+    lights_.documentLater(order, [head, sink](std::shared_ptr<const Resource> doc) {
+      Reply reply;
+      try {
+        reply = doc ? respond(head, *doc)
+                    : errorReply(head.version(), http::status::internal_server_error, "internal error", true, true);
+      } catch (const std::exception& e) {
+        logDetail("internal error in a handler", e.what());
+        reply = errorReply(head.version(), http::status::internal_server_error, "internal error", true, true);
+      }
+      sink(std::move(reply));
+    });
+  });
 }
 
 }  // namespace prt::serve

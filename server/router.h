@@ -18,13 +18,14 @@ class Router {
   // `web` may be null (no --web): then only the API and the assets are served.
   Router(Catalogue& catalogue, LightLibrary& lights, StaticFiles* web);
 
-  // The reply to a complete request head. Never throws: an unexpected failure inside a
-  // handler becomes 500 (and the connection is closed).
-  Reply handle(const RequestHead& request) noexcept;
+  // The answer to a complete request head: a reply, or (for a lights document not made
+  // yet) work that delivers one later from the lights worker. Never throws: an unexpected
+  // failure inside a handler becomes 500 (and the connection is closed).
+  Answer handle(const RequestHead& request) noexcept;
 
  private:
-  Reply route(const RequestHead& request);
-  Reply lightsDocument(const RequestHead& request, std::string_view query);
+  Answer route(const RequestHead& request);
+  Answer lightsDocument(const RequestHead& request, std::string_view query);
 
   Catalogue& catalogue_;
   LightLibrary& lights_;

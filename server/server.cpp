@@ -142,7 +142,8 @@ int run(const ServeOptions& options) {
   signals.async_wait(onSignal);
 
   auto listener = std::make_shared<Listener>(ioc, std::move(acceptor), *context,
-                                             static_cast<std::size_t>(options.maxConnections));
+                                             static_cast<std::size_t>(options.maxConnections),
+                                             static_cast<std::size_t>(options.perClientLimit()));
   listener->start();
 
   std::vector<std::thread> pool;
@@ -181,6 +182,9 @@ int run(const ServeOptions& options) {
   }
   ioc.stop();
   for (std::thread& t : pool) t.join();
+  // Before the io_context goes: waiting lights requests hold sessions, whose sockets
+  // belong to it.
+  lights->stop();
   if (left == 0) {
     std::fprintf(stderr, "prt-serve: stopped\n");
   } else {

@@ -1,5 +1,7 @@
 #include "session.h"
 
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
 #include <sys/sendfile.h>
 
 #include <boost/asio/dispatch.hpp>
@@ -11,8 +13,12 @@
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/serializer.hpp>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstring>
 
+#include "public_error.h"
+#include "request_checks.h"
 #include "respond.h"
 
 namespace prt::serve {
@@ -24,6 +30,8 @@ constexpr std::size_t kMaxSendfileChunk = 1u << 30;  // below sendfile's 0x7ffff
 constexpr std::size_t kMaxDrainBytes = 1u << 20;
 constexpr auto kDrainTimeout = std::chrono::seconds(2);
 constexpr auto kStoppingDrainTimeout = std::chrono::milliseconds(300);
+constexpr std::chrono::microseconds kFirstAckPoll{200};
+constexpr std::chrono::microseconds kMaxAckPoll{20000};
 
 // The head as bytes, written by Beast's serializer.
 std::string serializeHead(http::response<http::empty_body>& head) {
@@ -47,55 +55,17 @@ bool isHttpParseError(const beast::error_code& ec) {
 
 }  // namespace
 
-// ---- SessionRegistry ------------------------------------------------------------------
-
-void SessionRegistry::add(Session* session, const std::shared_ptr<Session>& shared, bool refusing) {
-  std::lock_guard lock(mutex_);
-  sessions_.emplace(session, shared);
-  if (refusing) ++refusing_;
-}
-
-void SessionRegistry::remove(Session* session, bool refusing) {
-  std::lock_guard lock(mutex_);
-  sessions_.erase(session);
-  if (refusing) --refusing_;
-  if (sessions_.empty()) empty_.notify_all();
-}
-
-std::size_t SessionRegistry::active() const {
-  std::lock_guard lock(mutex_);
-  return sessions_.size() - refusing_;
-}
-
-std::size_t SessionRegistry::refusing() const {
-  std::lock_guard lock(mutex_);
-  return refusing_;
-}
-
-void SessionRegistry::stopAll() {
-  std::vector<std::shared_ptr<Session>> live;
-  {
-    std::lock_guard lock(mutex_);
-    for (auto& [raw, weak] : sessions_) {
-      if (auto s = weak.lock()) live.push_back(std::move(s));
-    }
-  }
-  for (auto& s : live) s->stop();
-}
-
-bool SessionRegistry::waitEmpty(std::chrono::steady_clock::time_point deadline) {
-  std::unique_lock lock(mutex_);
-  return empty_.wait_until(lock, deadline, [&] { return sessions_.empty(); });
-}
-
 // ---- Session --------------------------------------------------------------------------
 
-Session::Session(tcp::socket socket, SessionContext& context, bool refuse)
+Session::Session(tcp::socket socket, SessionContext& context, std::string client, Admission admission)
     : stream_(std::move(socket)),
       timer_(stream_.get_executor()),
       context_(context),
-      refuse_(refuse),
-      buffer_(kReadBufferBytes) {
+      client_(std::move(client)),
+      admission_(admission),
+      refuse_(admission != Admission::kServe),
+      buffer_(kReadBufferBytes),
+      ackTimer_(stream_.get_executor()) {
   beast::error_code ec;
   const tcp::endpoint remote = stream_.socket().remote_endpoint(ec);
   peer_ = ec ? "-" : remote.address().to_string() + ":" + std::to_string(remote.port());
@@ -106,19 +76,24 @@ Session::Session(tcp::socket socket, SessionContext& context, bool refuse)
 }
 
 Session::~Session() {
-  if (registered_) context_.registry.remove(this, refuse_);
+  flushLogs(true);  // at exit, responses still waiting for their acknowledgement
+  if (registered_) context_.registry.remove(this);
 }
 
 void Session::start() {
-  context_.registry.add(this, shared_from_this(), refuse_);
+  context_.registry.add(this, shared_from_this(), client_, refuse_);
   registered_ = true;
   asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
     if (self->refuse_) {
       self->method_ = "-";
       self->target_ = "-";
       self->started_ = std::chrono::steady_clock::now();
-      self->send(errorReply(11, http::status::service_unavailable, "too many connections; try again", false, true),
-                 false);
+      const char* why = self->admission_ == Admission::kRefuseClient
+                            ? "too many connections from your address; reuse or close some and try again"
+                            : "too many connections; try again";
+      Reply reply = errorReply(11, http::status::service_unavailable, why, false, true);
+      reply.head.set(http::field::retry_after, "1");
+      self->send(std::move(reply), false);
     } else {
       self->readHead();
     }
@@ -128,18 +103,74 @@ void Session::start() {
 void Session::stop() {
   asio::post(stream_.get_executor(), [self = shared_from_this()] {
     self->stopping_ = true;
-    // A response being written finishes (onSent then closes); a wait for the next
-    // request, or a lingering close, ends now.
-    if (self->state_ == State::kReading || self->state_ == State::kClosing) self->closeNow();
+    // A response being written or made finishes (onSent then closes); a wait for the
+    // next request, or a lingering close, ends now.
+    const State st = self->state_;
+    if (st == State::kIdle || st == State::kReading || st == State::kClosing) self->closeNow();
+  });
+}
+
+void Session::evict() {
+  asio::post(stream_.get_executor(), [self = shared_from_this()] {
+    // Closed like a keep-alive timeout: a client retries an idempotent request it may
+    // have sent meanwhile (RFC 9112 §9.3.1). Past kIdle, onReadable closes instead.
+    if (self->state_ == State::kIdle) self->closeNow();
   });
 }
 
 void Session::readHead() {
   if (stopping_) return closeGracefully();
+  const auto deadline = std::chrono::steady_clock::now() + context_.readTimeout;
+  if (buffer_.size() > 0) return readHeadUntil(deadline);  // a pipelined request is here already
+  // Idle until the first byte: only now may the registry evict this connection to make
+  // room, and the read timeout (idle time included) runs from here.
+  state_ = State::kIdle;
+  headDeadline_ = deadline;
+  idleUnacknowledged_ = 0;
+  context_.registry.markIdle(this);
+  awaitIdleDeadline();
+  stream_.socket().async_wait(tcp::socket::wait_read,
+                              [self = shared_from_this()](beast::error_code ec) { self->onReadable(ec); });
+}
+
+void Session::awaitIdleDeadline() {
+  timer_.expires_at(headDeadline_);
+  timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    if (ec || self->state_ != State::kIdle) return;
+    // The last write finished long ago, but a slow client may still be receiving the
+    // response from the socket buffers (megabytes of them): its idle time has not begun.
+    // While it makes progress the deadline moves on; a client that stopped reading goes.
+    const std::uint64_t unacknowledged = self->unacknowledgedBytes();
+    if (unacknowledged > 0 && unacknowledged != self->idleUnacknowledged_) {
+      self->idleUnacknowledged_ = unacknowledged;
+      self->headDeadline_ = std::chrono::steady_clock::now() + self->context_.readTimeout;
+      return self->awaitIdleDeadline();
+    }
+    self->closeNow();  // idle too long: nothing to log
+  });
+}
+
+std::uint64_t Session::unacknowledgedBytes() {
+  // SIOCOUTQ: bytes written to the socket that the peer has not acknowledged yet (sent
+  // or still queued). A slow client can leave megabytes there after the last write.
+  int n = 0;
+  if (::ioctl(stream_.socket().native_handle(), SIOCOUTQ, &n) != 0 || n < 0) return 0;
+  return static_cast<std::uint64_t>(n);
+}
+
+void Session::onReadable(beast::error_code ec) {
+  if (state_ != State::kIdle) return;  // closed: timed out, evicted or stopped
+  timer_.cancel();
+  if (!context_.registry.leaveIdle(this)) return closeNow();  // evicted meanwhile
+  if (ec) return closeNow();
+  readHeadUntil(headDeadline_);
+}
+
+void Session::readHeadUntil(std::chrono::steady_clock::time_point deadline) {
   state_ = State::kReading;
   parser_.emplace();
   parser_->header_limit(kMaxHeadBytes);
-  stream_.expires_after(context_.readTimeout);
+  stream_.expires_at(deadline);
   http::async_read_header(stream_, buffer_, *parser_,
                           [self = shared_from_this()](beast::error_code ec, std::size_t) { self->onHead(ec); });
 }
@@ -161,6 +192,16 @@ void Session::onHead(beast::error_code ec) {
       if (buffer_.size() > 0 || parser_->got_some()) logRequest(408, 0);
       return closeNow();
     }
+    if (ec == http::error::bad_version) {
+      // Beast rejects every version but 1.0 and 1.1 alike; RFC 9110 §15.6.6 wants 505 for a
+      // well-formed version the server does not support, 400 stays for a malformed one.
+      const std::string_view data(static_cast<const char*>(buffer_.data().data()), buffer_.size());
+      if (wellFormedButUnsupportedVersion(data.substr(0, data.find('\n')))) {
+        return send(errorReply(11, http::status::http_version_not_supported,
+                               "only HTTP/1.0 and HTTP/1.1 are served", false, true),
+                    false);
+      }
+    }
     if (ec != http::error::partial_message && ec != http::error::end_of_stream && isHttpParseError(ec)) {
       return send(errorReply(11, http::status::bad_request, "malformed request: " + ec.message(), false, true), false);
     }
@@ -172,22 +213,37 @@ void Session::onHead(beast::error_code ec) {
   target_ = std::string(request.target());
   Reply reply;
   const bool getOrHead = request.method() == http::verb::get || request.method() == http::verb::head;
-  if (request.version() != 10 && request.version() != 11) {
-    reply = errorReply(11, http::status::http_version_not_supported, "only HTTP/1.0 and HTTP/1.1 are served", false,
-                       true);
+  // (The parser has already refused every version but 1.0 and 1.1.)
+  if (const std::string_view problem = requestHeadProblem(request); !problem.empty()) {
+    reply = errorReply(request.version(), http::status::bad_request, problem, false, true);
   } else if (!parser_->is_done() && getOrHead) {
     // A body on GET/HEAD has no meaning here, and not reading it leaves no way to find
     // the next request: refuse and close.
     reply = errorReply(request.version(), http::status::bad_request, "GET and HEAD requests take no body", false, true);
-  } else if (request.version() == 11 && request.find(http::field::host) == request.end()) {
-    reply = errorReply(request.version(), http::status::bad_request, "HTTP/1.1 requests need a Host field", false, true);
   } else {
-    reply = context_.router.handle(request);
+    Answer answer = context_.router.handle(request);
+    if (answer.deferred) return awaitReply(std::move(answer.deferred), request.method() == http::verb::head,
+                                           request.keep_alive(), !parser_->is_done());
+    reply = std::move(answer.reply);
     // Any other method with a body: 405, and the unread body makes the connection unusable.
     if (!parser_->is_done()) reply.close = true;
   }
   if (request.method() == http::verb::head) reply.length = 0;
   send(std::move(reply), request.keep_alive() && !stopping_);
+}
+
+void Session::awaitReply(std::function<void(ReplySink)> work, bool isHead, bool keepAlive, bool unreadBody) {
+  // Neither reading nor writing: the reply is being made elsewhere. A stop lets it finish,
+  // like a response being written; the sink brings it back onto this connection's strand.
+  state_ = State::kWaiting;
+  work([self = shared_from_this(), isHead, keepAlive, unreadBody](Reply reply) {
+    asio::post(self->stream_.get_executor(), [self, reply = std::move(reply), isHead, keepAlive, unreadBody]() mutable {
+      if (self->state_ != State::kWaiting) return;
+      if (isHead) reply.length = 0;
+      if (unreadBody) reply.close = true;
+      self->send(std::move(reply), keepAlive && !self->stopping_);
+    });
+  });
 }
 
 void Session::send(Reply reply, bool keepAlive) {
@@ -203,12 +259,19 @@ void Session::send(Reply reply, bool keepAlive) {
     const std::array<asio::const_buffer, 2> buffers{
         asio::buffer(head_), asio::buffer(reply_.body.memory->data() + reply_.offset, reply_.length)};
     asio::async_write(stream_, buffers, [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
       self->onSent(ec, n > self->head_.size() ? n - self->head_.size() : 0);
     });
   } else if (reply_.length > 0 && reply_.body.file) {
-    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onHeadSent(ec); });
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
+      self->onHeadSent(ec);
+    });
   } else {
-    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t) { self->onSent(ec, 0); });
+    asio::async_write(stream_, asio::buffer(head_), [self](beast::error_code ec, std::size_t n) {
+      self->written_ += n;
+      self->onSent(ec, 0);
+    });
   }
 }
 
@@ -231,6 +294,7 @@ void Session::sendFileSome() {
       fileOffset_ += static_cast<std::uint64_t>(n);
       remaining_ -= static_cast<std::uint64_t>(n);
       bodySent_ += static_cast<std::uint64_t>(n);
+      written_ += static_cast<std::uint64_t>(n);
       continue;
     }
     if (n < 0 && errno == EINTR) continue;
@@ -250,10 +314,18 @@ void Session::sendFileSome() {
       });
       return;
     }
-    // n == 0: the file ended early (truncated on disk after the head went out). The
-    // client was promised more bytes; closing is the only honest signal left.
-    return onSent(n == 0 ? beast::error_code(asio::error::eof) : beast::error_code(errno, beast::system_category()),
-                  bodySent_);
+    if (n < 0 && (errno == EPIPE || errno == ECONNRESET)) {
+      return onSent(beast::error_code(errno, beast::system_category()), bodySent_);  // the client left
+    }
+    // n == 0: the file ended early; n < 0: a read error (EIO). The client was promised
+    // more bytes. A reset rather than a FIN, so no client or cache in between can take the
+    // bytes it has for a whole, shorter body.
+    const int err = n == 0 ? EIO : errno;
+    logRequest(reply_.head.result_int(), bodySent_);
+    logDetail("sending " + target_ + " failed after " + std::to_string(bodySent_) + " body bytes",
+              std::strerror(err));
+    reply_ = Reply{};
+    return abortNow();
   }
   onSent({}, bodySent_);
 }
@@ -289,18 +361,51 @@ void Session::drain() {
   });
 }
 
+void Session::abortNow() {
+  // SO_LINGER with a zero timeout: close() sends RST and drops whatever is still queued.
+  beast::error_code ignored;
+  stream_.socket().set_option(asio::socket_base::linger(true, 0), ignored);
+  closeNow();
+}
+
 void Session::closeNow() {
   if (state_ == State::kClosed) return;
+  flushLogs(true);
   state_ = State::kClosed;
   timer_.cancel();
+  ackTimer_.cancel();
   stream_.close();
 }
 
 void Session::logRequest(unsigned status, std::uint64_t bytes) {
   if (!context_.log.enabled()) return;
-  const auto micros =
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - started_).count();
-  context_.log.write({peer_, method_, target_, status, bytes, static_cast<std::int64_t>(micros)});
+  pendingLogs_.push_back({written_, status, bytes, method_, target_, started_});
+  flushLogs(false);
+}
+
+void Session::flushLogs(bool all) {
+  const std::uint64_t acknowledged = all ? written_ : written_ - std::min(written_, unacknowledgedBytes());
+  const auto now = std::chrono::steady_clock::now();
+  while (!pendingLogs_.empty() && (all || pendingLogs_.front().end <= acknowledged)) {
+    const PendingLog& p = pendingLogs_.front();
+    const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(now - p.started).count();
+    context_.log.write({peer_, p.method, p.target, p.status, p.bytes, static_cast<std::int64_t>(micros)});
+    pendingLogs_.pop_front();
+  }
+  if (pendingLogs_.empty()) {
+    ackPoll_ = kFirstAckPoll;
+    return;
+  }
+  if (ackTimerArmed_) return;
+  // No event says "acknowledged": look again soon, then less often (the error in the
+  // logged time stays under kMaxAckPoll, or half the time waited).
+  ackTimerArmed_ = true;
+  ackTimer_.expires_after(ackPoll_);
+  ackPoll_ = std::min<std::chrono::microseconds>(ackPoll_ * 2, kMaxAckPoll);
+  ackTimer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+    self->ackTimerArmed_ = false;
+    if (!ec && self->state_ != State::kClosed) self->flushLogs(false);
+  });
 }
 
 }  // namespace prt::serve

@@ -11,15 +11,15 @@
 
 #include <array>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <unordered_map>
 
 #include "access_log.h"
+#include "session_registry.h"
 #include "reply.h"
 #include "router.h"
 
@@ -28,29 +28,6 @@ namespace prt::serve {
 namespace asio = boost::asio;
 namespace beast = boost::beast;
 using tcp = asio::ip::tcp;
-
-class Session;
-
-// Every open connection, for the connection cap and for shutdown. Thread-safe.
-class SessionRegistry {
- public:
-  // Registers a session (`refusing`: it only sends 503 and closes).
-  void add(Session* session, const std::shared_ptr<Session>& shared, bool refusing);
-  // Forgets a session; called from its destructor.
-  void remove(Session* session, bool refusing);
-  std::size_t active() const;    // sessions serving requests
-  std::size_t refusing() const;  // sessions only sending 503 before closing
-  // Asks every session to finish its current response and close.
-  void stopAll();
-  // Waits until no session is left or `deadline` passes; true when none is left.
-  bool waitEmpty(std::chrono::steady_clock::time_point deadline);
-
- private:
-  mutable std::mutex mutex_;
-  std::condition_variable empty_;
-  std::unordered_map<Session*, std::weak_ptr<Session>> sessions_;
-  std::size_t refusing_ = 0;
-};
 
 struct SessionContext {
   Router& router;
@@ -62,8 +39,9 @@ struct SessionContext {
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  // `refuse`: the server is at its connection cap; answer 503 and close.
-  Session(tcp::socket socket, SessionContext& context, bool refuse);
+  // `client`: the peer's address, for the per-client cap. `admission`: what the registry
+  // decided; a refusal makes the session answer 503 and close.
+  Session(tcp::socket socket, SessionContext& context, std::string client, Admission admission);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -72,12 +50,26 @@ class Session : public std::enable_shared_from_this<Session> {
   void start();
   // Thread-safe: finish the response in flight, if any, then close.
   void stop();
+  // Thread-safe; called by the registry, which has chosen this idle session to make room
+  // for a new connection: close it unless it is already reading a request.
+  void evict();
 
  private:
-  enum class State { kReading, kWriting, kClosing, kClosed };
+  // kIdle: no byte of the next request yet (evictable); kReading: a request head is
+  // arriving; kWaiting: its reply is being made off the I/O threads.
+  enum class State { kIdle, kReading, kWaiting, kWriting, kClosing, kClosed };
 
+  // Waits for the next request: for its first byte (idle) unless one is buffered already.
   void readHead();
+  // Closes the idle connection at headDeadline_, unless the client is still receiving.
+  void awaitIdleDeadline();
+  void onReadable(beast::error_code ec);
+  // Bytes written to the socket and not yet acknowledged by the client.
+  std::uint64_t unacknowledgedBytes();
+  void readHeadUntil(std::chrono::steady_clock::time_point deadline);
   void onHead(beast::error_code ec);
+  // Hands `work` a sink for the reply it makes off the I/O threads, and sends it when it comes.
+  void awaitReply(std::function<void(ReplySink)> work, bool isHead, bool keepAlive, bool unreadBody);
   void send(Reply reply, bool keepAlive);
   void onHeadSent(beast::error_code ec);
   void sendFileSome();
@@ -85,13 +77,23 @@ class Session : public std::enable_shared_from_this<Session> {
   void closeGracefully();
   void drain();
   void closeNow();
+  // Ends the connection with a TCP reset: for a body that cannot be completed as promised.
+  void abortNow();
+  // Logs the request once the client has acknowledged the last byte of what was written
+  // for it (the access log's time is to the last byte received, not to the last write).
   void logRequest(unsigned status, std::uint64_t bytes);
+  // Writes the pending lines whose bytes are acknowledged (all of them when `all`).
+  void flushLogs(bool all);
 
   beast::tcp_stream stream_;
-  asio::steady_timer timer_;  // the sendfile phase's write deadline
+  asio::steady_timer timer_;  // deadlines Beast's stream does not keep: idle wait, sendfile
   SessionContext& context_;
+  const std::string client_;
+  const Admission admission_;
   const bool refuse_;
   bool registered_ = false;
+  std::chrono::steady_clock::time_point headDeadline_;
+  std::uint64_t idleUnacknowledged_ = 0;  // at the last idle deadline, to tell progress
   std::string peer_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::empty_body>> parser_;
@@ -108,6 +110,21 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string method_;
   std::string target_;
   std::chrono::steady_clock::time_point started_;
+
+  // Access-log lines waiting for their response's last byte to be acknowledged.
+  struct PendingLog {
+    std::uint64_t end;  // written_ after the response's last byte
+    unsigned status;
+    std::uint64_t bytes;
+    std::string method;
+    std::string target;
+    std::chrono::steady_clock::time_point started;
+  };
+  std::uint64_t written_ = 0;  // bytes written to the socket, all responses together
+  std::deque<PendingLog> pendingLogs_;
+  asio::steady_timer ackTimer_;
+  bool ackTimerArmed_ = false;
+  std::chrono::microseconds ackPoll_{200};
 
   std::array<char, 4096> drainBuffer_{};
   std::size_t drained_ = 0;

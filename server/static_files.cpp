@@ -7,6 +7,7 @@
 
 #include "encoded_variants.h"
 #include "mime_types.h"
+#include "page_policy.h"
 
 namespace prt::serve {
 namespace {
@@ -61,6 +62,10 @@ std::vector<Variant> StaticFiles::variantsFor(const FileRef& file, const FileSta
   c.stamp = stamp;
   std::vector<std::uint8_t> bytes;
   if (!readAll(file->fd(), stamp.size, &bytes)) return {};
+  // Rewritten while being read: the bytes may be half old, half new, and must not be
+  // cached under the old version's stamp.
+  struct stat after {};
+  if (::fstat(file->fd(), &after) != 0 || !(stampOf(after) == stamp)) return {};
   c.variants = makeEncodedVariants(bytes, baseTag, VariantStorage::kMemory, nullptr);
   for (const Variant& v : c.variants) c.bytes += v.body.size;
   std::lock_guard lock(mutex_);
@@ -107,7 +112,9 @@ Reply StaticFiles::serve(const RequestHead& request, std::string_view path, std:
   if (isCompressibleType(resource.contentType) && stamp.size >= kMinCompressBytes && stamp.size <= kMaxCompressBytes) {
     for (Variant& v : variantsFor(file, stamp, tag)) resource.variants.push_back(std::move(v));
   }
-  return respond(request, resource);
+  Reply reply = respond(request, resource);
+  addDocumentPolicy(resource.contentType, reply.head);
+  return reply;
 }
 
 }  // namespace prt::serve

@@ -38,6 +38,8 @@ TEST(Cli, UsageErrors) {
                         Case{{"--root", tree.root, "--read-timeout", "-1"}, "--read-timeout must be"},
                         Case{{"--root", tree.root, "--max-parts-mib", "-1"}, "--max-parts-mib must be a whole number from 0 to 1024"},
                         Case{{"--root", tree.root, "--max-parts-mib", "2048"}, "--max-parts-mib must be"},
+                        Case{{"--root", tree.root, "--max-connections-per-client", "0"},
+                             "--max-connections-per-client must be a whole number from 1 to 1000000"},
                         Case{{"--root", tree.root, "--quiet=yes"}, "--quiet takes no value"}}) {
     const ExitResult r = runServe(c.args, kQuick);
     EXPECT_EQ(r.exitCode, 2) << c.message;

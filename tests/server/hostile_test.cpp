@@ -3,6 +3,8 @@
 // unsupported methods, oversized and malformed requests, slow clients, connection floods.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <thread>
 
 #include "serve_env.h"
@@ -126,6 +128,104 @@ TEST(Hostile, MalformedRequestsGet400AndClose) {
   }
 }
 
+// How many responses (status lines) a raw exchange received.
+int responseCount(const std::string& received) {
+  int n = 0;
+  for (std::size_t at = received.find("HTTP/1."); at != std::string::npos; at = received.find("HTTP/1.", at + 1)) {
+    if (at == 0 || received.compare(at - 2, 2, "\r\n") == 0) ++n;
+  }
+  return n;
+}
+
+TEST(Hostile, TransferEncodingOtherThanChunkedIs400AndNothingIsSmuggled) {
+  SharedServer& s = sharedServer();
+  // RFC 9112 §6.3: a request whose Transfer-Encoding does not end in chunked (or holds a
+  // coding the server does not know) has no reliable length: 400, then close. Served as
+  // bodiless instead, the bytes after the head would be answered as a second request.
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"1.1", "Transfer-Encoding: gzip\r\n"},
+      {"1.1", "Transfer-Encoding: identity\r\n"},
+      {"1.1", "Transfer-Encoding: xchunked\r\n"},
+      {"1.1", "Transfer-Encoding: chunked, identity\r\n"},
+      {"1.1", "Transfer-Encoding: gzip, chunked\r\n"},
+      {"1.1", "Transfer-Encoding: chunked, chunked\r\n"},
+      {"1.1", "Transfer-Encoding: chunked;ext=1\r\n"},
+      {"1.1", "Transfer-Encoding: gzip\r\nTransfer-Encoding: chunked\r\n"},
+      {"1.1", "Transfer-Encoding: \r\n"},
+      {"1.1", "Transfer-Encoding: gzip\r\nContent-Length: 0\r\n"},
+      {"1.1", "Content-Length: 0\r\nTransfer-Encoding: chunked\r\n"},
+      {"1.0", "Transfer-Encoding: chunked\r\n"},
+      {"1.0", "Transfer-Encoding: gzip\r\n"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [version, te] = cases[i];
+    const std::string smuggled = "/smuggled-" + std::to_string(::getpid()) + "-" + std::to_string(i);
+    const std::string req = "GET /api/scenes HTTP/" + version + "\r\nHost: x\r\n" + te + "\r\n" + "GET " + smuggled +
+                            " HTTP/1.1\r\nHost: x\r\n\r\n";
+    const RawResult r = rawExchange(s.port, req, std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(r.received), 400) << testing::PrintToString(te) << ": " << r.received.substr(0, 120);
+    EXPECT_EQ(responseCount(r.received), 1) << testing::PrintToString(te);
+    EXPECT_TRUE(r.closedByServer) << testing::PrintToString(te);
+    EXPECT_EQ(s.server->log().find(smuggled), std::string::npos) << "smuggled request answered: " << te;
+  }
+  // Chunked alone still frames a body, which GET may not have: 400 as before; other
+  // methods get 405 and the connection closes.
+  EXPECT_EQ(rawStatus(rawExchange(s.port, "GET / HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: Chunked\r\n\r\n0\r\n\r\n",
+                                  std::chrono::seconds(5)).received), 400);
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Hostile, HostMustBeOneValidField) {
+  SharedServer& s = sharedServer();
+  // RFC 9112 §3.2: 400 for an HTTP/1.1 request without Host, for more than one Host line,
+  // and for a Host value that is not uri-host[:port].
+  const std::vector<std::string> bad{
+      "GET /api/scenes HTTP/1.1\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a\r\nHost: a\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a\r\nHost: b\r\n\r\n",
+      "GET /api/scenes HTTP/1.0\r\nHost: a\r\nHost: b\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a b\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a/b\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a@b\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a:b\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: a:80:80\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: [::1\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: [zz::1]\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: %zz\r\n\r\n",
+  };
+  for (const std::string& req : bad) {
+    const RawResult r = rawExchange(s.port, req, std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(r.received), 400) << testing::PrintToString(req) << ": " << r.received.substr(0, 120);
+    EXPECT_TRUE(r.closedByServer) << testing::PrintToString(req);
+  }
+  const std::vector<std::string> good{
+      "GET /api/scenes HTTP/1.1\r\nHost: 127.0.0.1:8080\r\nConnection: close\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: [::1]:80\r\nConnection: close\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost: prt.example.com\r\nConnection: close\r\n\r\n",
+      "GET /api/scenes HTTP/1.1\r\nHost:\r\nConnection: close\r\n\r\n",  // empty: allowed
+      "GET /api/scenes HTTP/1.0\r\n\r\n",                                  // HTTP/1.0 needs none
+  };
+  for (const std::string& req : good) {
+    EXPECT_EQ(rawStatus(rawExchange(s.port, req, std::chrono::seconds(5)).received), 200) << testing::PrintToString(req);
+  }
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Hostile, UnsupportedVersionsAre505AndMalformedOnes400) {
+  SharedServer& s = sharedServer();
+  for (const std::string line : {"GET / HTTP/2.0", "GET / HTTP/1.2", "GET / HTTP/0.9", "GET / HTTP/3.0", "PRI * HTTP/2.0"}) {
+    const RawResult r = rawExchange(s.port, line + "\r\nHost: x\r\n\r\n", std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(r.received), 505) << line << ": " << r.received.substr(0, 120);
+    EXPECT_TRUE(r.closedByServer) << line;
+  }
+  for (const std::string line : {"GET / HTTP/1.10", "GET / HTTX/1.1", "GET / HTTP/1.x", "GET / HTTP/11"}) {
+    const RawResult r = rawExchange(s.port, line + "\r\nHost: x\r\n\r\n", std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(r.received), 400) << line << ": " << r.received.substr(0, 120);
+    EXPECT_TRUE(r.closedByServer) << line;
+  }
+  EXPECT_TRUE(healthy(s.port));
+}
+
 TEST(Hostile, SlowClientsAreCutOffAndDoNotHoldTheServer) {
   const TestTree tree = makeTestTree(workDir());
   auto server = startServer(tree, {"--read-timeout", "1", "--threads", "2"}, "slow.log");
@@ -180,21 +280,27 @@ TEST(Hostile, SlowClientsAreCutOffAndDoNotHoldTheServer) {
   EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
-TEST(Hostile, ConnectionCapAnswers503AndRecovers) {
+TEST(Hostile, ConnectionCapAnswers503WhenNoneIsIdleAndRecovers) {
   const TestTree tree = makeTestTree(workDir());
-  auto server = startServer(tree, {"--max-connections", "8", "--read-timeout", "30"}, "cap.log");
+  auto server = startServer(tree, {"--max-connections", "8", "--max-connections-per-client", "8", "--read-timeout", "30"},
+                            "cap.log");
   ASSERT_TRUE(server);
   const int port = server->port();
-  std::vector<std::unique_ptr<HttpConnection>> held;
+  // Eight connections each in the middle of a request head: busy, so none can be evicted.
+  std::vector<std::unique_ptr<RawConnection>> held;
   for (int i = 0; i < 8; ++i) {
-    held.push_back(std::make_unique<HttpConnection>(port));
-    ASSERT_EQ(held.back()->request("GET", "/api/scenes").status, 200);  // registered and served
+    held.push_back(std::make_unique<RawConnection>(port));
+    ASSERT_TRUE(held.back()->send("GET /api/scenes HTTP/1.1\r\nHost: x\r\n"));
   }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the server has seen their bytes
   for (int i = 0; i < 5; ++i) {
-    const RawResult over = rawExchange(port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    const RawResult over = rawExchangeFrom(i % 2 ? "127.0.0.2" : "127.0.0.1", port, rawGet("/api/scenes"),
+                                           std::chrono::seconds(5));
     EXPECT_EQ(rawStatus(over.received), 503) << over.received.substr(0, 100);
+    EXPECT_NE(over.received.find("Retry-After: 1\r\n"), std::string::npos);
     EXPECT_TRUE(over.closedByServer);
   }
+  for (const auto& c : held) EXPECT_FALSE(c->closedWithin(std::chrono::milliseconds(50)));
   held.clear();  // the held connections close; their slots free up
   bool recovered = false;
   for (int i = 0; i < 50 && !recovered; ++i) {
@@ -202,6 +308,94 @@ TEST(Hostile, ConnectionCapAnswers503AndRecovers) {
     if (!recovered) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   EXPECT_TRUE(recovered);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Hostile, IdleConnectionsMakeRoomOldestFirst) {
+  // The report: 1,024 idle sockets locked every other client out until the read timeout.
+  // At the cap, a new client now gets the slot of the oldest idle connection.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--max-connections", "8", "--max-connections-per-client", "8", "--read-timeout", "30"},
+                            "idle-cap.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  // Idle connections, oldest first: four that never send anything, then four kept alive
+  // after one request each. The server accepts in arrival order, so once the last kept-
+  // alive one is answered all eight are registered (the test cannot ask the server).
+  std::vector<std::unique_ptr<RawConnection>> silent;
+  for (int i = 0; i < 4; ++i) silent.push_back(std::make_unique<RawConnection>(port));
+  // A connection turns idle when the server has finished its response, which can be a
+  // moment after the client has it: the pauses keep "oldest idle" in the order below.
+  const auto settle = [] { std::this_thread::sleep_for(std::chrono::milliseconds(50)); };
+  std::vector<std::unique_ptr<HttpConnection>> keptAlive;
+  for (int i = 0; i < 4; ++i) {
+    keptAlive.push_back(std::make_unique<HttpConnection>(port, std::chrono::seconds(2)));
+    ASSERT_EQ(keptAlive.back()->request("GET", "/api/scenes").status, 200);
+    settle();
+  }
+
+  // Other clients, each keeping its connection: every one is served, and the idle
+  // connections make room in the order they became idle.
+  std::vector<std::unique_ptr<RawConnection>> others;
+  const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
+  for (int i = 0; i < 8; ++i) {
+    others.push_back(std::make_unique<RawConnection>(port, i < 4 ? "127.0.0.2" : "127.0.0.3"));
+    ASSERT_TRUE(others.back()->send(keepAliveGet));
+    EXPECT_TRUE(others.back()->awaitResponse(std::chrono::seconds(5))) << i;
+    EXPECT_EQ(rawStatus(others.back()->received()), 200) << i << ": " << others.back()->received().substr(0, 100);
+    settle();
+    if (i < 4) {
+      EXPECT_TRUE(silent[static_cast<std::size_t>(i)]->closedWithin(std::chrono::seconds(2))) << i;
+    } else {
+      // Closed by the server: the next request on it gets no response.
+      EXPECT_EQ(keptAlive[static_cast<std::size_t>(i - 4)]->request("GET", "/api/scenes").status, 0) << i;
+    }
+  }
+  // Now every connection is a served one that became idle after its response: the next
+  // client takes the oldest of those.
+  EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
+  EXPECT_TRUE(others[0]->closedWithin(std::chrono::seconds(2)));
+  EXPECT_FALSE(others[1]->closedWithin(std::chrono::milliseconds(50)));
+  EXPECT_TRUE(healthy(port));
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
+TEST(Hostile, PerClientCapLeavesRoomForOtherClients) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {"--max-connections", "16", "--max-connections-per-client", "4", "--read-timeout", "30"},
+                            "client-cap.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  {
+    // Four busy connections from one address: its fifth is refused, another address is served.
+    std::vector<std::unique_ptr<RawConnection>> busy;
+    for (int i = 0; i < 4; ++i) {
+      busy.push_back(std::make_unique<RawConnection>(port));
+      ASSERT_TRUE(busy.back()->send("GET /api/scenes HTTP/1.1\r\nHost: x\r\n"));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const RawResult fifth = rawExchange(port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(fifth.received), 503) << fifth.received.substr(0, 100);
+    EXPECT_NE(fifth.received.find("from your address"), std::string::npos);
+    EXPECT_TRUE(fifth.closedByServer);
+    const RawResult other = rawExchangeFrom("127.0.0.2", port, rawGet("/api/scenes"), std::chrono::seconds(5));
+    EXPECT_EQ(rawStatus(other.received), 200);
+    for (const auto& c : busy) EXPECT_FALSE(c->closedWithin(std::chrono::milliseconds(50)));
+  }
+  // With its share held idle, a client's new connection takes the place of its oldest idle
+  // one (another address, so the connections above, still closing, do not count).
+  std::vector<std::unique_ptr<RawConnection>> idle;
+  const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
+  for (int i = 0; i < 4; ++i) {
+    idle.push_back(std::make_unique<RawConnection>(port, "127.0.0.4"));
+    ASSERT_TRUE(idle.back()->send(keepAliveGet));
+    EXPECT_TRUE(idle.back()->awaitResponse(std::chrono::seconds(5))) << i;
+    ASSERT_EQ(rawStatus(idle.back()->received()), 200) << i;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // idle once the server has finished it
+  }
+  EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
+  EXPECT_TRUE(idle[0]->closedWithin(std::chrono::seconds(2)));  // the oldest made room
+  for (std::size_t i = 1; i < 4; ++i) EXPECT_FALSE(idle[i]->closedWithin(std::chrono::milliseconds(50))) << i;
   EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 

@@ -11,6 +11,7 @@
 #include <boost/beast/http/write.hpp>
 
 #include <cctype>
+#include <cstdlib>
 
 namespace prt::serve::test {
 
@@ -29,10 +30,29 @@ void setReceiveTimeout(tcp::socket& s, std::chrono::milliseconds timeout) {
   ::setsockopt(s.native_handle(), SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
 }
 
-bool connectTo(tcp::socket& s, int port) {
+bool connectTo(tcp::socket& s, int port, const std::string& source = "127.0.0.1") {
   beast::error_code ec;
+  s.open(tcp::v4(), ec);
+  if (source != "127.0.0.1") s.bind(tcp::endpoint(asio::ip::make_address(source), 0), ec);
+  if (ec) return false;
   s.connect(tcp::endpoint(asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)), ec);
   return !ec;
+}
+
+// Reads what is there until EOF or reset (true) or `timeout` (false); the socket has a
+// 100 ms receive timeout.
+bool readUntilClosed(tcp::socket& s, std::string* out, std::chrono::milliseconds timeout) {
+  const auto start = std::chrono::steady_clock::now();
+  char buf[4096];
+  while (std::chrono::steady_clock::now() - start < timeout) {
+    const ssize_t n = ::recv(s.native_handle(), buf, sizeof buf, 0);
+    if (n > 0) {
+      out->append(buf, static_cast<std::size_t>(n));
+      continue;
+    }
+    if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) return true;
+  }
+  return false;
 }
 
 std::string lower(std::string_view s) {
@@ -99,28 +119,58 @@ HttpResponse fetch(int port, std::string_view target, const Headers& headers, st
 }
 
 RawResult rawExchange(int port, std::string_view bytes, std::chrono::milliseconds timeout) {
+  return rawExchangeFrom("127.0.0.1", port, bytes, timeout);
+}
+
+RawResult rawExchangeFrom(const std::string& source, int port, std::string_view bytes,
+                          std::chrono::milliseconds timeout) {
   asio::io_context ioc;
   tcp::socket s(ioc);
   RawResult r;
   const auto start = std::chrono::steady_clock::now();
-  if (!connectTo(s, port)) return r;
+  if (!connectTo(s, port, source)) return r;
   setReceiveTimeout(s, std::chrono::milliseconds(100));
   beast::error_code ec;
   if (!bytes.empty()) asio::write(s, asio::buffer(bytes.data(), bytes.size()), ec);
-  char buf[4096];
-  while (std::chrono::steady_clock::now() - start < timeout) {
-    const ssize_t n = ::recv(s.native_handle(), buf, sizeof buf, 0);
-    if (n > 0) {
-      r.received.append(buf, static_cast<std::size_t>(n));
-      continue;
-    }
-    if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
-      r.closedByServer = true;
-      break;
-    }
-  }
+  r.closedByServer = readUntilClosed(s, &r.received, timeout);
   r.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
   return r;
+}
+
+RawConnection::RawConnection(int port, const std::string& source) : socket_(ioc_) {
+  connected_ = connectTo(socket_, port, source);
+  if (connected_) setReceiveTimeout(socket_, std::chrono::milliseconds(100));
+}
+
+bool RawConnection::send(std::string_view bytes) {
+  beast::error_code ec;
+  asio::write(socket_, asio::buffer(bytes.data(), bytes.size()), ec);
+  return !ec;
+}
+
+bool RawConnection::closedWithin(std::chrono::milliseconds timeout) {
+  return connected_ && readUntilClosed(socket_, &received_, timeout);
+}
+
+bool RawConnection::awaitResponse(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  char buf[4096];
+  while (connected_ && std::chrono::steady_clock::now() < deadline) {
+    const std::size_t end = received_.find("\r\n\r\n");
+    if (end != std::string::npos) {
+      const std::string head = lower(received_.substr(0, end));
+      const std::size_t at = head.find("\r\ncontent-length:");
+      const std::size_t length = at == std::string::npos ? 0 : std::strtoull(head.c_str() + at + 17, nullptr, 10);
+      if (received_.size() >= end + 4 + length) return true;
+    }
+    const ssize_t n = ::recv(socket_.native_handle(), buf, sizeof buf, 0);
+    if (n > 0) {
+      received_.append(buf, static_cast<std::size_t>(n));
+    } else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+      return false;
+    }
+  }
+  return false;
 }
 
 int rawStatus(std::string_view received) {

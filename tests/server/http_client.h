@@ -57,6 +57,31 @@ struct RawResult {
 // server closes or `timeout` passes.
 RawResult rawExchange(int port, std::string_view bytes, std::chrono::milliseconds timeout);
 
+// The same from source address `source`: any of 127.0.0.0/8, so 127.0.0.2 is another client.
+RawResult rawExchangeFrom(const std::string& source, int port, std::string_view bytes,
+                          std::chrono::milliseconds timeout);
+
+// A connection held open by the test (idle, or with part of a request sent), from `source`.
+class RawConnection {
+ public:
+  explicit RawConnection(int port, const std::string& source = "127.0.0.1");
+  bool connected() const { return connected_; }
+  // Sends `bytes` as they are; false when the connection is gone.
+  bool send(std::string_view bytes);
+  // Reads until the server closes (EOF or reset: true) or `timeout` passes (false).
+  bool closedWithin(std::chrono::milliseconds timeout);
+  // Reads until received() holds a whole response (head and Content-Length body: true),
+  // or the server closes or `timeout` passes (false).
+  bool awaitResponse(std::chrono::milliseconds timeout);
+  const std::string& received() const { return received_; }
+
+ private:
+  boost::asio::io_context ioc_;
+  boost::asio::ip::tcp::socket socket_;
+  bool connected_ = false;
+  std::string received_;
+};
+
 // The status code of the first response in raw bytes ("HTTP/1.1 400 ..."), or 0.
 int rawStatus(std::string_view received);
 

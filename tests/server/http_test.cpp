@@ -3,12 +3,18 @@
 // HEAD and each content coding.
 #include <gtest/gtest.h>
 
+#include <boost/asio/write.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include "mini_json.h"
+#include "public_error.h"
 #include "serve_env.h"
 
 namespace prt::serve::test {
@@ -137,6 +143,57 @@ TEST(Assets, UnknownVersionsAndBadAssetsAre404) {
   EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(corrupt) + "/corrupt.prt").status, 404);
   EXPECT_EQ(fetch(s.port, "/assets/" + hexHash(s.tree.small) + "/escape.prt").status, 404);
   EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Assets, InPlaceRewriteDuringADownloadNeverDeliversOtherBytes) {
+  // A slow client is mid-way through the room when the file is overwritten in place with
+  // as many different bytes: what it receives under the hash URL (immutable, strong ETag)
+  // must be the hashed bytes, or else an aborted body, never a complete wrong one.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "inplace.log");
+  ASSERT_TRUE(server);
+  const std::string url = "/assets/" + hexHash(tree.room) + "/room.prt";
+  const std::string room = asString(tree.room);
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::socket sock(ioc);
+  boost::system::error_code ec;
+  sock.open(boost::asio::ip::tcp::v4(), ec);
+  // Before connect, so the window stays small and the server is stuck mid-body.
+  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
+  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
+  ASSERT_FALSE(ec);
+  const std::string req = "GET " + url + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+  boost::asio::write(sock, boost::asio::buffer(req), ec);
+  ASSERT_FALSE(ec);
+  std::string got;
+  char buf[16384];
+  while (got.size() < 65536 && !ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  ASSERT_FALSE(ec) << ec.message();
+
+  std::string changed = room;
+  for (char& c : changed) c = static_cast<char>(c ^ 0x5a);
+  {
+    std::FILE* f = std::fopen((tree.root + "/room.prt").c_str(), "r+b");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fwrite(changed.data(), 1, changed.size(), f), changed.size());
+    std::fclose(f);
+  }
+  while (!ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  const std::size_t bodyAt = got.find("\r\n\r\n");
+  ASSERT_NE(bodyAt, std::string::npos);
+  ASSERT_TRUE(got.starts_with("HTTP/1.1 200 OK")) << got.substr(0, 200);
+  EXPECT_NE(got.find("\r\nContent-Length: " + std::to_string(room.size()) + "\r\n"), std::string::npos);
+  const std::string body = got.substr(bodyAt + 4);
+  if (body.size() == room.size()) {
+    EXPECT_TRUE(body == room) << "a complete body with bytes that do not match its hash URL";
+  } else {
+    EXPECT_LT(body.size(), room.size()) << "more bytes than Content-Length";
+  }
+  // This server keeps a private copy, so the download completes with the verified bytes.
+  EXPECT_EQ(body.size(), room.size());
+  // And the old URL is no longer served once the rewrite is noticed.
+  EXPECT_EQ(fetch(server->port(), url).status, 404);
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
 TEST(Assets, EachEncodingDecodesToTheSameBytes) {
@@ -315,6 +372,62 @@ TEST(StaticFiles, ContentTypesIndexesAndRedirects) {
   EXPECT_EQ(unzstd(fetch(s.port, "/big.js", {{"Accept-Encoding", "zstd"}}).body), s.tree.bigJs);
 }
 
+TEST(StaticFiles, PagesCarryBrowserProtections) {
+  SharedServer& s = sharedServer();
+  const HttpResponse first = fetch(s.port, "/");
+  ASSERT_EQ(first.status, 200);
+  const HttpResponse revalidated = fetch(s.port, "/", {{"If-None-Match", first.header("etag")}});
+  EXPECT_EQ(revalidated.status, 304);
+  for (const auto& [what, r] : {std::pair{"/", first}, std::pair{"/index.html", fetch(s.port, "/index.html")},
+                                std::pair{"/docs/", fetch(s.port, "/docs/")}, std::pair{"304 of /", revalidated},
+                                std::pair{"/icon.svg", fetch(s.port, "/icon.svg")}}) {
+    const std::string csp = r.header("content-security-policy");
+    // The page compiles wasm: 'wasm-unsafe-eval' allows exactly that, 'unsafe-eval' would
+    // allow eval() and new Function() as well.
+    EXPECT_NE(csp.find("script-src 'self' 'wasm-unsafe-eval'"), std::string::npos) << what << ": " << csp;
+    EXPECT_EQ(csp.find("'unsafe-eval'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("default-src 'self'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("frame-ancestors 'none'"), std::string::npos) << what;
+    EXPECT_NE(csp.find("object-src 'none'"), std::string::npos) << what;
+    EXPECT_EQ(r.header("x-frame-options"), "DENY") << what;
+    EXPECT_EQ(r.header("referrer-policy"), "no-referrer") << what;
+    EXPECT_EQ(r.header("x-content-type-options"), "nosniff") << what;
+  }
+  // Everything else still says nosniff.
+  for (const std::string& t : {std::string("/app.js"), std::string("/core.wasm"), std::string("/api/scenes"),
+                               std::string("/missing")}) {
+    EXPECT_EQ(fetch(s.port, t).header("x-content-type-options"), "nosniff") << t;
+  }
+}
+
+TEST(StaticFiles, FileTruncatedWhileSendingEndsInAReset) {
+  // The head promised 24 MB; when the file shrinks under a slow download the server cannot
+  // keep that promise and resets the connection, rather than ending it as if complete.
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "truncated.log");
+  ASSERT_TRUE(server);
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::socket sock(ioc);
+  boost::system::error_code ec;
+  sock.open(boost::asio::ip::tcp::v4(), ec);
+  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
+  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
+  ASSERT_FALSE(ec);
+  boost::asio::write(sock, boost::asio::buffer(std::string("GET /huge.bin HTTP/1.1\r\nHost: x\r\n\r\n")), ec);
+  std::string got;
+  char buf[16384];
+  while (got.size() < 65536 && !ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  ASSERT_FALSE(ec);
+  ASSERT_EQ(::truncate((tree.web + "/huge.bin").c_str(), 1 << 20), 0);
+  while (!ec) got.append(buf, sock.read_some(boost::asio::buffer(buf), ec));
+  EXPECT_EQ(ec, boost::asio::error::connection_reset) << ec.message();
+  EXPECT_LT(got.size(), tree.huge.size());
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_NE(server->log().find("sending /huge.bin failed after"), std::string::npos) << server->log();
+  EXPECT_TRUE(healthy(server->port()));
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
+}
+
 TEST(Lights, ProjectedAtTheRequestedOrder) {
   SharedServer& s = sharedServer();
   int status = 0;
@@ -367,6 +480,63 @@ TEST(Lights, ProjectedAtTheRequestedOrder) {
   EXPECT_EQ(fetch(s.port, "/api/lights?order=3", {{"If-None-Match", a.header("etag")}}).status, 304);
 }
 
+TEST(Lights, ErrorsNameNoServerPaths) {
+  SharedServer& s = sharedServer();
+  std::vector<std::string> secrets{s.tree.dir, s.tree.root, workDir()};
+  std::error_code ec;
+  secrets.push_back(std::filesystem::canonical(s.tree.dir, ec).string());
+  auto expectNoPath = [&](const std::string& what, const std::string& body) {
+    for (const std::string& p : secrets) {
+      if (!p.empty()) {
+        EXPECT_EQ(body.find(p), std::string::npos) << what << " leaks " << p << ":\n" << body;
+      }
+    }
+  };
+  // Every error string the documents carry: the unusable maps (an unknown format, OpenEXR's
+  // own message, an oversized .hdr) and the unusable assets.
+  int errors = 0;
+  for (const std::string& target : {std::string("/api/lights"), std::string("/api/lights?order=3")}) {
+    const HttpResponse r = fetch(s.port, target);
+    ASSERT_EQ(r.status, 200);
+    expectNoPath(target, r.body);
+    Json doc;
+    std::string error;
+    ASSERT_TRUE(parseJson(r.body, &doc, &error)) << error;
+    for (const char* file : {"damaged.exr", "sub/notimage.exr", "bad.hdr"}) {
+      const Json* l = findByFile(doc["lights"], file);
+      ASSERT_NE(l, nullptr) << file;
+      EXPECT_FALSE((*l)["usable"].boolean) << file;
+      const std::string message = (*l)["error"].string;
+      EXPECT_FALSE(message.empty()) << file;
+      EXPECT_FALSE(mentionsAbsolutePath(message)) << file << ": " << message;
+      ++errors;
+    }
+  }
+  const HttpResponse cat = fetch(s.port, "/api/scenes");
+  expectNoPath("/api/scenes", cat.body);
+  Json scenes;
+  std::string error;
+  ASSERT_TRUE(parseJson(cat.body, &scenes, &error));
+  for (const Json& e : scenes["scenes"].array) {
+    if (e.has("error")) {
+      EXPECT_FALSE(mentionsAbsolutePath(e["error"].string)) << e["error"].string;
+    }
+  }
+  EXPECT_EQ(errors, 6);
+  // Error pages, through a client and raw.
+  for (const std::string& t : {std::string("/nothing"), std::string("/api/nothing"), std::string("/assets/x/y.prt"),
+                               std::string("/parts/0123"), std::string("/api/lights?order=99"), std::string("/docs"),
+                               std::string("/leak.txt"), std::string("/api/lights/preview/x.png")}) {
+    expectNoPath(t, fetch(s.port, t).body);
+  }
+  for (const std::string& raw : {std::string("POST / HTTP/1.1\r\nHost: x\r\n\r\n"), std::string("GET /.. HTTP/1.1\r\nHost: x\r\n\r\n"),
+                                 std::string("GET / HTTP/2.0\r\n\r\n"), std::string("JUNK\r\n\r\n")}) {
+    expectNoPath(raw, rawExchange(s.port, raw, std::chrono::seconds(5)).received);
+  }
+  // The operator still gets the detail, on stderr.
+  EXPECT_NE(s.server->log().find("environment map 'damaged.exr'"), std::string::npos);
+}
+
 TEST(Lights, PreviewImages) {
   SharedServer& s = sharedServer();
   const Json doc = getJson(s.port, "/api/lights?order=2");
@@ -416,6 +586,56 @@ TEST(AccessLog, OneLinePerRequest) {
   };
   EXPECT_TRUE(hasLine(marker, "200", true)) << log.substr(log.size() > 2000 ? log.size() - 2000 : 0);
   EXPECT_TRUE(hasLine("/definitely-missing", "404", true));
+}
+
+TEST(AccessLog, SlowDownloadIsTimedToItsLastByte) {
+  // A client that takes its time over a download: the log must say how long the response
+  // took to reach it, not how long it took to hand it to the kernel's socket buffers
+  // (which on loopback can hold the whole asset: the report saw 771 us for 13 s).
+  SharedServer& s = sharedServer();
+  const std::string target = "/assets/" + hexHash(s.tree.room) + "/room.prt?slow-log=" + std::to_string(::getpid());
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::socket sock(ioc);
+  boost::system::error_code ec;
+  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(s.port)}, ec);
+  ASSERT_FALSE(ec);
+  const auto t0 = std::chrono::steady_clock::now();
+  boost::asio::write(sock, boost::asio::buffer("GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"), ec);
+  ASSERT_FALSE(ec);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // reads nothing at first...
+  std::string got;
+  std::vector<char> buf(65536);
+  std::size_t sinceSleep = 0;
+  auto lastByte = t0;
+  while (!ec) {  // ...then 64 KiB every 20 ms
+    const std::size_t n = sock.read_some(boost::asio::buffer(buf), ec);
+    got.append(buf.data(), n);
+    if (n > 0) lastByte = std::chrono::steady_clock::now();
+    sinceSleep += n;
+    if (sinceSleep >= buf.size()) {
+      sinceSleep = 0;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  ASSERT_TRUE(got.ends_with(asString(s.tree.room)));
+  const auto clientMicros = std::chrono::duration_cast<std::chrono::microseconds>(lastByte - t0).count();
+  long long logged = -1;
+  for (int i = 0; i < 40 && logged < 0; ++i) {
+    std::istringstream lines(s.server->log());
+    std::string l;
+    while (std::getline(lines, l)) {
+      std::istringstream fields(l);
+      std::string peer, method, t, status, bytes, micros;
+      fields >> peer >> method >> t >> status >> bytes >> micros;
+      if (t == target && status == "200" && micros.ends_with("us")) logged = std::atoll(micros.c_str());
+    }
+    if (logged < 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_GE(logged, 0) << "no log line for " << target;
+  std::printf("slow download: the client took %lld us, the log says %lld us\n", static_cast<long long>(clientMicros),
+              logged);
+  EXPECT_GE(logged, clientMicros / 2);
+  EXPECT_LE(logged, clientMicros + 1000000);
 }
 
 TEST(AccessLog, QuietSilencesIt) {

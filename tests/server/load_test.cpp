@@ -6,7 +6,11 @@
 
 #include <boost/asio/write.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <thread>
 
 #include "serve_env.h"
@@ -62,6 +66,72 @@ TEST(Load, SixtyFourConcurrentClientsGetByteExactAssets) {
     if (!p.empty()) ADD_FAILURE() << p;
   }
   EXPECT_TRUE(healthy(s.port));
+}
+
+std::chrono::microseconds timed(const std::function<void()>& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0);
+}
+
+std::chrono::microseconds median(std::vector<std::chrono::microseconds> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? std::chrono::microseconds(0) : v[v.size() / 2];
+}
+
+TEST(Load, ColdLightRequestsLeaveTheCatalogueFast) {
+  // Ten parallel first requests for orders 6..15 project a 1024x512 map ten times. On the
+  // I/O threads that held every thread for seconds (the catalogue waited 6.6-8.6 s in the
+  // report); on the lights worker the catalogue keeps answering at its usual speed.
+  const TestTree tree = makeTestTree(workDir());
+  std::filesystem::remove(tree.root + "/studio.exr");
+  writeFile(tree.root + "/wide.hdr", makeRgbeImage(1024, 512, 0.8f, 0.6f, 0.4f));
+  auto server = startServer(tree, {"--threads", "2"}, "cold-lights.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+
+  std::vector<std::chrono::microseconds> baseline;
+  for (int i = 0; i < 20; ++i) baseline.push_back(timed([&] { EXPECT_TRUE(healthy(port)); }));
+  // What one cold projection costs here (order 5, cheaper than every order below).
+  const auto single = timed([&] { EXPECT_EQ(fetch(port, "/api/lights?order=5").status, 200); });
+
+  std::atomic<int> outstanding{10};
+  std::vector<int> statuses(10, 0);
+  std::vector<std::thread> lights;
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 10; ++k) {
+    lights.emplace_back([&, k] {
+      const int order = 6 + k;
+      const HttpResponse r = fetch(port, "/api/lights?order=" + std::to_string(order));
+      const bool right = r.body.starts_with("{\"order\":" + std::to_string(order) + ",");
+      statuses[static_cast<std::size_t>(k)] = right ? r.status : -r.status;
+      --outstanding;
+    });
+  }
+  std::vector<std::chrono::microseconds> during;
+  const auto deadline = start + std::chrono::seconds(120);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // let the light requests arrive first
+  while (outstanding > 0 && std::chrono::steady_clock::now() < deadline) {
+    during.push_back(timed([&] { EXPECT_TRUE(healthy(port)); }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  for (std::thread& t : lights) t.join();
+  const auto total = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(statuses[static_cast<std::size_t>(k)], 200) << "order " << 6 + k;
+
+  const auto b = median(baseline), d = median(during);
+  const auto worst = during.empty() ? std::chrono::microseconds(0) : *std::max_element(during.begin(), during.end());
+  std::printf("catalogue: %lld us alone, %lld us (median; worst %lld us, %zu samples) beside the ten cold light "
+              "requests (%.2f x); one cold order %lld us, all ten %lld us\n",
+              static_cast<long long>(b.count()), static_cast<long long>(d.count()), static_cast<long long>(worst.count()),
+              during.size(), b.count() ? static_cast<double>(d.count()) / static_cast<double>(b.count()) : 0.0,
+              static_cast<long long>(single.count()), static_cast<long long>(total.count()));
+  ASSERT_GE(during.size(), 3u) << "the light requests finished too fast to measure anything beside them";
+  // Relative bounds, measured in this run (the machine is shared): a catalogue request
+  // beside the projections costs a small fraction of one projection, not one or several.
+  EXPECT_LT(d, single / 4) << "median catalogue latency beside cold light requests";
+  EXPECT_LT(worst, total / 3) << "worst catalogue latency beside cold light requests";
+  EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
 TEST(Lifecycle, ShutdownWhileClientsAreConnected) {

@@ -128,6 +128,10 @@ TestTree makeTestTree(const std::string& parent) {
   writeFile(t.root + "/notes.txt", std::string("not an asset\n"));
   writeFile(t.root + "/sky.hdr", makeRgbeImage(64, 32, 0.5f, 0.75f, 1.0f));
   writeFile(t.root + "/bad.hdr", std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 9999999 +X 9999999\n"));
+  // Unusable maps whose loader messages name the file by its absolute path (OpenEXR's own
+  // text repeats it): the server must not pass those paths on.
+  writeFile(t.root + "/damaged.exr", std::string("v/1\x01 not really an OpenEXR file, only its magic number"));
+  writeFile(t.root + "/sub/notimage.exr", std::string("hello"));
   const fs::path exr = PRT_BLENDER_STUDIO_EXR;
   std::error_code ec;
   if (fs::exists(exr, ec)) {

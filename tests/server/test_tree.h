@@ -26,7 +26,8 @@ std::string readFile(const std::string& path);
 struct TestTree {
   std::string dir;      // holds everything below
   std::string root;     // --root: room.prt, sub/small.prt, corrupt.prt, truncated.prt,
-                        //   escape.prt (symlink out), sky.hdr, bad.hdr, studio.exr (blender-data)
+                        //   escape.prt (symlink out), sky.hdr, bad.hdr, damaged.exr,
+                        //   sub/notimage.exr, studio.exr (blender-data)
   std::string web;      // --web: index.html, app.js, module.mjs, core.wasm, ...
   std::string outside;  // next to the roots: secret.txt and secret.prt
   std::vector<std::uint8_t> room;   // the bytes of root/room.prt (about 1.8 MB)

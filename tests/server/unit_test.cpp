@@ -8,6 +8,8 @@
 #include "content_hash.h"
 #include "mime_types.h"
 #include "negotiation.h"
+#include "public_error.h"
+#include "request_checks.h"
 #include "request_target.h"
 
 namespace prt::serve {
@@ -76,6 +78,58 @@ TEST(RequestTarget, QueryValues) {
   EXPECT_FALSE(queryValue("orders=3", "order", &v));
   EXPECT_FALSE(queryValue("", "order", &v));
   EXPECT_EQ(encodePathSegment("a b/c%d.prt"), "a%20b%2Fc%25d.prt");
+}
+
+TEST(RequestHead, HostValues) {
+  for (const char* ok : {"", "a", "localhost", "127.0.0.1", "127.0.0.1:8080", "prt.example.com:443", "[::1]",
+                         "[::1]:80", "[2001:db8::7]", "[v1.fe80::a+en1]", "x:", "xn--bcher-kva.example", "a%41b",
+                         "a-b_c~d!$&'()*+,;="}) {
+    EXPECT_TRUE(validHostValue(ok)) << ok;
+  }
+  for (const char* bad : {"a b", "a/b", "a@b", "a:b", "a:80:80", "[::1", "::1", "[zz::1]", "[::1]x", "[::1]:x",
+                          "%zz", "%4", "a\tb", "a,b c", "[fe80::1%25eth0]", "[v.x]", "[vZ.x]", "a\\b", "\"a\""}) {
+    EXPECT_FALSE(validHostValue(bad)) << bad;
+  }
+}
+
+TEST(RequestHead, TransferEncodingMustBeChunkedAlone) {
+  EXPECT_TRUE(onlyChunked("chunked"));
+  EXPECT_TRUE(onlyChunked("Chunked,"));
+  EXPECT_TRUE(onlyChunked(" , chunked ,"));
+  for (const char* bad : {"", ",", "gzip", "identity", "xchunked", "chunked, identity", "gzip, chunked",
+                          "chunked, chunked", "chunked;x=1", "chunked x"}) {
+    EXPECT_FALSE(onlyChunked(bad)) << bad;
+  }
+}
+
+TEST(RequestHead, VersionsWorthA505) {
+  for (const char* line : {"GET / HTTP/2.0", "GET / HTTP/1.2\r", "PRI * HTTP/2.0", "GET /x HTTP/0.9"}) {
+    EXPECT_TRUE(wellFormedButUnsupportedVersion(line)) << line;
+  }
+  for (const char* line : {"GET / HTTP/1.1", "GET / HTTP/1.0\r", "GET / HTTP/1.10", "GET / HTTX/2.0", "GET / HTTP/2",
+                           "GET /  HTTP/2.0", "GET HTTP/2.0", "GET / HTTP/2.0 x", "", " / HTTP/2.0"}) {
+    EXPECT_FALSE(wellFormedButUnsupportedVersion(line)) << line;
+  }
+}
+
+TEST(PublicError, PathsStayOnTheServer) {
+  const std::string abs = "/srv/prt/maps/sub/bad.exr";
+  EXPECT_EQ(publicMessage("'" + abs + "': unknown image format (starts with 68 65)", abs, "sub/bad.exr", "/srv/prt/maps", "F"),
+            "unknown image format (starts with 68 65)");
+  EXPECT_EQ(publicMessage("'" + abs + "': cannot read: Cannot read image file \"" + abs + "\". Bad magic.", abs,
+                          "sub/bad.exr", "/srv/prt/maps", "F"),
+            "cannot read: Cannot read image file \"sub/bad.exr\". Bad magic.");
+  EXPECT_EQ(publicMessage("cannot open /etc/OpenEXR/x.conf", abs, "sub/bad.exr", "/srv/prt/maps", "F"), "F");
+  EXPECT_EQ(publicMessage("under /srv/prt/maps", abs, "sub/bad.exr", "/srv/prt/maps", "F"), "F");
+  EXPECT_EQ(publicMessage("truncated: asset is 1000 bytes but its header declares 4879144", "", "", "/", "F"),
+            "truncated: asset is 1000 bytes but its header declares 4879144");
+  EXPECT_EQ(publicMessage("its size 3x7 matches no layout (2:1 equirect, 1:1 angular map, 4:3 or 3:4 cross)", abs, "x",
+                          "/srv", "F"),
+            "its size 3x7 matches no layout (2:1 equirect, 1:1 angular map, 4:3 or 3:4 cross)");
+  for (const char* yes : {"/etc/passwd", "at '/srv/x'", "file \"/a\"", "(/tmp/x)", "path=/x", "x: /y"}) {
+    EXPECT_TRUE(mentionsAbsolutePath(yes)) << yes;
+  }
+  for (const char* no : {"a/b", "sub/bad.exr", "1/2", "w / h", "", "/", "and/or"}) EXPECT_FALSE(mentionsAbsolutePath(no)) << no;
 }
 
 TEST(Negotiation, PicksTheBestAcceptableEncoding) {
