@@ -81,7 +81,8 @@ try {
   for (const order of [3, 5]) {
     const entry = scenes.find((s) => s.file === `lights${order}.prt`);
     if (!entry) throw new Error(`lights${order}.prt missing under ${root}`);
-    const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+    // The three.js side needs its inline import map, which the server's CSP forbids.
+    const page = await browser.newPage({ viewport: { width: 640, height: 480 }, bypassCSP: true });
     page.on('pageerror', (e) => console.error(`page: ${e.message}`));
     await page.goto(`${base}/lights_bench.html?scene=${encodeURIComponent(entry.name)}`);
     await page.waitForFunction(() => window.prtApp && window.threeBench && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2)), null, { timeout: 600000 });

@@ -45,6 +45,10 @@ const cases = {
       check(hi - lo > 60, `screenshot looks blank (green range ${lo}..${hi})`);
       await page.screenshot({ path: path.join(workDir, 'loaded.png') });
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+      // The page ran under the server's Content-Security-Policy, which allows wasm but not
+      // eval: embind's glue is built without `new Function` (-sDYNAMIC_EXECUTION=0).
+      const csp = (await fetch(`${server.base}/`)).headers.get('content-security-policy') ?? '';
+      check(csp.includes("'wasm-unsafe-eval'") && !csp.includes("'unsafe-eval'"), `page CSP: ${csp}`);
       const statsText = await page.textContent('#stats');
       check(/vertices/.test(statsText) && /SH order 5/.test(statsText) && /MB loaded/.test(statsText), `stats line: ${statsText}`);
     } finally {
