@@ -1,6 +1,6 @@
 // libFuzzer entry point for the asset reader (docs/asset-format.md). Build, for example:
-//   clang++ -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -Ishared \
-//     tests/fuzz/asset_fuzz.cpp shared/prt/*.cpp -o asset_fuzz
+//   clang++ -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -Ishared -Ishared/prt/codec \
+//     tests/fuzz/asset_fuzz.cpp shared/prt/*.cpp shared/prt/codec/*.cpp -o asset_fuzz
 //   ./asset_fuzz -max_total_time=60 CORPUS_DIR
 //
 // Random bytes almost never pass a CRC, which would confine the fuzzer to the header

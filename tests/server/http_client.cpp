@@ -137,6 +137,15 @@ RawResult rawExchangeFrom(const std::string& source, int port, std::string_view 
   return r;
 }
 
+bool connectSlowReader(asio::ip::tcp::socket& sock, int port) {
+  beast::error_code ec;
+  sock.open(asio::ip::tcp::v4(), ec);
+  if (ec) return false;
+  sock.set_option(asio::socket_base::receive_buffer_size(16384), ec);
+  sock.connect({asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)}, ec);
+  return !ec;
+}
+
 RawConnection::RawConnection(int port, const std::string& source) : socket_(ioc_) {
   connected_ = connectTo(socket_, port, source);
   if (connected_) setReceiveTimeout(socket_, std::chrono::milliseconds(100));

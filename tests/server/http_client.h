@@ -82,6 +82,11 @@ class RawConnection {
   std::string received_;
 };
 
+// Connects `sock` (on its own io_context) to 127.0.0.1:port as a slow reader: a 16 KiB
+// receive buffer, set before connecting so the advertised window stays small and the
+// server stalls mid-body on a large response. False when the connection fails.
+bool connectSlowReader(boost::asio::ip::tcp::socket& sock, int port);
+
 // The status code of the first response in raw bytes ("HTTP/1.1 400 ..."), or 0.
 int rawStatus(std::string_view received);
 

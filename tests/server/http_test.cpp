@@ -157,11 +157,7 @@ TEST(Assets, InPlaceRewriteDuringADownloadNeverDeliversOtherBytes) {
   boost::asio::io_context ioc;
   boost::asio::ip::tcp::socket sock(ioc);
   boost::system::error_code ec;
-  sock.open(boost::asio::ip::tcp::v4(), ec);
-  // Before connect, so the window stays small and the server is stuck mid-body.
-  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
-  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
-  ASSERT_FALSE(ec);
+  ASSERT_TRUE(connectSlowReader(sock, server->port()));  // the server is stuck mid-body
   const std::string req = "GET " + url + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
   boost::asio::write(sock, boost::asio::buffer(req), ec);
   ASSERT_FALSE(ec);
@@ -409,10 +405,7 @@ TEST(StaticFiles, FileTruncatedWhileSendingEndsInAReset) {
   boost::asio::io_context ioc;
   boost::asio::ip::tcp::socket sock(ioc);
   boost::system::error_code ec;
-  sock.open(boost::asio::ip::tcp::v4(), ec);
-  sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
-  sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(server->port())}, ec);
-  ASSERT_FALSE(ec);
+  ASSERT_TRUE(connectSlowReader(sock, server->port()));
   boost::asio::write(sock, boost::asio::buffer(std::string("GET /huge.bin HTTP/1.1\r\nHost: x\r\n\r\n")), ec);
   std::string got;
   char buf[16384];

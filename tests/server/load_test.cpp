@@ -157,11 +157,7 @@ TEST(Lifecycle, ShutdownWhileClientsAreConnected) {
     socks.push_back(std::make_unique<boost::asio::ip::tcp::socket>(iocs[static_cast<std::size_t>(i)]));
     auto& sock = *socks.back();
     boost::system::error_code ec;
-    sock.open(boost::asio::ip::tcp::v4(), ec);
-    // Before connect, so the advertised window stays small.
-    sock.set_option(boost::asio::socket_base::receive_buffer_size(16384), ec);
-    sock.connect({boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)}, ec);
-    ASSERT_FALSE(ec);
+    ASSERT_TRUE(connectSlowReader(sock, port));
     const std::string req = "GET /huge.bin HTTP/1.1\r\nHost: x\r\n\r\n";
     boost::asio::write(sock, boost::asio::buffer(req), ec);
     ASSERT_FALSE(ec);

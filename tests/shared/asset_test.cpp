@@ -190,7 +190,7 @@ BakedAsset makeAsset(int order, std::size_t vertexCount, std::size_t triangleCou
   }
   a.positions[0].x = -0.0f;
   a.albedo[0].g = 1e-40f;  // denormal
-  a.positions[1].y = std::numeric_limits<float>::max();
+  a.positions.back().y = std::numeric_limits<float>::max();
   a.passes[0].coeffs[0] = -kMaxTransferMagnitude;  // transfer's own limit (transfer_codec.h)
   a.passes[0].coeffs.back() = -std::numeric_limits<float>::denorm_min();
   a.samples = 0x1234567890ULL;  // above 32 bits on purpose
