@@ -13,6 +13,12 @@ const char* statusCodeName(StatusCode code) {
     case StatusCode::kBadVersion: return "bad version";
     case StatusCode::kChecksumMismatch: return "checksum mismatch";
     case StatusCode::kCorrupt: return "corrupt";
+    case StatusCode::kUsage: return "usage";
+    case StatusCode::kNotFound: return "not found";
+    case StatusCode::kIoError: return "i/o error";
+    case StatusCode::kUnavailable: return "unavailable";
+    case StatusCode::kResourceExhausted: return "resource exhausted";
+    case StatusCode::kInternal: return "internal";
   }
   return "unknown";
 }

@@ -19,6 +19,13 @@ enum class StatusCode {
   kBadVersion,        // a format version this reader cannot read
   kChecksumMismatch,  // stored and computed checksums differ: damaged in storage or transit
   kCorrupt,           // checksums pass but the content is inconsistent or out of range
+  // Native callers (baker, server); shared/ itself never returns these:
+  kUsage,              // a command line that does not parse (unknown flag, missing value)
+  kNotFound,           // a named file, directory or resource does not exist
+  kIoError,            // the operating system refused a read or write (permissions, EIO)
+  kUnavailable,        // a service is not there now (port in use, no GPU context); may pass later
+  kResourceExhausted,  // out of memory, disk space or a configured limit
+  kInternal,           // a bug: an invariant of this program does not hold
 };
 
 // Returns a stable lower-case name for a code ("ok", "invalid argument", ...).
@@ -48,3 +55,12 @@ class [[nodiscard]] Status {
 };
 
 }  // namespace prt
+
+// Returns from the enclosing function with the Status of `expr` when it is not ok.
+// `expr` is evaluated once. The enclosing function must return prt::Status.
+#define PRT_RETURN_IF_ERROR(expr)                                   \
+  do {                                                              \
+    if (::prt::Status prt_status_ = (expr); !prt_status_.isOk()) {  \
+      return prt_status_;                                           \
+    }                                                               \
+  } while (false)

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "prt/cubemap.h"
@@ -12,6 +14,7 @@
 #include "prt/sh_rotation.h"
 #include "prt/sh_window.h"
 #include "prt/sh_zonal.h"
+#include "prt/status.h"
 
 namespace prt {
 namespace {
@@ -144,6 +147,44 @@ TEST(Errors, WindowChecks) {
   std::vector<float> w(3);
   expectError(shWindowWeights(ShWindow::kLanczos, 3, kNan, w), StatusCode::kNotFinite, "width");
   expectError(shWindowWeights(ShWindow::kLanczos, 4, 0.0f, w), StatusCode::kSizeMismatch, "4 values");
+}
+
+
+int g_evaluations = 0;
+Status countedStatus(StatusCode code) {
+  ++g_evaluations;
+  return code == StatusCode::kOk ? Status::ok() : Status::error(code, "from countedStatus");
+}
+Status twoSteps(StatusCode first, StatusCode second, bool* reachedEnd) {
+  PRT_RETURN_IF_ERROR(countedStatus(first));
+  PRT_RETURN_IF_ERROR(countedStatus(second));
+  *reachedEnd = true;
+  return Status::ok();
+}
+
+TEST(ErrorHandling, ReturnIfErrorStopsAtTheFirstFailureAndEvaluatesOnce) {
+  bool reachedEnd = false;
+  g_evaluations = 0;
+  Status s = twoSteps(StatusCode::kNotFound, StatusCode::kInternal, &reachedEnd);
+  EXPECT_EQ(s.code(), StatusCode::kNotFound);
+  EXPECT_EQ(s.message(), "from countedStatus");
+  EXPECT_EQ(g_evaluations, 1);
+  EXPECT_FALSE(reachedEnd);
+
+  g_evaluations = 0;
+  s = twoSteps(StatusCode::kOk, StatusCode::kOk, &reachedEnd);
+  EXPECT_TRUE(s.isOk());
+  EXPECT_EQ(g_evaluations, 2);
+  EXPECT_TRUE(reachedEnd);
+}
+
+TEST(ErrorHandling, EveryCodeHasItsOwnName) {
+  std::set<std::string> names;
+  for (int c = 0; c <= static_cast<int>(StatusCode::kInternal); ++c) {
+    std::string name = statusCodeName(static_cast<StatusCode>(c));
+    EXPECT_NE(name, "unknown") << c;
+    EXPECT_TRUE(names.insert(name).second) << "repeated name " << name;
+  }
 }
 
 }  // namespace
