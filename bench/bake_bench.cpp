@@ -13,9 +13,9 @@
 #include <string>
 #include <thread>
 
-#include "file_io.h"
-#include "gltf_loader.h"
-#include "transfer_bake.h"
+#include "native/file_io.h"
+#include "baker/scene/gltf_loader.h"
+#include "baker/transfer/transfer_bake.h"
 
 using namespace prt;
 

@@ -4,7 +4,7 @@
 // only (interreflection off, so both sides are direct light), the lighting sphere the CLI's
 // default (bounds centre, half the diagonal), and a 15-degree cap of it as the emitter. The
 // reference is the brute-force area integral over the cap with Embree visibility
-// (baker/direct_reference.h). Also times the local bake against the distant one in the same
+// (baker/transfer/direct_reference.h). Also times the local bake against the distant one in the same
 // run. Prints a table; --json / --md write the results.
 #include <sys/utsname.h>
 
@@ -18,12 +18,12 @@
 #include <thread>
 #include <vector>
 
-#include "default_scene.h"
-#include "direct_reference.h"
-#include "file_io.h"
-#include "local_sphere.h"
+#include "baker/scene/default_scene.h"
+#include "baker/transfer/direct_reference.h"
+#include "native/file_io.h"
+#include "baker/transfer/local_sphere.h"
 #include "prt/sh_basis.h"
-#include "transfer_bake.h"
+#include "baker/transfer/transfer_bake.h"
 
 using namespace prt;
 

@@ -8,7 +8,7 @@
 
 #include "content_hash.h"
 #include "encoded_variants.h"
-#include "json_text.h"
+#include "native/json_text.h"
 #include "public_error.h"
 #include "request_target.h"
 #include "temp_file.h"

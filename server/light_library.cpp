@@ -4,8 +4,8 @@
 
 #include "content_hash.h"
 #include "encoded_variants.h"
-#include "image_io.h"
-#include "json_text.h"
+#include "native/image_io.h"
+#include "native/json_text.h"
 #include "light_preview.h"
 #include "public_error.h"
 

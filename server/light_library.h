@@ -1,5 +1,5 @@
 // The environment maps (OpenEXR, Radiance .hdr) under --root, projected onto SH radiance
-// coefficients by the shared library (baker/environment_map.h: the layout follows the
+// coefficients by the shared library (native/environment_map.h: the layout follows the
 // aspect ratio as `prt-bake probe` guesses it), for GET /api/lights?order=N. Each file
 // version is loaded only when an order is first asked for, and each (version, order)
 // projected once, on the library's own worker thread: a projection takes a large fraction
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "dir_scan.h"
-#include "environment_map.h"
+#include "native/environment_map.h"
 #include "prt/vec3.h"
 #include "resource.h"
 #include "root_dir.h"

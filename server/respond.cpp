@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "http_date.h"
-#include "json_text.h"
+#include "native/json_text.h"
 #include "negotiation.h"
 
 namespace prt::serve {

@@ -3,7 +3,7 @@
 # tests (tests/shared/transfer_codec_test.cpp, tests/fuzz/) may look inside.
 # Usage: cmake -DSOURCE_DIR=<repo root> -P codec_private_check.cmake
 file(GLOB_RECURSE files
-     ${SOURCE_DIR}/shared/*.h ${SOURCE_DIR}/shared/*.cpp ${SOURCE_DIR}/baker/*.h ${SOURCE_DIR}/baker/*.cpp
+     ${SOURCE_DIR}/shared/*.h ${SOURCE_DIR}/shared/*.cpp ${SOURCE_DIR}/baker/*.h ${SOURCE_DIR}/baker/*.cpp ${SOURCE_DIR}/native/*.h ${SOURCE_DIR}/native/*.cpp ${SOURCE_DIR}/native/*.h ${SOURCE_DIR}/native/*.cpp
      ${SOURCE_DIR}/server/*.h ${SOURCE_DIR}/server/*.cpp ${SOURCE_DIR}/web/src/*.h ${SOURCE_DIR}/web/src/*.cpp
      ${SOURCE_DIR}/bench/*.h ${SOURCE_DIR}/bench/*.cpp ${SOURCE_DIR}/tests/*.h ${SOURCE_DIR}/tests/*.cpp)
 file(GLOB private_headers RELATIVE ${SOURCE_DIR}/shared/prt/codec ${SOURCE_DIR}/shared/prt/codec/*.h)

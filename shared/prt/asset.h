@@ -18,7 +18,7 @@
 
 namespace prt {
 
-// Which transfer a pass holds (docs/sh-conventions.md, baker/transfer_bake.h).
+// Which transfer a pass holds (docs/sh-conventions.md, baker/transfer/transfer_bake.h).
 enum class TransferKind : std::uint32_t {
   kUnshadowed = 0,
   kShadowed = 1,

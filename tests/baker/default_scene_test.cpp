@@ -1,7 +1,7 @@
 // The built-in default scene: well-formed (unit normals, indices in range, winding
 // consistent with normals, albedo below 1), room-sized, varied, and with normals facing into
 // the room and out of the objects.
-#include "default_scene.h"
+#include "baker/scene/default_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gltf_loader.h"
+#include "baker/scene/gltf_loader.h"
 #include "warning_lines.h"
 #include "gltf_test_files.h"
 

@@ -1,7 +1,7 @@
 // Spatially-varying ("local sphere") transfer, docs/spatially-varying.md: the sphere
 // geometry, the limits it must reach (distant as r grows, distant at the centre, the white
 // furnace), and the transfer against a brute-force area integral over an emitter on the
-// sphere (baker/direct_reference.h) with real Embree visibility.
+// sphere (baker/transfer/direct_reference.h) with real Embree visibility.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "baker/test_scenes.h"
-#include "direct_reference.h"
-#include "local_sphere.h"
+#include "baker/transfer/direct_reference.h"
+#include "baker/transfer/local_sphere.h"
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
-#include "transfer_bake.h"
+#include "baker/transfer/transfer_bake.h"
 
 namespace prt::bake {
 namespace {

@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
-#include "gltf_texture.h"
-#include "mesh_cleanup.h"
-#include "mesh_normals.h"
+#include "baker/scene/gltf_texture.h"
+#include "baker/scene/mesh_cleanup.h"
+#include "baker/scene/mesh_normals.h"
 
 namespace prt::bake {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "scene.h"
+#include "baker/scene/scene.h"
 
 namespace prt::bake::test {
 

@@ -1,4 +1,4 @@
-#include "transfer_bake.h"
+#include "baker/transfer/transfer_bake.h"
 
 #include <gtest/gtest.h>
 

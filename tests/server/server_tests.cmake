@@ -2,7 +2,7 @@
 # a real HTTP client (Boost.Beast, blocking) and raw sockets for hostile input.
 # include()d from tests/CMakeLists.txt; paths are relative to this file.
 
-find_package(ZLIB REQUIRED)  # prt_zstd and prt_brotlidec come from server/CMakeLists.txt
+find_package(ZLIB REQUIRED)  # prt_zstd and prt_brotlidec come from native/CMakeLists.txt
 
 set(PRT_SERVE_TEST_DIR ${CMAKE_CURRENT_LIST_DIR})
 set(PRT_SERVE_WORK_DIR ${CMAKE_CURRENT_BINARY_DIR}/server_work)

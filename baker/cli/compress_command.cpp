@@ -1,0 +1,339 @@
+#include "baker/cli/compress_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "native/byte_compressors.h"
+#include "baker/cli/cli_args.h"
+#include "baker/cli/compress_lightings.h"
+#include "native/file_io.h"
+#include "native/json_text.h"
+#include "prt/asset.h"
+#include "prt/exit_radiance.h"
+#include "prt/sh_basis.h"
+#include "prt/transfer_codec.h"
+
+namespace prt {
+namespace {
+
+constexpr std::uint64_t kMaxAssetFileBytes = std::uint64_t{16} << 30;
+constexpr const char* kDefaultEnvDir = "/usr/share/blender/datafiles/studiolights/world";
+constexpr const char* kDefaultSettings = "f32,f16,q16,q8,cpca16,cpca8";
+constexpr double kDefaultQuality = 0.02;
+// Vertices whose reference radiance is below this fraction of the peak are left out of the
+// maximum relative error (near-black vertices would make it meaningless).
+constexpr double kRelativeErrorFloor = 0.01;
+
+constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
+                               {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
+                               {"--per-lighting", false}, {"--save-blobs", true}};
+
+struct Options {
+  std::string asset;
+  std::vector<TransferCodecSettings> settings;
+  std::optional<TransferKind> pass;
+  std::string envDir = kDefaultEnvDir;
+  bool json = false;
+  bool perLighting = false;
+  std::string saveBlobs;  // directory for each setting's blob, or empty
+};
+
+Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+
+Status parseOptions(std::span<const std::string> args, Options* o) {
+  ParsedArgs p;
+  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return s;
+  if (p.positionals.size() != 1) return usage(p.positionals.empty() ? "missing ASSET" : "expected one ASSET");
+  o->asset = p.positionals[0];
+  o->json = p.has("--json");
+  o->perLighting = p.has("--per-lighting");
+  TransferCodecSettings defaults;
+  defaults.cpcaTargetError = kDefaultQuality;
+  if (const std::string* q = p.value("--quality")) {
+    float quality = 0.0f;
+    if (Status s = parseFloatArg("--quality", *q, 0.0f, 1.0f, &quality); !s.isOk()) return s;
+    if (!(quality > 0.0f && quality < 1.0f)) return usage("--quality must be a relative error in (0, 1), e.g. 0.02");
+    defaults.cpcaTargetError = quality;
+  }
+  if (const std::string* m = p.value("--max-clusters")) {
+    if (Status s = parseIntArg("--max-clusters", *m, 1, static_cast<int>(kMaxTransferClusters), &defaults.cpcaMaxClusters);
+        !s.isOk()) {
+      return s;
+    }
+  }
+  const std::string list = p.value("--settings") ? *p.value("--settings") : kDefaultSettings;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    TransferCodecSettings s;
+    if (Status st = parseTransferSetting(std::string_view(list).substr(start, comma - start), defaults, &s); !st.isOk()) {
+      return usage("--settings: " + st.message());
+    }
+    o->settings.push_back(s);
+    start = comma + 1;
+  }
+  if (const std::string* ps = p.value("--pass")) {
+    if (*ps == "unshadowed") o->pass = TransferKind::kUnshadowed;
+    else if (*ps == "shadowed") o->pass = TransferKind::kShadowed;
+    else if (*ps == "interreflected") o->pass = TransferKind::kInterreflected;
+    else return usage("unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)");
+  }
+  if (const std::string* d = p.value("--env-dir")) o->envDir = *d;
+  if (const std::string* d = p.value("--save-blobs")) {
+    if (d->empty()) return usage("--save-blobs needs a directory");
+    o->saveBlobs = *d;
+  }
+  return Status::ok();
+}
+
+// Exit radiance of every vertex and channel ([vertex][rgb]) of `transfer` under `light`,
+// summed in double (prt/exit_radiance.h).
+Status passExitRadiance(const TransferPass& pass, std::span<const float> transfer, const std::vector<Rgb>& albedo, int order,
+                        const std::vector<Rgb>& light, std::vector<double>* out) {
+  out->assign(albedo.size() * 3, 0.0);
+  return exitRadianceDouble(transfer, pass.channels, static_cast<std::size_t>(order * order), albedo, light, *out);
+}
+
+struct LightingError {
+  double psnrDb = 0.0;       // peak = max reference radiance; +inf when exact
+  double maxRelError = 0.0;  // over vertex channels above kRelativeErrorFloor * peak
+};
+
+LightingError compareRadiance(const std::vector<double>& ref, const std::vector<double>& got) {
+  double peak = 0.0, sum = 0.0;
+  for (double x : ref) peak = std::max(peak, x);
+  LightingError e;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    const double d = got[i] - ref[i];
+    sum += d * d;
+    if (ref[i] > kRelativeErrorFloor * peak) e.maxRelError = std::max(e.maxRelError, std::fabs(d) / ref[i]);
+  }
+  const double mse = sum / static_cast<double>(ref.size());
+  e.psnrDb = mse > 0.0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();
+  return e;
+}
+
+struct Row {
+  std::string setting;
+  std::size_t bytes = 0, zstdBytes = 0, brotliBytes = 0;
+  double psnrWorst = 0, psnrMean = 0, maxRelWorst = 0, maxRelMean = 0;
+  double encodeSeconds = 0;
+  TransferEncodeReport report;
+  std::vector<LightingError> perLighting;  // with --per-lighting, in lighting order
+};
+
+int fail(std::FILE* err, int code, const std::string& message) {
+  std::fprintf(err, "prt-bake: error: %s\n", message.c_str());
+  if (code == kExitUsageError) std::fputs("Try 'prt-bake compress-report --help'.\n", err);
+  return code;
+}
+
+std::string perVertex(std::size_t bytes, std::size_t vertices) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.2f", static_cast<double>(bytes) / static_cast<double>(vertices));
+  return s;
+}
+
+std::string vectorList(const std::vector<int>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i) s += ',';
+    s += std::to_string(v[i]);
+  }
+  return s;
+}
+
+std::string formatJson(const Options& o, const TransferPass& pass, int order, std::size_t vertices,
+                       const std::vector<std::string>& names, const std::vector<Row>& rows) {
+  const std::size_t lightings = names.size();
+  const double V = static_cast<double>(vertices);
+  std::string s = "{\n  \"asset\": " + jsonString(o.asset) + ",\n  \"pass\": \"" + transferKindName(pass.kind) +
+                  "\",\n  \"channels\": " + std::to_string(pass.channels) + ",\n  \"order\": " + std::to_string(order) +
+                  ",\n  \"vertices\": " + std::to_string(vertices) + ",\n  \"lightings\": " + std::to_string(lightings) +
+                  ",\n  \"zstd_level\": " + std::to_string(kReportZstdLevel) + ",\n  \"brotli_quality\": " +
+                  std::to_string(kReportBrotliQuality) + ",\n  \"rows\": [\n";
+  const Row* f16 = nullptr;
+  for (const Row& r : rows) {
+    if (r.setting == "f16") f16 = &r;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    s += "    {\"setting\": " + jsonString(r.setting) + ", \"bytes\": " + std::to_string(r.bytes) +
+         ", \"bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.bytes) / V) +
+         ", \"zstd_bytes\": " + std::to_string(r.zstdBytes) + ", \"zstd_bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.zstdBytes) / V) +
+         ", \"brotli_bytes\": " + std::to_string(r.brotliBytes) +
+         ", \"brotli_bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.brotliBytes) / V) +
+         ", \"zstd_ratio_vs_f16\": " + (f16 ? jsonNumber(static_cast<double>(f16->zstdBytes) / static_cast<double>(r.zstdBytes)) : "null") +
+         ", \"psnr_db\": " + jsonNumber(r.psnrWorst) + ", \"psnr_db_mean\": " + jsonNumber(r.psnrMean) +
+         ", \"max_rel_error\": " + jsonNumber(r.maxRelWorst) + ", \"max_rel_error_mean\": " + jsonNumber(r.maxRelMean) +
+         ", \"transfer_rel_error\": " + jsonNumber(r.report.relativeError) +
+         ", \"clusters\": " + std::to_string(r.report.clusters) + ", \"vectors_per_band\": [" + vectorList(r.report.vectorsPerBand) +
+         "], \"encode_seconds\": " + jsonNumber(r.encodeSeconds);
+    if (!r.perLighting.empty()) {
+      s += ", \"per_lighting\": [";
+      for (std::size_t j = 0; j < r.perLighting.size(); ++j) {
+        s += std::string(j ? ", " : "") + "{\"lighting\": " + jsonString(names[j]) + ", \"psnr_db\": " +
+             jsonNumber(r.perLighting[j].psnrDb) + ", \"max_rel_error\": " + jsonNumber(r.perLighting[j].maxRelError) + "}";
+      }
+      s += "]";
+    }
+    s += std::string("}") + (i + 1 < rows.size() ? ",\n" : "\n");
+  }
+  return s + "  ]\n}\n";
+}
+
+std::string formatTable(const Options& o, const TransferPass& pass, int order, std::size_t vertices,
+                        const std::vector<std::string>& names, const std::vector<Row>& rows) {
+  const std::size_t lightings = names.size();
+  std::string s = o.asset + ": " + transferKindName(pass.kind) + " transfer, " + std::to_string(pass.channels) + " channel(s), order " +
+                  std::to_string(order) + ", " + std::to_string(vertices) + " vertices; " + std::to_string(lightings) +
+                  " test lightings (PSNR: peak = max reference radiance; max rel: vertices above 1% of peak)\n";
+  char line[320];
+  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9s %9s %9s %9s %9s %8s %-14s %8s\n", "setting", "B/vtx", "zstd-19",
+                "brotli", "x f16z", "PSNR min", "PSNR avg", "rel max", "rel avg", "T rel", "clusters", "vectors/band", "enc s");
+  s += line;
+  const Row* f16 = nullptr;
+  for (const Row& r : rows) {
+    if (r.setting == "f16") f16 = &r;
+  }
+  for (const Row& r : rows) {
+    const std::string ratio = f16 ? perVertex(f16->zstdBytes, r.zstdBytes) : "-";
+    std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9.2f %9.2f %9.5f %9.5f %9.5f %8d %-14s %8.2f\n", r.setting.c_str(),
+                  perVertex(r.bytes, vertices).c_str(), perVertex(r.zstdBytes, vertices).c_str(),
+                  perVertex(r.brotliBytes, vertices).c_str(), ratio.c_str(), r.psnrWorst, r.psnrMean, r.maxRelWorst, r.maxRelMean,
+                  r.report.relativeError, r.report.clusters, r.report.vectorsPerBand.empty() ? "-" : vectorList(r.report.vectorsPerBand).c_str(),
+                  r.encodeSeconds);
+    s += line;
+    for (std::size_t j = 0; j < r.perLighting.size(); ++j) {
+      std::snprintf(line, sizeof line, "    %-34s PSNR %9.2f  rel max %9.5f\n", names[j].c_str(), r.perLighting[j].psnrDb,
+                    r.perLighting[j].maxRelError);
+      s += line;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+const char* compressReportHelpText() {
+  return "Usage: prt-bake compress-report ASSET [options]\n"
+         "\n"
+         "Encodes the asset's transfer with each transfer-codec setting and reports its size\n"
+         "(bytes per vertex: raw, zstd -19, brotli 11) and its exit-radiance error against the\n"
+         "uncompressed transfer under fixed test lightings: every environment map in --env-dir\n"
+         "at 4 rotations, and 6 small caps. Per setting: the worst (and mean) over lightings of\n"
+         "PSNR (peak = the lighting's max reference radiance) and of the max relative error over\n"
+         "vertices brighter than 1% of the peak. docs/transfer-codec.md.\n"
+         "\n"
+         "Options:\n"
+         "  --settings LIST     comma-separated: f32, f16, q16, q8, cpca8, cpca16, the CPCA ones\n"
+         "                      optionally with a target, cpca8@0.01\n"
+         "                      (default f32,f16,q16,q8,cpca16,cpca8)\n"
+         "  --quality Q         CPCA target relative RMS transfer error where no @ is given\n"
+         "                      (default 0.02)\n"
+         "  --max-clusters N    CPCA cluster-count limit (default 256)\n"
+         "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored)\n"
+         "  --env-dir DIR       directory of .exr environment maps\n"
+         "                      (default /usr/share/blender/datafiles/studiolights/world)\n"
+         "  --per-lighting      also list PSNR and max relative error of every lighting\n"
+         "  --save-blobs DIR    also write each setting's transfer blob to DIR/SETTING.prtt\n"
+         "                      (DIR must exist; for benchmarks of the decoder)\n"
+         "  --json              one JSON object instead of a table\n"
+         "  -h, --help          show this help\n"
+         "\n"
+         "Exit status: 0 success, 1 bad input (file, contents, an unreachable CPCA target),\n"
+         "2 bad command line.\n";
+}
+
+int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
+  if (wantsHelp(args)) {
+    std::fputs(compressReportHelpText(), out);
+    return kExitOk;
+  }
+  Options o;
+  if (Status s = parseOptions(args, &o); !s.isOk()) return fail(err, kExitUsageError, s.message());
+
+  std::vector<std::uint8_t> bytes;
+  if (Status s = readFileBytes(o.asset, kMaxAssetFileBytes, &bytes); !s.isOk()) return fail(err, kExitInputError, s.message());
+  BakedAsset asset;
+  if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return fail(err, kExitInputError, "'" + o.asset + "': " + s.toString());
+  bytes = {};
+  const TransferPass* pass = nullptr;
+  if (o.pass) {
+    pass = findPass(asset, *o.pass);
+    if (!pass) return fail(err, kExitInputError, "'" + o.asset + "' has no " + transferKindName(*o.pass) + " pass");
+  } else {
+    for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
+      if (!pass) pass = findPass(asset, k);
+    }
+  }
+  const int order = asset.shOrder;
+  const std::size_t vertices = asset.positions.size();
+
+  std::vector<TestLighting> lightings;
+  if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return fail(err, kExitInputError, s.message());
+  std::vector<std::vector<double>> reference(lightings.size());
+  for (std::size_t i = 0; i < lightings.size(); ++i) {
+    if (Status s = passExitRadiance(*pass, pass->coeffs, asset.albedo, order, lightings[i].coeffs, &reference[i]); !s.isOk()) {
+      return fail(err, kExitInputError, s.message());
+    }
+  }
+
+  std::vector<Row> rows;
+  std::vector<float> decoded(pass->coeffs.size());
+  std::vector<double> radiance;
+  for (const TransferCodecSettings& setting : o.settings) {
+    Row r;
+    r.setting = transferSettingName(setting);
+    std::fprintf(err, "prt-bake: note: encoding %s...\n", r.setting.c_str());
+    std::vector<std::uint8_t> blob;
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = encodeTransfer(pass->coeffs, order, pass->channels, setting, &blob, &r.report); !s.isOk()) {
+      return fail(err, kExitInputError, r.setting + ": " + s.message());
+    }
+    r.encodeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (Status s = decodeTransfer(blob, order, std::span<float>(decoded)); !s.isOk()) {
+      return fail(err, kExitInputError, r.setting + ": the blob does not decode: " + s.toString());
+    }
+    r.bytes = blob.size();
+    if (!o.saveBlobs.empty()) {
+      const std::string path = o.saveBlobs + "/" + r.setting + ".prtt";
+      const std::string inputs[] = {o.asset};
+      if (Status s = writeFileAtomically(path, blob, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
+    }
+    if (Status s = zstdCompressedSize(blob, kReportZstdLevel, &r.zstdBytes); !s.isOk()) return fail(err, kExitInputError, s.message());
+    if (Status s = brotliCompressedSize(blob, kReportBrotliQuality, kReportBrotliWindow, &r.brotliBytes); !s.isOk()) {
+      return fail(err, kExitInputError, s.message());
+    }
+    r.psnrWorst = std::numeric_limits<double>::infinity();
+    double psnrSum = 0.0;
+    std::size_t finite = 0;
+    for (std::size_t i = 0; i < lightings.size(); ++i) {
+      if (Status s = passExitRadiance(*pass, decoded, asset.albedo, order, lightings[i].coeffs, &radiance); !s.isOk()) {
+        return fail(err, kExitInputError, s.message());
+      }
+      const LightingError e = compareRadiance(reference[i], radiance);
+      if (o.perLighting) r.perLighting.push_back(e);
+      r.psnrWorst = std::min(r.psnrWorst, e.psnrDb);
+      if (std::isfinite(e.psnrDb)) {
+        psnrSum += e.psnrDb;
+        ++finite;
+      }
+      r.maxRelWorst = std::max(r.maxRelWorst, e.maxRelError);
+      r.maxRelMean += e.maxRelError / static_cast<double>(lightings.size());
+    }
+    r.psnrMean = finite == lightings.size() ? psnrSum / static_cast<double>(finite) : std::numeric_limits<double>::infinity();
+    rows.push_back(std::move(r));
+  }
+  std::vector<std::string> names;
+  for (const TestLighting& l : lightings) names.push_back(l.name);
+  const std::string text = o.json ? formatJson(o, *pass, order, vertices, names, rows) : formatTable(o, *pass, order, vertices, names, rows);
+  std::fputs(text.c_str(), out);
+  return kExitOk;
+}
+
+}  // namespace prt

@@ -1,0 +1,152 @@
+#include "baker/scene/default_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "baker/scene/mesh_cleanup.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr float kCellsPerMetre = 16.0f;
+constexpr float kRoomHalfWidth = 2.0f;  // x and z in [-2, 2]
+constexpr float kRoomHeight = 3.0f;
+
+// Albedos like real paints (all below 1) and each surface its own, so the
+// colour bleeding in a bake can be traced to its source.
+constexpr Rgb kFloor{0.75f, 0.75f, 0.75f};
+constexpr Rgb kBackWall{0.75f, 0.72f, 0.68f};
+constexpr Rgb kRedWall{0.75f, 0.10f, 0.08f};
+constexpr Rgb kGreenWall{0.10f, 0.55f, 0.12f};
+constexpr Rgb kSphere{0.80f, 0.80f, 0.80f};
+constexpr Rgb kCube{0.80f, 0.50f, 0.12f};
+constexpr Rgb kTallBox{0.30f, 0.45f, 0.75f};
+constexpr Rgb kTorus{0.55f, 0.25f, 0.65f};
+
+struct Vertex {
+  Vec3 position;
+  Vec3 normal;  // unit
+};
+
+// Rotation about +y, then translation: how each object is placed in the room.
+struct Placement {
+  Mat3 rotation;
+  Vec3 offset;
+  Vertex apply(Vertex v) const { return {rotation * v.position + offset, rotation * v.normal}; }
+};
+
+Placement place(float yawDegrees, Vec3 offset) {
+  return {rotationAxisAngle({0, 1, 0}, yawDegrees * static_cast<float>(kPi / 180.0)), offset};
+}
+
+int cells(float metres) { return std::max(1, static_cast<int>(std::lround(metres * kCellsPerMetre))); }
+
+Vec3 normalized(Vec3 v) { return v * (1.0f / length(v)); }
+
+// Appends a (nu + 1) × (nv + 1) vertex grid, vertex (i, j) given by at(i, j), with two
+// triangles per cell. Each triangle is wound counter-clockwise about the surface normal
+// (the order is chosen per cell from the analytic normals, so callers need not get their
+// parametrisation's handedness right), and triangles that collapse at a pole are skipped.
+template <typename At>
+void addGrid(Scene* s, int nu, int nv, Rgb albedo, const Placement& where, At at) {
+  const auto base = static_cast<std::uint32_t>(s->positions.size());
+  for (int j = 0; j <= nv; ++j) {
+    for (int i = 0; i <= nu; ++i) {
+      const Vertex v = where.apply(at(i, j));
+      s->positions.push_back(v.position);
+      s->normals.push_back(normalized(v.normal));
+      s->albedo.push_back(albedo);
+    }
+  }
+  const auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (nu + 1) + i); };
+  const auto addTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec3 pa = s->positions[a], pb = s->positions[b], pc = s->positions[c];
+    const Vec3 n = cross(pb - pa, pc - pa);
+    if (length(n) < 1e-9f) return;  // a pole, where a whole grid row meets in one point
+    const Vec3 shading = s->normals[a] + s->normals[b] + s->normals[c];
+    if (dot(n, shading) >= 0) {
+      s->indices.insert(s->indices.end(), {a, b, c});
+    } else {
+      s->indices.insert(s->indices.end(), {a, c, b});
+    }
+  };
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      addTriangle(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      addTriangle(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  }
+}
+
+// A flat rectangle origin + s·edgeU + t·edgeV (s, t in [0, 1]) facing `normal`.
+void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, Rgb albedo, const Placement& where) {
+  addGrid(s, cells(length(edgeU)), cells(length(edgeV)), albedo, where, [&](int i, int j) {
+    const float fu = static_cast<float>(i) / static_cast<float>(cells(length(edgeU)));
+    const float fv = static_cast<float>(j) / static_cast<float>(cells(length(edgeV)));
+    return Vertex{origin + edgeU * fu + edgeV * fv, normal};
+  });
+}
+
+// A box resting on y = 0 with its own vertices on each face (sharp edges). The bottom face
+// is left out: it lies on the floor, where no ray could reach it.
+void addBox(Scene* s, Vec3 size, Rgb albedo, const Placement& where) {
+  const float hx = size.x / 2, hz = size.z / 2, h = size.y;
+  const Vec3 x{size.x, 0, 0}, y{0, h, 0}, z{0, 0, size.z};
+  addRectangle(s, {-hx, h, -hz}, x, z, {0, 1, 0}, albedo, where);   // top
+  addRectangle(s, {-hx, 0, hz}, x, y, {0, 0, 1}, albedo, where);    // +z
+  addRectangle(s, {-hx, 0, -hz}, x, y, {0, 0, -1}, albedo, where);  // -z
+  addRectangle(s, {hx, 0, -hz}, z, y, {1, 0, 0}, albedo, where);    // +x
+  addRectangle(s, {-hx, 0, -hz}, z, y, {-1, 0, 0}, albedo, where);  // -x
+}
+
+// A UV sphere; the seam column is duplicated with identical normals.
+void addSphere(Scene* s, float radius, int segments, int rings, Rgb albedo, const Placement& where) {
+  addGrid(s, segments, rings, albedo, where, [&](int i, int j) {
+    const double phi = 2.0 * kPi * i / segments;
+    const double theta = kPi * j / rings;
+    const Vec3 n{static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
+                 static_cast<float>(std::sin(theta) * std::sin(phi))};
+    return Vertex{n * radius, n};
+  });
+}
+
+// A torus around +y (ring radius `major`, tube radius `minor`) centred at the origin.
+void addTorus(Scene* s, float major, float minor, int segments, int sides, Rgb albedo, const Placement& where) {
+  addGrid(s, segments, sides, albedo, where, [&](int i, int j) {
+    const double phi = 2.0 * kPi * i / segments;
+    const double psi = 2.0 * kPi * j / sides;
+    const Vec3 n{static_cast<float>(std::cos(psi) * std::cos(phi)), static_cast<float>(std::sin(psi)),
+                 static_cast<float>(std::cos(psi) * std::sin(phi))};
+    const Vec3 ring{static_cast<float>(major * std::cos(phi)), 0.0f, static_cast<float>(major * std::sin(phi))};
+    return Vertex{ring + n * minor, n};
+  });
+}
+
+}  // namespace
+
+Scene makeDefaultScene() {
+  Scene s;
+  s.name = "default-room";
+  const Placement room = place(0, {0, 0, 0});
+  const float w = 2 * kRoomHalfWidth, r = kRoomHalfWidth;
+  // The room: normals point into it.
+  addRectangle(&s, {-r, 0, -r}, {0, 0, w}, {w, 0, 0}, {0, 1, 0}, kFloor, room);
+  addRectangle(&s, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, kBackWall, room);
+  addRectangle(&s, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, kRedWall, room);
+  addRectangle(&s, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, kGreenWall, room);
+
+  // The objects, spaced so none touches another or a wall: the sphere (touching the floor
+  // in one point) near the red wall, the cube near the green one, the tall box casting a
+  // long shadow on the back wall, the torus lying flat (self-shadowing in its hole).
+  addSphere(&s, 0.5f, 64, 32, kSphere, place(0, {-0.9f, 0.5f, 0.5f}));
+  addBox(&s, {1.0f, 1.0f, 1.0f}, kCube, place(25, {0.9f, 0.0f, 0.6f}));
+  addBox(&s, {0.6f, 1.8f, 0.6f}, kTallBox, place(-20, {-0.6f, 0.0f, -1.2f}));
+  addTorus(&s, 0.4f, 0.14f, 64, 24, kTorus, place(0, {0.7f, 0.14f, -0.9f}));
+  // The sphere's pole rows have one vertex per column, and the seam column's pole vertex
+  // ends up in no triangle (its triangles collapse); drop such vertices.
+  removeUnreferencedVertices(&s);
+  return s;
+}
+
+}  // namespace prt::bake

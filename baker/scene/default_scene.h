@@ -1,0 +1,22 @@
+// The built-in scene `prt-bake` uses when no glTF file is given: generated in code, so it
+// needs no files and always matches the current Scene layout.
+//
+// An open room corner 4 m wide, 4 m deep and 3 m high (floor, back wall, red left wall,
+// green right wall; open at the front and the top so environment light gets in) holding a
+// sphere, a cube, a tall box and a torus that stand on the floor. It is chosen to show what
+// transfer captures: soft shadows, contact darkening where objects meet the floor, and
+// colour bleeding from the coloured walls onto the white-ish floor and sphere. Every surface
+// is a fine grid (16 cells per metre) so per-vertex transfer can show gradients.
+#pragma once
+
+#include "baker/scene/scene.h"
+
+namespace prt::bake {
+
+// Returns the default scene: world space in metres, +y up, floor at y = 0, the room
+// spanning x and z in [-2, 2]; about 20k vertices; unit normals pointing into the room and
+// out of the objects; counter-clockwise front faces; albedo below 1 on every channel.
+// Vertices on sharp edges are duplicated per face, so each keeps its face's normal.
+Scene makeDefaultScene();
+
+}  // namespace prt::bake

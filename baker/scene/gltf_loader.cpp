@@ -1,0 +1,806 @@
+#include "baker/scene/gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <initializer_list>
+#include <map>
+#include <new>
+#include <set>
+
+#include "baker/scene/gltf_accessor.h"
+#include "baker/scene/gltf_json_check.h"
+#include "baker/scene/gltf_texture.h"
+#include "baker/scene/mesh_cleanup.h"
+#include "baker/scene/mesh_normals.h"
+
+namespace prt::bake {
+namespace {
+
+Status fail(const std::string& message) { return Status::error(StatusCode::kInvalidArgument, message); }
+
+// tinygltf reports several problems as newline-separated lines; Status messages are one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+    if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string plural(std::size_t n, const char* singular, const char* pluralForm) {
+  return std::to_string(n) + " " + (n == 1 ? singular : pluralForm);
+}
+
+// ---- the file and its container -------------------------------------------------------
+
+Status readWholeFile(const std::string& path, std::vector<unsigned char>* bytes) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return fail("no such file");
+  if (!std::filesystem::is_regular_file(status)) return fail("not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return fail("cannot read the file size: " + ec.message());
+  if (size == 0) return fail("the file is empty");
+  if (size > kMaxGltfFileBytes) {
+    return fail("the file has " + std::to_string(size) + " bytes, above the limit of " +
+                std::to_string(kMaxGltfFileBytes));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail("cannot open the file");
+  bytes->resize(static_cast<std::size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes->data()), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size) return fail("cannot read the file");
+  return Status::ok();
+}
+
+std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t at) {
+  std::uint32_t v;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;  // little-endian host, as gltf_accessor.cpp asserts
+}
+
+// Checks the binary glTF header and chunk table before tinygltf sees them: tinygltf 2.7
+// reads the BIN chunk's 8-byte header without counting it against the file length, so a
+// file truncated there would be read past its end. Sets *length to the declared length.
+Status checkGlbContainer(const std::vector<unsigned char>& bytes, std::size_t* length,
+                         std::vector<std::string>* notes) {
+  const std::size_t size = bytes.size();
+  if (size < 12)
+    return fail("truncated binary glTF: the 12-byte header is cut off (" + std::to_string(size) + " bytes)");
+  const std::uint32_t version = readU32(bytes, 4);
+  if (version != 2) return fail("binary glTF version " + std::to_string(version) + " is not supported (only 2)");
+  const std::uint64_t declared = readU32(bytes, 8);
+  if (declared > size) {
+    return fail("truncated binary glTF: the header declares " + std::to_string(declared) + " bytes, the file has " +
+                std::to_string(size));
+  }
+  if (declared < size)
+    notes->push_back(std::to_string(size - declared) + " bytes after the end of the binary glTF ignored");
+  std::uint64_t at = 12;
+  for (int chunk = 0; at < declared; ++chunk) {
+    const char* name = chunk == 0 ? "JSON" : "BIN";
+    if (declared - at < 8) return fail(std::string("truncated binary glTF: the ") + name + " chunk header is cut off");
+    const std::uint64_t chunkLength = readU32(bytes, static_cast<std::size_t>(at));
+    const std::uint32_t type = readU32(bytes, static_cast<std::size_t>(at + 4));
+    if (chunk == 0 && type != 0x4E4F534Au) return fail("binary glTF: the first chunk is not JSON");
+    if (chunkLength > declared - at - 8) {
+      return fail(std::string("truncated binary glTF: the ") + name + " chunk of " + std::to_string(chunkLength) +
+                  " bytes runs past the end of the file");
+    }
+    at += 8 + chunkLength;
+  }
+  if (at == 12) return fail("truncated binary glTF: no JSON chunk");
+  *length = static_cast<std::size_t>(declared);
+  return Status::ok();
+}
+
+bool hasGlbMagic(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+bool looksLikeJsonObject(const std::vector<unsigned char>& bytes) {
+  std::size_t i = 0;
+  if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF) i = 3;  // UTF-8 BOM
+  while (i < bytes.size() && std::isspace(bytes[i])) ++i;
+  return i < bytes.size() && bytes[i] == '{';
+}
+
+bool isSupportedRequiredExtension(const std::string& name) {
+  return std::find(std::begin(kSupportedRequiredExtensions), std::end(kSupportedRequiredExtensions), name) !=
+         std::end(kSupportedRequiredExtensions);
+}
+
+Status unsupportedExtension(const std::string& name) {
+  std::string message = "requires the glTF extension " + name + ", which this loader does not support";
+  if (name == "KHR_draco_mesh_compression" || name == "EXT_meshopt_compression") {
+    message += " (compressed geometry: decompress the file first)";
+  }
+  return fail(message);
+}
+
+// Finds extensionsRequired in raw JSON text. Used only when tinygltf has rejected the
+// file, to report the real cause: Draco files, for one, fail tinygltf's accessor checks
+// before their extension list could be looked at.
+std::vector<std::string> scanRequiredExtensions(const std::string& json) {
+  std::vector<std::string> names;
+  const std::string key = "\"extensionsRequired\"";
+  std::size_t at = json.find(key);
+  if (at == std::string::npos) return names;
+  at = json.find('[', at + key.size());
+  const std::size_t end = at == std::string::npos ? at : json.find(']', at);
+  if (end == std::string::npos) return names;
+  for (std::size_t q = json.find('"', at); q != std::string::npos && q < end; q = json.find('"', q + 1)) {
+    const std::size_t close = json.find('"', q + 1);
+    if (close == std::string::npos || close > end) break;
+    names.push_back(json.substr(q + 1, close - q - 1));
+    q = close;
+  }
+  return names;
+}
+
+// ---- materials --------------------------------------------------------------------------
+
+// KHR_texture_transform: uv' = T · R · S · uv as a 2×3 matrix.
+struct UvTransform {
+  double m[2][3] = {{1, 0, 0}, {0, 1, 0}};
+  void apply(float u, float v, float* outU, float* outV) const {
+    *outU = static_cast<float>(m[0][0] * u + m[0][1] * v + m[0][2]);
+    *outV = static_cast<float>(m[1][0] * u + m[1][1] * v + m[1][2]);
+  }
+};
+
+struct BaseColor {
+  Rgb factor{1, 1, 1};
+  const LinearTexture* texture = nullptr;  // null: factor only
+  WrapMode wrapS = WrapMode::kRepeat;
+  WrapMode wrapT = WrapMode::kRepeat;
+  int texCoord = 0;
+  UvTransform uv;
+};
+
+double numberOr(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
+
+// Reads KHR_texture_transform from a textureInfo's extensions (rotation is
+// counter-clockwise in uv space, per the extension).
+void readTextureTransform(const tinygltf::ExtensionMap& extensions, BaseColor* out) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end() || !it->second.IsObject()) return;
+  const tinygltf::Value& ext = it->second;
+  double offset[2] = {0, 0}, scale[2] = {1, 1};
+  const tinygltf::Value& o = ext.Get("offset");
+  const tinygltf::Value& s = ext.Get("scale");
+  for (int i = 0; i < 2; ++i) {
+    if (o.IsArray() && o.ArrayLen() == 2) offset[i] = numberOr(o.Get(i), offset[i]);
+    if (s.IsArray() && s.ArrayLen() == 2) scale[i] = numberOr(s.Get(i), scale[i]);
+  }
+  const double rotation = numberOr(ext.Get("rotation"), 0.0);
+  const double c = std::cos(rotation), sn = std::sin(rotation);
+  out->uv.m[0][0] = c * scale[0];
+  out->uv.m[0][1] = sn * scale[1];
+  out->uv.m[0][2] = offset[0];
+  out->uv.m[1][0] = -sn * scale[0];
+  out->uv.m[1][1] = c * scale[1];
+  out->uv.m[1][2] = offset[1];
+  const tinygltf::Value& texCoord = ext.Get("texCoord");
+  if (texCoord.IsInt()) out->texCoord = texCoord.GetNumberAsInt();
+}
+
+// glTF's albedo range, [0, 1]; albedo 1 stays 1 (a white furnace must return its light).
+// Counts the values it had to change. NaN becomes 0.
+float albedoInRange(float v, std::size_t* outOfRange) {
+  if (v >= 0.0f && v <= 1.0f) return v;
+  ++*outOfRange;
+  return v > 1.0f ? 1.0f : 0.0f;
+}
+
+// ---- node transforms --------------------------------------------------------------------
+
+bool allFinite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// ---- the builder ------------------------------------------------------------------------
+
+struct Counters {
+  std::size_t pointPrimitives = 0;
+  std::size_t linePrimitives = 0;
+  std::size_t noPositionPrimitives = 0;
+  std::size_t trianglePrimitives = 0;
+  std::size_t primitivesWithoutNormals = 0;
+  std::size_t unusableNormals = 0;
+  std::size_t trailingIndices = 0;
+  std::size_t skinnedNodes = 0;
+  std::size_t morphedPrimitives = 0;
+  std::size_t nonOpaquePrimitives = 0;
+  std::size_t unnormalisedRotations = 0;
+  std::size_t albedoOutOfRange = 0;  // channel values, before removal of unused vertices
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, const ImageDecodeLog& log) : model_(model), log_(log) {}
+
+  Status addDefaultScene();
+  Status finish(const std::string& fallbackName, Scene* out, std::vector<std::string>* warnings);
+
+ private:
+  Status localTransform(int nodeIndex, glm::dmat4* out);
+  Status addMesh(int meshIndex, const glm::dmat4& world);
+  Status addPrimitive(int meshIndex, int primitiveIndex, const glm::dmat4& world);
+  Status baseColorFor(int materialIndex, BaseColor* out);
+  const LinearTexture* textureFor(int textureIndex, const std::string& user, BaseColor* out);
+  std::string meshLabel(int meshIndex) const;
+
+  const tinygltf::Model& model_;
+  const ImageDecodeLog& log_;
+  std::string sceneName_;
+
+  // The soup under construction; needsNormal marks vertices whose normal is computed.
+  std::vector<Vec3> positions_;
+  std::vector<Vec3> normals_;
+  std::vector<Rgb> albedo_;
+  std::vector<std::uint8_t> needsNormal_;
+  std::vector<std::uint32_t> indices_;
+
+  Counters counters_;
+  std::set<std::string> notes_;            // one-off warnings (textures, materials), deduplicated
+  std::map<int, LinearTexture> textures_;  // by image index; empty: could not be used
+};
+
+std::string SceneBuilder::meshLabel(int meshIndex) const {
+  std::string s = "mesh " + std::to_string(meshIndex);
+  const std::string& name = model_.meshes[static_cast<std::size_t>(meshIndex)].name;
+  if (!name.empty()) s += " ('" + name + "')";
+  return s;
+}
+
+Status SceneBuilder::addDefaultScene() {
+  const std::size_t nodeCount = model_.nodes.size();
+  std::vector<int> roots;
+  if (model_.defaultScene >= 0) {
+    if (static_cast<std::size_t>(model_.defaultScene) >= model_.scenes.size()) {
+      return fail("the default scene " + std::to_string(model_.defaultScene) + " does not exist");
+    }
+    const tinygltf::Scene& scene = model_.scenes[static_cast<std::size_t>(model_.defaultScene)];
+    roots = scene.nodes;
+    sceneName_ = scene.name;
+  } else {
+    // No `scene`: every node that is nobody's child is a root.
+    std::vector<std::uint8_t> isChild(nodeCount, 0);
+    for (std::size_t n = 0; n < nodeCount; ++n) {
+      for (int child : model_.nodes[n].children) {
+        if (child < 0 || static_cast<std::size_t>(child) >= nodeCount) {
+          return fail("node " + std::to_string(n) + " has child " + std::to_string(child) + ", which does not exist");
+        }
+        isChild[static_cast<std::size_t>(child)] = 1;
+      }
+    }
+    for (std::size_t n = 0; n < nodeCount; ++n) {
+      if (!isChild[n]) roots.push_back(static_cast<int>(n));
+    }
+  }
+
+  // Depth-first with an explicit stack: a hostile file can nest nodes deeper than the
+  // call stack would survive. Each node may be reached once; a second visit means a cycle
+  // or a shared child, which glTF forbids (nodes form disjoint trees).
+  struct Pending {
+    int node;
+    int parent;  // -1 for a root
+    glm::dmat4 parentWorld;
+  };
+  std::vector<Pending> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, -1, glm::dmat4(1.0)});
+  std::vector<std::uint8_t> visited(nodeCount, 0);
+  while (!stack.empty()) {
+    const Pending item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || static_cast<std::size_t>(item.node) >= nodeCount) {
+      const std::string referrer = item.parent < 0 ? "the scene" : "node " + std::to_string(item.parent);
+      return fail(referrer + " refers to node " + std::to_string(item.node) + ", which does not exist");
+    }
+    const auto index = static_cast<std::size_t>(item.node);
+    if (visited[index]) {
+      return fail(
+          "node " + std::to_string(item.node) +
+          " is reached twice: glTF requires the node hierarchy to be disjoint trees (a cycle or a shared child)");
+    }
+    visited[index] = 1;
+    glm::dmat4 local;
+    if (Status s = localTransform(item.node, &local); !s.isOk()) return s;
+    const glm::dmat4 world = item.parentWorld * local;
+    const tinygltf::Node& node = model_.nodes[index];
+    if (node.skin >= 0) ++counters_.skinnedNodes;
+    if (node.mesh >= 0 || node.mesh < -1) {
+      if (node.mesh < 0 || static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+        return fail("node " + std::to_string(item.node) + " refers to mesh " + std::to_string(node.mesh) +
+                    ", which does not exist");
+      }
+      if (Status s = addMesh(node.mesh, world); !s.isOk()) return s;
+    }
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, item.node, world});
+  }
+  return Status::ok();
+}
+
+Status SceneBuilder::localTransform(int nodeIndex, glm::dmat4* out) {
+  const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
+  const std::string label = "node " + std::to_string(nodeIndex);
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16)
+      return fail(label + ": matrix has " + std::to_string(node.matrix.size()) + " numbers, not 16");
+    *out = glm::make_mat4(node.matrix.data());  // column-major in glTF and in GLM
+  } else {
+    if (!node.translation.empty() && node.translation.size() != 3)
+      return fail(label + ": translation must have 3 numbers");
+    if (!node.rotation.empty() && node.rotation.size() != 4) return fail(label + ": rotation must have 4 numbers");
+    if (!node.scale.empty() && node.scale.size() != 3) return fail(label + ": scale must have 3 numbers");
+    glm::dvec3 t(0.0), s(1.0);
+    glm::dquat q(1.0, 0.0, 0.0, 0.0);
+    if (!node.translation.empty()) t = glm::make_vec3(node.translation.data());
+    if (!node.scale.empty()) s = glm::make_vec3(node.scale.data());
+    if (!node.rotation.empty()) {
+      const std::vector<double>& r = node.rotation;
+      q = glm::dquat(r[3], r[0], r[1], r[2]);  // glTF stores x, y, z, w; GLM's constructor takes w first
+      const double len = glm::length(q);
+      if (!(len > 0.0) || !std::isfinite(len))
+        return fail(label + ": rotation quaternion has zero or non-finite length");
+      if (std::abs(len - 1.0) > 1e-3) ++counters_.unnormalisedRotations;
+      q = q / len;
+    }
+    *out = glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(q) * glm::scale(glm::dmat4(1.0), s);
+  }
+  if (!allFinite(*out)) return fail(label + ": transform has non-finite values");
+  return Status::ok();
+}
+
+Status SceneBuilder::addMesh(int meshIndex, const glm::dmat4& world) {
+  const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    if (Status s = addPrimitive(meshIndex, static_cast<int>(p), world); !s.isOk()) return s;
+  }
+  return Status::ok();
+}
+
+const LinearTexture* SceneBuilder::textureFor(int textureIndex, const std::string& user, BaseColor* out) {
+  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(textureIndex)];
+  const std::string label = "texture " + std::to_string(textureIndex);
+  if (texture.sampler >= 0 && static_cast<std::size_t>(texture.sampler) < model_.samplers.size()) {
+    const tinygltf::Sampler& sampler = model_.samplers[static_cast<std::size_t>(texture.sampler)];
+    const bool knownS = wrapModeFromGltf(sampler.wrapS, &out->wrapS);
+    const bool knownT = wrapModeFromGltf(sampler.wrapT, &out->wrapT);
+    if (!knownS || !knownT) {
+      notes_.insert("sampler " + std::to_string(texture.sampler) + ": unknown wrap mode, REPEAT used");
+    }
+  } else if (texture.sampler != -1) {
+    notes_.insert(label + ": sampler " + std::to_string(texture.sampler) + " does not exist, REPEAT used");
+  }
+  if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
+    notes_.insert(user + " uses " + label + ", which has no image this loader can decode; baseColorTexture ignored");
+    return nullptr;
+  }
+  auto it = textures_.find(texture.source);
+  if (it == textures_.end()) {
+    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
+    LinearTexture linear;
+    if (image.image.empty()) {
+      const auto failure = log_.failures.find(texture.source);
+      const std::string why = failure != log_.failures.end() ? failure->second : "not loaded (missing file?)";
+      notes_.insert("image " + std::to_string(texture.source) +
+                    (image.uri.rfind("data:", 0) == 0 || image.uri.empty() ? "" : " ('" + image.uri + "')") + ": " +
+                    why + "; baseColorTexture ignored");
+    } else if (image.bits != 8 ||
+               !linearTextureFromSrgb8(image.width, image.height, image.component, image.image, &linear).isOk()) {
+      notes_.insert("image " + std::to_string(texture.source) + ": unexpected pixel layout; baseColorTexture ignored");
+      linear = LinearTexture();
+    }
+    it = textures_.emplace(texture.source, std::move(linear)).first;
+  }
+  return it->second.rgb.empty() ? nullptr : &it->second;
+}
+
+Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
+  *out = BaseColor();
+  if (materialIndex == -1) return Status::ok();  // glTF's default material: white, untextured
+  if (materialIndex < 0 || static_cast<std::size_t>(materialIndex) >= model_.materials.size()) {
+    return fail("material " + std::to_string(materialIndex) + " does not exist");
+  }
+  const tinygltf::Material& material = model_.materials[static_cast<std::size_t>(materialIndex)];
+  const std::string label =
+      "material " + std::to_string(materialIndex) + (material.name.empty() ? "" : " ('" + material.name + "')");
+  const std::vector<double>& f = material.pbrMetallicRoughness.baseColorFactor;
+  if (f.size() >= 3) out->factor = {static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2])};
+  if (!material.alphaMode.empty() && material.alphaMode != "OPAQUE") ++counters_.nonOpaquePrimitives;
+  if (material.extensions.count("KHR_materials_pbrSpecularGlossiness") != 0) {
+    notes_.insert(label + ": KHR_materials_pbrSpecularGlossiness ignored; its metallic-roughness base colour is used");
+  }
+  const tinygltf::TextureInfo& info = material.pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0) return Status::ok();
+  if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
+    return fail(label + ": baseColorTexture refers to texture " + std::to_string(info.index) +
+                ", which does not exist");
+  }
+  out->texCoord = info.texCoord;
+  readTextureTransform(info.extensions, out);
+  out->texture = textureFor(info.index, label, out);
+  return Status::ok();
+}
+
+Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::dmat4& world) {
+  const tinygltf::Primitive& prim =
+      model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
+  const std::string label = meshLabel(meshIndex) + " primitive " + std::to_string(primitiveIndex);
+  switch (prim.mode) {
+    case TINYGLTF_MODE_POINTS: ++counters_.pointPrimitives; return Status::ok();
+    case TINYGLTF_MODE_LINE:
+    case TINYGLTF_MODE_LINE_LOOP:
+    case TINYGLTF_MODE_LINE_STRIP: ++counters_.linePrimitives; return Status::ok();
+    case TINYGLTF_MODE_TRIANGLES:
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+    case TINYGLTF_MODE_TRIANGLE_FAN: break;
+    default: return fail(label + ": unknown primitive mode " + std::to_string(prim.mode));
+  }
+  const auto attribute = [&](const std::string& name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  const int positionAccessor = attribute("POSITION");
+  if (positionAccessor < 0) {
+    ++counters_.noPositionPrimitives;
+    return Status::ok();
+  }
+  if (static_cast<std::size_t>(positionAccessor) < model_.accessors.size()) {
+    const tinygltf::Accessor& acc = model_.accessors[static_cast<std::size_t>(positionAccessor)];
+    if (acc.bufferView < 0 && !acc.sparse.isSparse && prim.extensions.count("KHR_draco_mesh_compression") != 0) {
+      return fail(
+          label +
+          ": geometry is only stored compressed (KHR_draco_mesh_compression), which this loader does not decode");
+    }
+    if (acc.count > kMaxSceneVertices - positions_.size()) {
+      return fail(label + ": the scene would have more than " + std::to_string(kMaxSceneVertices) +
+                  " vertices (2^26), the limit");
+    }
+  }
+  const std::size_t vertexBudget = kMaxSceneVertices - positions_.size();
+  auto readAttribute = [&](const char* name, int accessor, std::size_t expectedCount,
+                           std::initializer_list<int> components, FloatElements* out) -> Status {
+    if (Status s = readFloatAccessor(model_, accessor, vertexBudget, out); !s.isOk()) {
+      return fail(label + ", attribute " + name + ": " + s.message());
+    }
+    if (std::find(components.begin(), components.end(), out->components) == components.end()) {
+      return fail(label + ", attribute " + name + ": accessor " + std::to_string(accessor) + " has " +
+                  std::to_string(out->components) + " components per element, which " + name + " cannot have");
+    }
+    if (expectedCount != SIZE_MAX && out->count != expectedCount) {
+      return fail(label + ", attribute " + name + ": " + std::to_string(out->count) + " elements, but POSITION has " +
+                  std::to_string(expectedCount));
+    }
+    return Status::ok();
+  };
+
+  FloatElements position;
+  if (Status s = readAttribute("POSITION", positionAccessor, SIZE_MAX, {3}, &position); !s.isOk()) return s;
+  const std::size_t n = position.count;
+
+  FloatElements normal;
+  const int normalAccessor = attribute("NORMAL");
+  if (normalAccessor >= 0) {
+    if (Status s = readAttribute("NORMAL", normalAccessor, n, {3}, &normal); !s.isOk()) return s;
+  } else {
+    ++counters_.primitivesWithoutNormals;
+  }
+  FloatElements color;
+  const int colorAccessor = attribute("COLOR_0");
+  if (colorAccessor >= 0) {
+    if (Status s = readAttribute("COLOR_0", colorAccessor, n, {3, 4}, &color); !s.isOk()) return s;
+  }
+  BaseColor base;
+  if (Status s = baseColorFor(prim.material, &base); !s.isOk()) return fail(label + ": " + s.message());
+  FloatElements uv;
+  if (base.texture != nullptr) {
+    const std::string name = "TEXCOORD_" + std::to_string(base.texCoord);
+    const int uvAccessor = attribute(name);
+    if (uvAccessor < 0) {
+      notes_.insert(label + ": its baseColorTexture uses " + name + ", which the primitive lacks; texture ignored");
+      base.texture = nullptr;
+    } else if (Status s = readAttribute(name.c_str(), uvAccessor, n, {2}, &uv); !s.isOk()) {
+      return s;
+    }
+  }
+  if (!prim.targets.empty()) ++counters_.morphedPrimitives;
+
+  // Vertex order of the primitive's triangles, in glTF's front-face (CCW) convention.
+  std::vector<std::uint32_t> order;
+  if (prim.indices >= 0) {
+    if (Status s = readIndexAccessor(model_, prim.indices, 3 * kMaxSceneTriangles + 2, &order); !s.isOk()) {
+      return fail(label + ", indices: " + s.message());
+    }
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (order[i] >= n) {
+        return fail(label + ": index " + std::to_string(order[i]) + " at position " + std::to_string(i) +
+                    " is out of range (the primitive has " + std::to_string(n) + " vertices)");
+      }
+    }
+  } else if (prim.indices != -1) {
+    return fail(label + ": indices accessor " + std::to_string(prim.indices) + " does not exist");
+  } else {
+    order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  }
+  std::vector<std::uint32_t> tri;  // local vertex numbers, 3 per triangle
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+    counters_.trailingIndices += order.size() % 3;
+    order.resize(order.size() - order.size() % 3);
+    tri = std::move(order);
+  } else if (order.size() >= 3) {
+    // glTF 2.0 §3.7.2.1: strip triangle i is (v_i, v_i+1+i%2, v_i+2-i%2); fan triangle i is
+    // (v_i+1, v_i+2, v_0). Both keep the first triangle's orientation throughout.
+    tri.reserve(3 * (order.size() - 2));
+    for (std::size_t i = 0; i + 2 < order.size(); ++i) {
+      if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        tri.insert(tri.end(), {order[i], order[i + 1 + i % 2], order[i + 2 - i % 2]});
+      } else {
+        tri.insert(tri.end(), {order[i + 1], order[i + 2], order[0]});
+      }
+    }
+  }
+  if (tri.size() / 3 > kMaxSceneTriangles - indices_.size() / 3) {
+    return fail(label + ": the scene would have more than " + std::to_string(kMaxSceneTriangles) +
+                " triangles (2^27), the limit");
+  }
+
+  // A mirroring transform (negative determinant) turns counter-clockwise into clockwise:
+  // swapping two corners restores it. Normals need no flip: the inverse-transpose already
+  // maps an outward normal to the mirrored surface's outward normal.
+  const glm::dmat3 linear(world);
+  const bool mirrored = glm::determinant(linear) < 0.0;
+  const glm::dmat3 normalMatrix = glm::inverseTranspose(linear);
+  const auto base0 = static_cast<std::uint32_t>(positions_.size());
+  for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
+    indices_.push_back(base0 + tri[t]);
+    indices_.push_back(base0 + (mirrored ? tri[t + 2] : tri[t + 1]));
+    indices_.push_back(base0 + (mirrored ? tri[t + 1] : tri[t + 2]));
+  }
+
+  const bool textured = base.texture != nullptr;
+  for (std::size_t v = 0; v < n; ++v) {
+    const float* p = &position.values[3 * v];
+    const glm::dvec4 wp = world * glm::dvec4(p[0], p[1], p[2], 1.0);
+    positions_.push_back({static_cast<float>(wp.x), static_cast<float>(wp.y), static_cast<float>(wp.z)});
+
+    Vec3 nv = kFallbackNormal;
+    bool usable = false;
+    if (!normal.values.empty()) {
+      const float* q = &normal.values[3 * v];
+      const glm::dvec3 wn = normalMatrix * glm::dvec3(q[0], q[1], q[2]);
+      const double len = glm::length(wn);
+      if (len > 1e-20 && std::isfinite(len)) {
+        nv = {static_cast<float>(wn.x / len), static_cast<float>(wn.y / len), static_cast<float>(wn.z / len)};
+        usable = isFinite(nv);
+      }
+      if (!usable) ++counters_.unusableNormals;
+    }
+    normals_.push_back(usable ? nv : kFallbackNormal);
+    needsNormal_.push_back(usable ? 0 : 1);
+
+    Rgb a = base.factor;
+    if (textured) {
+      float u = 0, w = 0;
+      base.uv.apply(uv.values[2 * v], uv.values[2 * v + 1], &u, &w);
+      const Rgb texel = sampleBilinear(*base.texture, u, w, base.wrapS, base.wrapT);
+      a = {a.r * texel.r, a.g * texel.g, a.b * texel.b};
+    }
+    if (!color.values.empty()) {
+      const float* c = &color.values[static_cast<std::size_t>(color.components) * v];
+      a = {a.r * c[0], a.g * c[1], a.b * c[2]};
+    }
+    std::size_t& bad = counters_.albedoOutOfRange;
+    albedo_.push_back({albedoInRange(a.r, &bad), albedoInRange(a.g, &bad), albedoInRange(a.b, &bad)});
+  }
+  ++counters_.trianglePrimitives;
+  return Status::ok();
+}
+
+Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::vector<std::string>* warnings) {
+  auto warn = [&](const std::string& line) {
+    if (warnings) warnings->push_back(line);
+  };
+  const Counters& c = counters_;
+  if (c.pointPrimitives)
+    warn("skipped " + plural(c.pointPrimitives, "POINTS primitive", "POINTS primitives") +
+         ": only triangles are baked");
+  if (c.linePrimitives)
+    warn("skipped " + plural(c.linePrimitives, "LINES primitive", "LINES/LINE_STRIP/LINE_LOOP primitives") +
+         ": only triangles are baked");
+  if (c.noPositionPrimitives)
+    warn("skipped " + plural(c.noPositionPrimitives, "primitive", "primitives") + " without POSITION");
+
+  if (indices_.empty()) {
+    if (c.pointPrimitives || c.linePrimitives) {
+      return fail("no triangles to bake: the scene has only POINTS or LINES primitives (" +
+                  std::to_string(c.pointPrimitives) + " POINTS, " + std::to_string(c.linePrimitives) + " LINES)");
+    }
+    return fail("no triangles to bake in the " +
+                std::string(model_.defaultScene >= 0 ? "default scene" : "file's root nodes") + " (the file has " +
+                plural(model_.nodes.size(), "node", "nodes") + " and " +
+                plural(model_.meshes.size(), "mesh", "meshes") + ")");
+  }
+  const std::size_t triangleCount = indices_.size() / 3;
+  const TriangleCleanupStats dropped = removeBadTriangles(positions_, &indices_);
+  if (indices_.empty()) {
+    return fail(triangleCount == 1
+                    ? std::string("no triangles to bake: the only triangle has zero area or non-finite positions")
+                    : "no triangles to bake: all " + std::to_string(triangleCount) +
+                          " triangles have zero area or non-finite positions");
+  }
+  if (dropped.nonFinite)
+    warn("dropped " + plural(dropped.nonFinite, "triangle", "triangles") +
+         " with non-finite (NaN or infinite) positions");
+  if (dropped.zeroArea) warn("dropped " + plural(dropped.zeroArea, "zero-area triangle", "zero-area triangles"));
+  if (c.trailingIndices)
+    warn("ignored " + plural(c.trailingIndices, "trailing index", "trailing indices") +
+         " that do not make a whole triangle");
+
+  // Normals are computed only for vertices a surviving triangle uses.
+  std::vector<std::uint8_t> recompute(positions_.size(), 0);
+  std::size_t toCompute = 0;
+  for (std::uint32_t v : indices_) {
+    if (needsNormal_[v] && !recompute[v]) {
+      recompute[v] = 1;
+      ++toCompute;
+    }
+  }
+  if (toCompute > 0) {
+    const std::size_t fallbacks = computeVertexNormals(positions_, indices_, recompute, &normals_);
+    std::string why;
+    if (c.primitivesWithoutNormals)
+      why += plural(c.primitivesWithoutNormals, "primitive has", "primitives have") + " no NORMAL";
+    if (c.unusableNormals)
+      why += std::string(why.empty() ? "" : "; ") + plural(c.unusableNormals, "NORMAL value is", "NORMAL values are") +
+             " zero or non-finite";
+    warn("computed smooth (area- and angle-weighted) normals for " + plural(toCompute, "vertex", "vertices") + " (" +
+         why + ")");
+    if (fallbacks) {
+      warn(plural(fallbacks, "vertex has", "vertices have") +
+           " no triangle giving a usable normal (isolated, or opposite faces cancel): fallback normal used");
+    }
+  }
+
+  Scene scene;
+  scene.positions = std::move(positions_);
+  scene.normals = std::move(normals_);
+  scene.albedo = std::move(albedo_);
+  scene.indices = std::move(indices_);
+  scene.name = sceneName_.empty() ? fallbackName : sceneName_;
+  const std::size_t removed = removeUnreferencedVertices(&scene);
+  if (removed) warn("removed " + plural(removed, "vertex", "vertices") + " that no remaining triangle uses");
+
+  if (c.skinnedNodes)
+    warn("ignored the skins of " + plural(c.skinnedNodes, "node", "nodes") + ": meshes are baked in their bind pose");
+  if (c.morphedPrimitives)
+    warn("ignored the morph targets of " + plural(c.morphedPrimitives, "primitive", "primitives") +
+         ": base geometry used");
+  if (c.nonOpaquePrimitives)
+    warn(plural(c.nonOpaquePrimitives, "primitive uses", "primitives use") +
+         " alphaMode MASK or BLEND: baked as opaque");
+  if (c.unnormalisedRotations)
+    warn(plural(c.unnormalisedRotations, "node rotation was", "node rotations were") +
+         " not unit quaternions: normalised");
+  if (c.albedoOutOfRange)
+    warn(plural(c.albedoOutOfRange, "albedo channel value lies", "albedo channel values lie") +
+         " outside glTF's [0, 1] (base colour x texture x COLOR_0): brought to the nearest bound");
+  for (const std::string& note : notes_) warn(note);
+  *out = std::move(scene);
+  return Status::ok();
+}
+
+Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::string>* warnings) {
+  const std::string quoted = "'" + path + "'";
+  auto failFile = [&](const std::string& problem) { return fail(quoted + ": " + problem); };
+
+  std::vector<unsigned char> bytes;
+  if (Status s = readWholeFile(path, &bytes); !s.isOk()) return failFile(s.message());
+
+  std::filesystem::path fsPath(path);
+  std::string baseDir = fsPath.parent_path().string();
+  if (baseDir.empty()) baseDir = ".";
+  std::string extension = fsPath.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF parser;
+  ImageDecodeLog imageLog;
+  imageLog.model = &model;
+  parser.SetImageLoader(&decodeGltfImage, &imageLog);
+  std::string err, warn;
+  std::vector<std::string> notes;
+  bool parsed = false;
+  std::string jsonText;  // for the extension scan if tinygltf fails
+  if (hasGlbMagic(bytes)) {
+    std::size_t length = 0;
+    if (Status s = checkGlbContainer(bytes, &length, &notes); !s.isOk()) return failFile(s.message());
+    jsonText.assign(reinterpret_cast<const char*>(bytes.data()) + 20,
+                    std::min<std::size_t>(readU32(bytes, 12), length - 20));
+    if (Status s = checkGltfJson(jsonText, &notes); !s.isOk()) return failFile(s.message());
+    parsed = parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(length), baseDir);
+  } else if (extension == ".glb") {
+    char shown[64];
+    std::snprintf(shown, sizeof shown, "%02x %02x %02x %02x", bytes.size() > 0 ? bytes[0] : 0,
+                  bytes.size() > 1 ? bytes[1] : 0, bytes.size() > 2 ? bytes[2] : 0, bytes.size() > 3 ? bytes[3] : 0);
+    return failFile(std::string("not a binary glTF: bad magic (the file starts with ") + shown + ", not 'glTF')");
+  } else if (!looksLikeJsonObject(bytes)) {
+    return failFile("neither glTF JSON (no '{' at the start) nor binary glTF (no 'glTF' magic)");
+  } else {
+    jsonText.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (Status s = checkGltfJson(jsonText, &notes); !s.isOk()) return failFile(s.message());
+    parsed = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                        static_cast<unsigned int>(bytes.size()), baseDir);
+  }
+  imageLog.model = nullptr;
+  if (!parsed) {
+    for (const std::string& name : scanRequiredExtensions(jsonText)) {
+      if (!isSupportedRequiredExtension(name)) return failFile(unsupportedExtension(name).message());
+    }
+    return failFile("glTF parser: " + oneLine(err.empty() ? "unknown error" : err));
+  }
+  for (const std::string& name : model.extensionsRequired) {
+    if (!isSupportedRequiredExtension(name)) return failFile(unsupportedExtension(name).message());
+  }
+
+  std::vector<std::string> collected;
+  for (const std::string& note : notes) collected.push_back(note);
+  if (!warn.empty()) collected.push_back("glTF parser: " + oneLine(warn));
+  SceneBuilder builder(model, imageLog);
+  if (Status s = builder.addDefaultScene(); !s.isOk()) return failFile(s.message());
+  if (Status s = builder.finish(fsPath.stem().string(), out, &collected); !s.isOk()) return failFile(s.message());
+  if (warnings) warnings->insert(warnings->end(), collected.begin(), collected.end());
+  return Status::ok();
+}
+
+}  // namespace
+
+Status loadGltf(const std::string& path, Scene* out, std::vector<std::string>* warnings) {
+  if (out == nullptr) return fail("loadGltf: no output scene");
+  *out = Scene();
+  // tinygltf (nlohmann json inside) and the standard library may throw, bad_alloc above
+  // all; nothing may escape, and `out` stays empty on any failure.
+  try {
+    Status s = loadGltfUnguarded(path, out, warnings);
+    if (!s.isOk()) *out = Scene();
+    return s;
+  } catch (const std::bad_alloc&) {
+    *out = Scene();
+    return fail("'" + path + "': out of memory while loading");
+  } catch (const std::exception& e) {
+    *out = Scene();
+    return fail("'" + path + "': " + e.what());
+  } catch (...) {
+    *out = Scene();
+    return fail("'" + path + "': unknown exception while loading");
+  }
+}
+
+}  // namespace prt::bake

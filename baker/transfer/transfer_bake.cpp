@@ -1,0 +1,408 @@
+#include "baker/transfer/transfer_bake.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+#include "baker/transfer/embree_scene.h"
+#include "baker/transfer/local_sphere.h"
+#include "baker/transfer/parallel_for.h"
+#include "prt/sampling.h"
+#include "prt/sh_basis.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr std::size_t kBlockVertices = 64;
+
+// One occluded ray that hit a front face: where, and how much it weighs at its origin.
+struct Hit {
+  std::uint32_t triangle;
+  std::uint16_t u, v;  // barycentrics of vertices 1 and 2, unorm16
+  float weight;        // w max(0, n.w) / pi
+};
+
+struct Block {
+  std::vector<std::uint32_t> hitStart;  // per vertex of the block, plus one
+  std::vector<Hit> hits;
+};
+
+// The shared sample directions and their basis values, coefficient-major.
+struct SampleTable {
+  DirectionSet dirs;
+  std::vector<float> basis;  // [coefficient][sample]
+};
+
+Status makeSamples(const BakeOptions& o, SampleTable* t) {
+  if (o.sampling == Sampling::kStratified) {
+    const auto side = static_cast<std::size_t>(std::lround(std::sqrt(static_cast<double>(o.samples))));
+    if (side * side != o.samples) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           "stratified sampling needs a square sample count (got " + std::to_string(o.samples) + ")");
+    }
+    if (Status s = stratifiedSphere(side, o.seed, &t->dirs); !s.isOk()) return s;
+  } else {
+    if (Status s = hammersleySphere(o.samples, &t->dirs); !s.isOk()) return s;
+    if (o.seed != 0) {
+      // A seeded rotation of the whole set: a new, equally well-distributed set per seed.
+      Pcg32 rng(o.seed);
+      const Vec3 axis = squareToSphere(rng.nextFloat(), rng.nextFloat());
+      const Mat3 r = rotationAxisAngle(axis, static_cast<float>(2.0 * kPi) * rng.nextFloat());
+      for (std::size_t k = 0; k < t->dirs.size(); ++k) {
+        Vec3 d = r * t->dirs.at(k);
+        d = d * (1.0f / length(d));
+        t->dirs.x[k] = d.x;
+        t->dirs.y[k] = d.y;
+        t->dirs.z[k] = d.z;
+      }
+    }
+  }
+  t->basis.resize(static_cast<std::size_t>(shCoeffCount(o.order)) * t->dirs.size());
+  return evalShBasisBatch(o.order, t->dirs.x, t->dirs.y, t->dirs.z, t->basis);
+}
+
+// out[i] = sum_k weights[k] basis[i][k]
+void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out) {
+  for (int i = 0; i < n2; ++i) {
+    const float* __restrict row = basis + static_cast<std::size_t>(i) * count;
+    float acc = 0.0f;
+    for (std::size_t k = 0; k < count; ++k) acc += weights[k] * row[k];
+    out[i] = acc;
+  }
+}
+
+class ProgressReporter {
+ public:
+  ProgressReporter(const BakeOptions& o, std::string pass, std::size_t total)
+      : o_(o), pass_(std::move(pass)), total_(total) {}
+  void add(std::size_t vertices, std::uint64_t rays) {
+    const std::size_t done = done_.fetch_add(vertices) + vertices;
+    const std::uint64_t r = rays_.fetch_add(rays) + rays;
+    if (o_.progress) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      o_.progress({pass_.c_str(), done, total_, r});
+    }
+  }
+  std::uint64_t rays() const { return rays_.load(); }
+
+ private:
+  const BakeOptions& o_;
+  std::string pass_;
+  std::size_t total_;
+  std::atomic<std::size_t> done_{0};
+  std::atomic<std::uint64_t> rays_{0};
+  std::mutex mutex_;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Rays of the direct pass for one vertex: one per sample direction above the tangent
+// plane, from `origin` (already offset along n). Writes the clamped-cosine weights
+// w max(0, n.w)/pi of every sample (0 below the plane) and, per ray, its sample index.
+unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 origin, float eps, RTCRayHit* rays, std::uint32_t* sample,
+                  float* cosineWeight) {
+  const std::size_t sampleCount = table.dirs.size();
+  const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
+  unsigned count = 0;
+  for (std::size_t k = 0; k < sampleCount; ++k) {
+    const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
+    cosineWeight[k] = c > 0.0f ? c * sampleWeight : 0.0f;
+    if (c <= 0.0f) continue;
+    RTCRayHit& r = rays[count];
+    r.ray.org_x = origin.x;
+    r.ray.org_y = origin.y;
+    r.ray.org_z = origin.z;
+    r.ray.tnear = eps;
+    r.ray.dir_x = table.dirs.x[k];
+    r.ray.dir_y = table.dirs.y[k];
+    r.ray.dir_z = table.dirs.z[k];
+    r.ray.time = 0.0f;
+    r.ray.tfar = INFINITY;
+    r.ray.mask = 0xFFFFFFFFu;
+    r.ray.id = 0;
+    r.ray.flags = 0;
+    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    sample[count] = static_cast<std::uint32_t>(k);
+    ++count;
+  }
+  return count;
+}
+
+// Offsets relative to the scene: far above float rounding of positions (~1e-7 of the
+// extent), far below any feature the transfer can resolve.
+float rayOffset(const EmbreeScene& embree) { return 1e-5f * std::max(embree.diagonal(), 1e-6f); }
+
+Status checkOptions(const Scene& scene, const BakeOptions& o) {
+  if (o.order < 2 || o.order > 8) {
+    return Status::error(StatusCode::kInvalidArgument, "bake order " + std::to_string(o.order) + " is outside [2, 8]");
+  }
+  if (o.samples < 16 || o.samples > (1u << 20)) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "sample count " + std::to_string(o.samples) + " is outside [16, 1048576]");
+  }
+  if (o.maxBounces < 0 || o.maxBounces > 64) {
+    return Status::error(StatusCode::kInvalidArgument, "bounce count must be in [0, 64]");
+  }
+  if (Status s = checkLightingInfo(o.lighting); !s.isOk()) return Status::error(s.code(), "bake " + s.message());
+  const std::size_t vertexCount = scene.positions.size();
+  if (scene.normals.size() != vertexCount || scene.albedo.size() != vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "scene normals/albedo do not match its positions");
+  }
+  for (std::uint32_t index : scene.indices) {
+    if (index >= vertexCount) return Status::error(StatusCode::kInvalidArgument, "scene index out of range");
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
+  if (Status st = checkOptions(scene, o); !st.isOk()) return st;
+  const std::size_t vertexCount = scene.positions.size();
+
+  SampleTable table;
+  if (Status s = makeSamples(o, &table); !s.isOk()) return s;
+  EmbreeScene embree;
+  if (Status s = EmbreeScene::build(scene, &embree); !s.isOk()) return s;
+
+  const int n2 = shCoeffCount(o.order);
+  const std::size_t sampleCount = table.dirs.size();
+  const float eps = rayOffset(embree);
+  const unsigned threads = o.threads ? o.threads : defaultThreadCount();
+  const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
+
+  out->order = o.order;
+  out->unshadowed.assign(vertexCount * n2, 0.0f);
+  out->shadowed.assign(vertexCount * n2, 0.0f);
+  out->interreflected.clear();
+  out->bounceEnergy.clear();
+  out->passes.clear();
+  out->bounces = 0;
+  out->verticesOutsideLight = 0;
+
+  // Geometric (winding) normals decide whether a ray hit the front of a triangle.
+  std::vector<Vec3> faceNormal(scene.indices.size() / 3);
+  for (std::size_t t = 0; t < faceNormal.size(); ++t) {
+    const Vec3 a = scene.positions[scene.indices[3 * t]], b = scene.positions[scene.indices[3 * t + 1]],
+               c = scene.positions[scene.indices[3 * t + 2]];
+    faceNormal[t] = cross(b - a, c - a);
+  }
+
+  // ---- direct pass: unshadowed + shadowed, recording front-face hits for the bounces
+  std::vector<Block> blocks(o.interreflection ? blockCount : 0);
+  std::vector<std::uint8_t> outside(vertexCount, 0);
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    ProgressReporter progress(o, "direct", vertexCount);
+    const bool local = isLocalLighting(o.lighting.model);
+    struct Scratch {
+      std::vector<RTCRayHit> rays;
+      std::vector<std::uint32_t> sample;
+      std::vector<float> unshadowedW, shadowedW;  // per sample k; solid-angle weights w max(0, n.w)/pi
+      // Local lighting, per ray j: w'_j, the lit weights (solid angle x remap weight, 0 for rays
+      // that never reach S) and the basis at w'_j, [coefficient][ray].
+      std::vector<float> lightX, lightY, lightZ, litUnshadowed, litShadowed, basis;
+    };
+    std::vector<Scratch> scratch(threads);
+    for (auto& s : scratch) {
+      s.rays.resize(sampleCount);
+      s.sample.resize(sampleCount);
+      s.unshadowedW.resize(sampleCount);
+      s.shadowedW.resize(sampleCount);
+      if (local) {
+        for (auto* a : {&s.lightX, &s.lightY, &s.lightZ, &s.litUnshadowed, &s.litShadowed}) a->resize(sampleCount);
+        s.basis.resize(static_cast<std::size_t>(n2) * sampleCount);
+      }
+    }
+    parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
+      Scratch& s = scratch[thread];
+      const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+      Block* rec = o.interreflection ? &blocks[block] : nullptr;
+      if (rec) rec->hitStart.assign(1, 0);
+      std::uint64_t rays = 0;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, many directions
+      for (std::size_t v = begin; v < end; ++v) {
+        const Vec3 n = scene.normals[v];
+        const Vec3 origin = scene.positions[v] + n * eps;
+        const unsigned count = fillRays(table, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
+        if (local) {
+          const SpherePoint sp = locateOnSphere(scene.positions[v], o.lighting.center, o.lighting.radius);
+          outside[v] = sp.outside;
+          for (unsigned j = 0; j < count; ++j) {
+            RTCRay& ray = s.rays[j].ray;
+            const RemappedRay m = remapRay(sp, Vec3{ray.dir_x, ray.dir_y, ray.dir_z}, o.lighting.model);
+            ray.tfar = m.tFar;  // occluders beyond S are part of the lighting, not the scene
+            s.lightX[j] = m.lightDir.x;
+            s.lightY[j] = m.lightDir.y;
+            s.lightZ[j] = m.lightDir.z;
+            s.litUnshadowed[j] = s.litShadowed[j] = s.unshadowedW[s.sample[j]] * m.weight;
+          }
+        } else {
+          std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
+        }
+        if (rec) {
+          rtcIntersect1M(embree.handle(), &context, s.rays.data(), count, sizeof(RTCRayHit));
+        } else {
+          // Occlusion needs only RTCRay; RTCRayHit starts with one, so the stride skips the hit.
+          rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
+        }
+        rays += count;
+        for (unsigned j = 0; j < count; ++j) {
+          const RTCRayHit& r = s.rays[j];
+          const bool blocked = rec ? r.hit.geomID != RTC_INVALID_GEOMETRY_ID : r.ray.tfar < 0.0f;
+          if (!blocked) continue;
+          const std::uint32_t k = s.sample[j];
+          if (local) {
+            s.litShadowed[j] = 0.0f;
+          } else {
+            s.shadowedW[k] = 0.0f;
+          }
+          // Hits keep the solid-angle weight in both models: a bounce gathers radiance over
+          // directions at x from surfaces inside S, which does not involve the remapping.
+          if (rec && dot(faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
+            auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
+            rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
+          }
+        }
+        if (rec) rec->hitStart.push_back(static_cast<std::uint32_t>(rec->hits.size()));
+        if (local) {
+          // One basis evaluation per ray, batched over the vertex's rays (the distant bake
+          // evaluates each sample's basis once for all vertices).
+          evalShBasisBatchUnchecked(o.order, count, s.lightX.data(), s.lightY.data(), s.lightZ.data(), s.basis.data());
+          projectWeights(n2, count, s.litUnshadowed.data(), s.basis.data(), &out->unshadowed[v * n2]);
+          projectWeights(n2, count, s.litShadowed.data(), s.basis.data(), &out->shadowed[v * n2]);
+        } else {
+          projectWeights(n2, sampleCount, s.unshadowedW.data(), table.basis.data(), &out->unshadowed[v * n2]);
+          projectWeights(n2, sampleCount, s.shadowedW.data(), table.basis.data(), &out->shadowed[v * n2]);
+        }
+      }
+      progress.add(end - begin, rays);
+    });
+    out->passes.push_back({"direct", secondsSince(t0), progress.rays()});
+  }
+  for (std::uint8_t x : outside) out->verticesOutsideLight += x;
+  if (!o.interreflection) return Status::ok();
+
+  // ---- interreflection: bounce 0 is the shadowed transfer times albedo, RGB
+  // A bounce's energy is its area-weighted DC transfer summed over channels: proportional
+  // to the power it reflects under constant lighting, so it does not depend on how finely
+  // each surface happens to be tessellated.
+  std::vector<double> vertexArea(vertexCount, 0.0);
+  for (std::size_t t = 0; t < faceNormal.size(); ++t) {
+    const double third = 0.5 * length(faceNormal[t]) / 3.0;
+    for (int c = 0; c < 3; ++c) vertexArea[scene.indices[3 * t + c]] += third;
+  }
+  const std::size_t stride = 3 * static_cast<std::size_t>(n2);
+  std::vector<float> previous(vertexCount * stride), current(vertexCount * stride);
+  double energy0 = 0.0;
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};
+    for (int c = 0; c < 3; ++c) {
+      for (int i = 0; i < n2; ++i) previous[v * stride + c * n2 + i] = rho[c] * out->shadowed[v * n2 + i];
+      energy0 += vertexArea[v] * previous[v * stride + c * n2];
+    }
+  }
+  out->interreflected = previous;
+  out->bounceEnergy.push_back(energy0);
+
+  for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string name = "bounce " + std::to_string(bounce);
+    ProgressReporter progress(o, name, vertexCount);
+    std::vector<double> blockEnergy(blockCount, 0.0);
+    parallelFor(blockCount, threads, [&](std::size_t block, unsigned) {
+      const Block& rec = blocks[block];
+      const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+      std::vector<float> gathered(stride);
+      double e = 0.0;
+      for (std::size_t v = begin; v < end; ++v) {
+        std::fill(gathered.begin(), gathered.end(), 0.0f);
+        const std::size_t local = v - begin;
+        for (std::uint32_t h = rec.hitStart[local]; h < rec.hitStart[local + 1]; ++h) {
+          const Hit& hit = rec.hits[h];
+          const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
+          const float w[3] = {hit.weight * (1.0f - b1 - b2), hit.weight * b1, hit.weight * b2};
+          for (int corner = 0; corner < 3; ++corner) {
+            const float* src = &previous[scene.indices[3 * hit.triangle + corner] * stride];
+            const float wc = w[corner];
+            for (std::size_t i = 0; i < stride; ++i) gathered[i] += wc * src[i];
+          }
+        }
+        const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};
+        float* dst = &current[v * stride];
+        for (int c = 0; c < 3; ++c) {
+          for (int i = 0; i < n2; ++i) dst[c * n2 + i] = rho[c] * gathered[c * n2 + i];
+          e += vertexArea[v] * dst[c * n2];
+        }
+      }
+      blockEnergy[block] = e;
+      progress.add(end - begin, 0);
+    });
+    double energy = 0.0;
+    for (double e : blockEnergy) energy += e;  // fixed order: deterministic
+    for (std::size_t i = 0; i < current.size(); ++i) out->interreflected[i] += current[i];
+    out->bounceEnergy.push_back(energy);
+    out->bounces = bounce;
+    out->passes.push_back({name, secondsSince(t0), 0});
+    std::swap(previous, current);
+    if (!(energy > o.bounceThreshold * energy0)) break;
+  }
+  return Status::ok();
+}
+
+Status measureRawOcclusion(const Scene& scene, const BakeOptions& o, PassStats* out) {
+  if (Status st = checkOptions(scene, o); !st.isOk()) return st;
+  SampleTable table;
+  if (Status st = makeSamples(o, &table); !st.isOk()) return st;
+  EmbreeScene embree;
+  if (Status st = EmbreeScene::build(scene, &embree); !st.isOk()) return st;
+  const float eps = rayOffset(embree);
+  const std::size_t vertexCount = scene.positions.size(), sampleCount = table.dirs.size();
+  const unsigned threads = o.threads ? o.threads : defaultThreadCount();
+  const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
+  struct Scratch {
+    std::vector<RTCRayHit> rays;
+    std::vector<std::uint32_t> sample;
+    std::vector<float> weight;
+  };
+  std::vector<Scratch> scratch(threads);
+  for (auto& s : scratch) {
+    s.rays.resize(sampleCount);
+    s.sample.resize(sampleCount);
+    s.weight.resize(sampleCount);
+  }
+  std::atomic<std::uint64_t> rays{0};
+  const auto t0 = std::chrono::steady_clock::now();
+  parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
+    Scratch& s = scratch[thread];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    std::uint64_t n = 0;
+    const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    for (std::size_t v = begin; v < end; ++v) {
+      const Vec3 normal = scene.normals[v];
+      const unsigned count =
+          fillRays(table, normal, scene.positions[v] + normal * eps, eps, s.rays.data(), s.sample.data(), s.weight.data());
+      rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
+      n += count;
+    }
+    rays += n;
+  });
+  out->name = "raw occlusion";
+  out->seconds = secondsSince(t0);
+  out->rays = rays.load();
+  return Status::ok();
+}
+
+}  // namespace prt::bake
