@@ -4,7 +4,7 @@
 #include <optional>
 #include <vector>
 
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 #include "native/environment_map.h"
 #include "native/file_io.h"
 #include "native/image_io.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 #include "baker/scene/default_scene.h"
 #include "native/file_io.h"
 #include "baker/scene/gltf_loader.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "native/byte_compressors.h"
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 #include "baker/cli/compress_lightings.h"
 #include "native/file_io.h"
 #include "native/json_text.h"

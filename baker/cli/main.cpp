@@ -10,7 +10,7 @@
 
 #include "baker/cli/asset_commands.h"
 #include "baker/cli/bake_command.h"
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 #include "baker/cli/compress_command.h"
 #include "baker/cli/probe_command.h"
 

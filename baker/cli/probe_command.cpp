@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "baker/cli/builtin_environment.h"
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 #include "native/environment_map.h"
 #include "native/json_text.h"
 #include "native/image_io.h"

@@ -1,4 +1,4 @@
-// A deliberately small command-line parser for prt-bake: long flags ("--order 3" or
+// A deliberately small command-line parser for the project's tools: long flags ("--order 3" or
 // "--order=3"), boolean switches, positionals, "--" to end the flags. Strict by design:
 // a typo should stop a long bake before it starts, not be ignored.
 #pragma once

@@ -1,4 +1,4 @@
-#include "baker/cli/cli_args.h"
+#include "native/cli_args.h"
 
 #include <charconv>
 #include <cmath>
