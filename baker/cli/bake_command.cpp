@@ -14,13 +14,11 @@
 #include "native/file_io.h"
 #include "baker/scene/gltf_loader.h"
 #include "native/json_text.h"
-#include "baker/transfer/local_sphere.h"
+#include "baker/transfer/bake_asset.h"
 #include "baker/cli/progress_bar.h"
 #include "prt/asset.h"
 #include "prt/sh_basis.h"
-#include "baker/scene/mesh_order.h"
 #include "prt/transfer_codec.h"
-#include "baker/transfer/transfer_bake.h"
 
 namespace prt {
 namespace {
@@ -71,13 +69,7 @@ constexpr const char* kHelp =
 struct BakeCli {
   std::string scene;  // empty with --default
   std::string output;
-  std::optional<std::string> name;
-  std::optional<TransferCodecSettings> compress;
-  bake::BakeOptions options;
-  // Local lighting's centre and radius when given; the scene's bounds supply the others.
-  std::optional<Vec3> lightCenter;
-  std::optional<float> lightRadius;
-  bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
+  bake::AssetBakeOptions bake;
   bool quiet = false, json = false;
 };
 
@@ -112,7 +104,7 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
     else if (*s == "local-paper") model = LightingModel::kLocalSpherePaper;
     else return usage("unknown --lighting '" + *s + "' (expected distant, local or local-paper)");
   }
-  c->options.lighting.model = model;
+  c->bake.transfer.lighting.model = model;
   const bool local = isLocalLighting(model);
   for (const char* flag : {"--light-center", "--light-radius"}) {
     if (p.has(flag) && !local) return usage(std::string(flag) + " needs --lighting local or local-paper");
@@ -120,7 +112,7 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
   if (const std::string* s = p.value("--light-center")) {
     Vec3 centre;
     if (Status st = parseTriple("--light-center", *s, &centre); !st.isOk()) return st;
-    c->lightCenter = centre;
+    c->bake.lightCenter = centre;
   }
   if (const std::string* s = p.value("--light-radius")) {
     const float big = std::numeric_limits<float>::max();
@@ -128,18 +120,9 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
     if (!parseFloatArg("--light-radius", *s, -big, big, &r).isOk() || !(r > 0.0f)) {
       return usage("--light-radius expects a finite number > 0, got '" + *s + "'");
     }
-    c->lightRadius = r;
+    c->bake.lightRadius = r;
   }
   return Status::ok();
-}
-
-// Local lighting's defaults from the scene (defaultLightingSphere) where not given.
-void completeLighting(const bake::Scene& scene, BakeCli* c) {
-  LightingInfo& l = c->options.lighting;
-  if (!isLocalLighting(l.model)) return;
-  const LightingInfo fallback = bake::defaultLightingSphere(scene, l.model);
-  l.center = c->lightCenter.value_or(fallback.center);
-  l.radius = c->lightRadius.value_or(fallback.radius);
 }
 
 std::string describeLighting(const LightingInfo& l) {
@@ -172,112 +155,88 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
   int v = 0;
   if (const std::string* s = p.value("--order")) {
     if (Status st = parseIntArg("--order", *s, 2, 8, &v); !st.isOk()) return st;
-    c->options.order = v;
+    c->bake.transfer.order = v;
   }
   if (const std::string* s = p.value("--samples")) {
     if (Status st = parseIntArg("--samples", *s, 16, 1 << 20, &v); !st.isOk()) return st;
-    c->options.samples = static_cast<std::size_t>(v);
+    c->bake.transfer.samples = static_cast<std::size_t>(v);
   }
   if (const std::string* s = p.value("--sampling")) {
-    if (*s == "hammersley") c->options.sampling = bake::Sampling::kHammersley;
-    else if (*s == "stratified") c->options.sampling = bake::Sampling::kStratified;
+    if (*s == "hammersley") c->bake.transfer.sampling = bake::Sampling::kHammersley;
+    else if (*s == "stratified") c->bake.transfer.sampling = bake::Sampling::kStratified;
     else return usage("unknown --sampling '" + *s + "' (expected hammersley or stratified)");
   }
-  if (c->options.sampling == bake::Sampling::kStratified) {
+  if (c->bake.transfer.sampling == bake::Sampling::kStratified) {
     std::size_t side = 1;
-    while (side * side < c->options.samples) ++side;
-    if (side * side != c->options.samples) {
+    while (side * side < c->bake.transfer.samples) ++side;
+    if (side * side != c->bake.transfer.samples) {
       return usage("--sampling stratified needs a square --samples (e.g. 1024 = 32^2), got " +
-                   std::to_string(c->options.samples));
+                   std::to_string(c->bake.transfer.samples));
     }
   }
   if (const std::string* s = p.value("--seed")) {
     if (Status st = parseIntArg("--seed", *s, 0, 2147483647, &v); !st.isOk()) return st;
-    c->options.seed = static_cast<std::uint64_t>(v);
+    c->bake.transfer.seed = static_cast<std::uint64_t>(v);
   }
   if (const std::string* s = p.value("--bounces")) {
     if (Status st = parseIntArg("--bounces", *s, 0, 64, &v); !st.isOk()) return st;
-    c->options.maxBounces = v;
-    c->options.bounceThreshold = 0.0;  // exactly N
+    c->bake.transfer.maxBounces = v;
+    c->bake.transfer.bounceThreshold = 0.0;  // exactly N
   }
   if (const std::string* s = p.value("--bounce-threshold")) {
     if (p.has("--bounces")) return usage("give --bounces (exact count) or --bounce-threshold, not both");
     float t = 0;
     if (Status st = parseFloatArg("--bounce-threshold", *s, 0.0f, 1.0f, &t); !st.isOk()) return st;
-    c->options.bounceThreshold = t;
+    c->bake.transfer.bounceThreshold = t;
   }
   if (const std::string* s = p.value("--threads")) {
     if (Status st = parseIntArg("--threads", *s, 1, 1024, &v); !st.isOk()) return st;
-    c->options.threads = static_cast<unsigned>(v);
+    c->bake.transfer.threads = static_cast<unsigned>(v);
   }
   if (const std::string* s = p.value("--passes")) {
-    c->storeUnshadowed = c->storeShadowed = c->storeInterreflected = false;
+    c->bake.storeUnshadowed = c->bake.storeShadowed = c->bake.storeInterreflected = false;
     std::size_t start = 0;
     while (start <= s->size()) {
       const std::size_t comma = s->find(',', start);
       const std::string name = s->substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      if (name == "unshadowed") c->storeUnshadowed = true;
-      else if (name == "shadowed") c->storeShadowed = true;
-      else if (name == "interreflected") c->storeInterreflected = true;
+      if (name == "unshadowed") c->bake.storeUnshadowed = true;
+      else if (name == "shadowed") c->bake.storeShadowed = true;
+      else if (name == "interreflected") c->bake.storeInterreflected = true;
       else return usage("unknown pass '" + name + "' in --passes (expected unshadowed, shadowed, interreflected)");
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
   }
-  c->options.interreflection = c->storeInterreflected;
   if (Status st = parseLightingArgs(p, c); !st.isOk()) return st;
   if (const std::string* s = p.value("--name")) {
     if (!isValidAssetName(*s)) {
       return usage("--name must be at most " + std::to_string(kMaxAssetNameBytes) + " bytes of UTF-8 without control characters");
     }
-    c->name = *s;
+    c->bake.name = *s;
   }
   if (const std::string* s = p.value("--compress")) {
     TransferCodecSettings settings;
     if (Status st = parseTransferSetting(*s, TransferCodecSettings{}, &settings); !st.isOk()) {
       return usage("--compress: " + st.message());
     }
-    c->compress = settings;
+    c->bake.compress = settings;
   }
   c->quiet = p.has("--quiet");
   c->json = p.has("--json");
   return Status::ok();
 }
 
-BakedAsset makeAsset(bake::Scene&& scene, bake::BakeResult&& r, const BakeCli& c) {
-  BakedAsset a;
-  a.shOrder = r.order;
-  a.positions = std::move(scene.positions);
-  a.normals = std::move(scene.normals);
-  a.albedo = std::move(scene.albedo);
-  a.indices = std::move(scene.indices);
-  a.name = c.name.value_or(scene.name);
-  a.lighting = c.options.lighting;
-  a.samples = c.options.samples;
-  a.seed = c.options.seed;
-  a.sampling = c.options.sampling == bake::Sampling::kStratified ? "stratified" : "hammersley";
-  if (c.storeUnshadowed) a.passes.push_back({TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed), {}});
-  if (c.storeShadowed) a.passes.push_back({TransferKind::kShadowed, 1, 0, std::move(r.shadowed), {}});
-  if (c.storeInterreflected) a.passes.push_back({TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected), {}});
-  return a;
-}
-
-// Encodes every pass of `a` with the codec; the floats are dropped once encoded.
-Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std::string* summary) {
-  for (TransferPass& pass : a->passes) {
-    TransferEncodeReport report;
-    if (Status s = encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &report); !s.isOk()) {
-      return Status::error(s.code(), std::string(transferKindName(pass.kind)) + " transfer: " + s.message());
-    }
+// "unshadowed 1234 -> 567 bytes (relative RMS error 1.00e-02, 12 clusters); ..."
+std::string describeCompression(const std::vector<bake::CompressedPass>& passes) {
+  std::string summary;
+  for (const bake::CompressedPass& p : passes) {
     char line[200];
-    std::snprintf(line, sizeof line, "%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary->empty() ? "" : "; ",
-                  transferKindName(pass.kind), pass.coeffs.size() * 4, pass.encoded.size(), report.relativeError,
-                  report.clusters > 0 ? (", " + std::to_string(report.clusters) + " clusters").c_str() : "");
-    *summary += line;
-    pass.coeffs.clear();
-    pass.coeffs.shrink_to_fit();
+    std::snprintf(line, sizeof line, "%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary.empty() ? "" : "; ",
+                  transferKindName(p.kind), p.floatBytes, p.encodedBytes, p.codec.relativeError,
+                  p.codec.clusters > 0 ? (", " + std::to_string(p.codec.clusters) + " clusters").c_str() : "");
+    summary += line;
   }
-  return Status::ok();
+  return summary;
 }
 
 double peakMemoryMiB() {
@@ -318,41 +277,31 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!c.quiet)
       for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
   }
-  bake::optimizeMeshOrder(&scene);
-  const std::size_t vertexCount = scene.positions.size(), triangleCount = scene.indices.size() / 3;
-  completeLighting(scene, &c);
-  if (!c.quiet) {
-    std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples; lighting %s\n",
-                 c.scene.empty() ? "default scene" : c.scene.c_str(), vertexCount, triangleCount, c.options.order,
-                 c.options.samples, describeLighting(c.options.lighting).c_str());
-  }
 
   bake::ProgressBar bar(err, !c.quiet);
-  c.options.progress = [&bar](const bake::BakeProgress& p) { bar.update(p); };
-  bake::BakeResult result;
-  const Status baked = bake::bakeTransfer(scene, c.options, &result);
-  bar.finish();
-  if (!baked.isOk()) return fail(err, kExitInputError, baked.message());
-  const std::size_t outsideLight = result.verticesOutsideLight;
-  if (outsideLight > 0 && !c.quiet) {
-    std::fprintf(err,
-                 "prt-bake: warning: %zu of %zu vertices lie outside the lighting sphere (%s); their rays that "
-                 "miss it receive no light\n",
-                 outsideLight, vertexCount, describeLighting(c.options.lighting).c_str());
-  }
-
-  const int bounces = result.bounces;
-  const std::vector<bake::PassStats> passes = result.passes;
-  const std::vector<double> energy = result.bounceEnergy;
+  c.bake.transfer.progress = [&bar](const bake::BakeProgress& p) { bar.update(p); };
+  const auto started = [&](const bake::AssetBakeReport& r) {
+    if (c.quiet) return;
+    std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples; lighting %s\n",
+                 c.scene.empty() ? "default scene" : c.scene.c_str(), r.vertices, r.triangles, c.bake.transfer.order,
+                 c.bake.transfer.samples, describeLighting(r.lighting).c_str());
+  };
+  bake::AssetBakeReport report;
   std::vector<std::uint8_t> bytes;
   {
-    BakedAsset asset = makeAsset(std::move(scene), std::move(result), c);
-    if (c.compress) {
-      std::string summary;
-      if (Status s = compressPasses(*c.compress, &asset, &summary); !s.isOk()) {
-        return fail(err, kExitInputError, "cannot compress: " + s.message());
-      }
-      if (!c.quiet) std::fprintf(err, "prt-bake: %s: %s\n", transferSettingName(*c.compress).c_str(), summary.c_str());
+    BakedAsset asset;
+    const Status baked = bake::bakeAsset(std::move(scene), c.bake, &asset, &report, started);
+    bar.finish();
+    if (!baked.isOk()) return fail(err, kExitInputError, baked.message());
+    if (report.verticesOutsideLight > 0 && !c.quiet) {
+      std::fprintf(err,
+                   "prt-bake: warning: %zu of %zu vertices lie outside the lighting sphere (%s); their rays that "
+                   "miss it receive no light\n",
+                   report.verticesOutsideLight, report.vertices, describeLighting(report.lighting).c_str());
+    }
+    if (c.bake.compress && !c.quiet) {
+      std::fprintf(err, "prt-bake: %s: %s\n", transferSettingName(*c.bake.compress).c_str(),
+                   describeCompression(report.compressed).c_str());
     }
     if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return fail(err, kExitInputError, "cannot encode asset: " + s.message());
   }
@@ -360,27 +309,29 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!c.quiet) {
     std::fprintf(err, "prt-bake: wrote %s (%zu bytes, %d bounces) in %.2f s, peak memory %.0f MiB\n", c.output.c_str(),
-                 bytes.size(), bounces, total, peakMemoryMiB());
+                 bytes.size(), report.bounces, total, peakMemoryMiB());
   }
   if (c.json) {
     std::string s = "{\n  \"scene\": " + jsonString(c.scene.empty() ? "default" : c.scene) + ",\n";
     s += "  \"output\": " + jsonString(c.output) + ",\n";
     s += "  \"bytes\": " + std::to_string(bytes.size()) + ",\n";
-    s += "  \"vertices\": " + std::to_string(vertexCount) + ",\n";
-    s += "  \"triangles\": " + std::to_string(triangleCount) + ",\n";
-    s += "  \"order\": " + std::to_string(c.options.order) + ",\n";
-    s += "  \"samples\": " + std::to_string(c.options.samples) + ",\n";
-    s += "  \"bounces\": " + std::to_string(bounces) + ",\n";
-    const LightingInfo& l = c.options.lighting;
+    s += "  \"vertices\": " + std::to_string(report.vertices) + ",\n";
+    s += "  \"triangles\": " + std::to_string(report.triangles) + ",\n";
+    s += "  \"order\": " + std::to_string(c.bake.transfer.order) + ",\n";
+    s += "  \"samples\": " + std::to_string(c.bake.transfer.samples) + ",\n";
+    s += "  \"bounces\": " + std::to_string(report.bounces) + ",\n";
+    const LightingInfo& l = report.lighting;
     s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(l.model));
     if (isLocalLighting(l.model)) {
       s += ", \"center\": [" + jsonNumber(l.center.x) + ", " + jsonNumber(l.center.y) + ", " + jsonNumber(l.center.z) +
-           "], \"radius\": " + jsonNumber(l.radius) + ", \"vertices_outside\": " + std::to_string(outsideLight);
+           "], \"radius\": " + jsonNumber(l.radius) + ", \"vertices_outside\": " + std::to_string(report.verticesOutsideLight);
     }
     s += "},\n";
     s += "  \"bounce_energy\": [";
+    const std::vector<double>& energy = report.bounceEnergy;
     for (std::size_t i = 0; i < energy.size(); ++i) s += (i ? ", " : "") + jsonNumber(energy[i]);
     s += "],\n  \"passes\": [\n";
+    const std::vector<bake::PassStats>& passes = report.passes;
     for (std::size_t i = 0; i < passes.size(); ++i) {
       const auto& p = passes[i];
       s += "    {\"name\": " + jsonString(p.name) + ", \"seconds\": " + jsonNumber(p.seconds) +

@@ -1,0 +1,60 @@
+// The baker as one library call: a loaded Scene in, an asset ready to encode out, with what
+// a caller prints or logs about it. prt-bake's bake command is this call between argument
+// parsing and writing; a sharded or remote bake calls the same function.
+//
+//   scene -> optimizeMeshOrder -> local lighting defaults -> bakeTransfer
+//         -> BakedAsset (chosen passes) -> [transfer codec] -> (asset, report)
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "baker/scene/scene.h"
+#include "baker/transfer/transfer_bake.h"
+#include "prt/asset.h"
+#include "prt/status.h"
+#include "prt/transfer_codec.h"
+
+namespace prt::bake {
+
+struct AssetBakeOptions {
+  // Order, samples, bounces, threads, progress; lighting.model picks distant or local.
+  // With local lighting, lighting.center and .radius are ignored: see lightCenter/lightRadius.
+  BakeOptions transfer;
+  // Local lighting's sphere; each one not given comes from the scene (defaultLightingSphere).
+  std::optional<Vec3> lightCenter;
+  std::optional<float> lightRadius;
+  // Which passes the asset stores (unshadowed and shadowed cost nothing extra to compute;
+  // interreflected is computed only when stored).
+  bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
+  std::optional<std::string> name;                 // default: the scene's name
+  std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
+};
+
+struct CompressedPass {
+  TransferKind kind = TransferKind::kUnshadowed;
+  std::size_t floatBytes = 0, encodedBytes = 0;
+  TransferEncodeReport codec;
+};
+
+struct AssetBakeReport {
+  std::size_t vertices = 0, triangles = 0;
+  LightingInfo lighting;  // as baked: local defaults filled in
+  int bounces = 0;
+  std::vector<double> bounceEnergy;
+  std::vector<PassStats> passes;
+  std::size_t verticesOutsideLight = 0;  // local lighting only
+  std::vector<CompressedPass> compressed;  // one per stored pass when options.compress is set
+};
+
+// Bakes `scene` (consumed: its arrays move into the asset) into `*asset`, deterministic for
+// a given (scene, options). `started`, when set, is called once with the report's vertices,
+// triangles and lighting filled in, before the long part. Errors: the bake's and the codec's,
+// prefixed with the pass they belong to.
+Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
+                 const std::function<void(const AssetBakeReport&)>& started = {});
+
+}  // namespace prt::bake
