@@ -8,7 +8,7 @@
 namespace prt {
 namespace {
 
-Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+Status usage(std::string message) { return Status::error(StatusCode::kUsage, std::move(message)); }
 
 const FlagSpec* findSpec(std::span<const FlagSpec> specs, std::string_view name) {
   for (const FlagSpec& s : specs)

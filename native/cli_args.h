@@ -13,11 +13,6 @@
 
 namespace prt {
 
-// Process exit statuses of prt-bake.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitInputError = 1;  // the input (a file, its contents) is bad
-inline constexpr int kExitUsageError = 2;  // the command line is bad
-
 struct FlagSpec {
   std::string_view name;  // with the dashes: "--order"
   bool takesValue;        // false: a switch such as "--json"
@@ -35,7 +30,7 @@ struct ParsedArgs {
 // True when args (before any "--") hold "--help" or "-h": help wins over every other error.
 bool wantsHelp(std::span<const std::string> args);
 
-// Splits `args` by `specs`. Errors (kInvalidArgument): unknown flag, missing value, a value
+// Splits `args` by `specs`. Errors (kUsage): unknown flag, missing value, a value
 // given to a switch, a flag given twice.
 Status parseArgs(std::span<const std::string> args, std::span<const FlagSpec> specs, ParsedArgs* out);
 

@@ -17,8 +17,13 @@
 namespace prt {
 namespace {
 
-Status ioError(const std::string& path, const std::string& what) {
-  return Status::error(StatusCode::kInvalidArgument, "'" + path + "': " + what);
+Status fileError(StatusCode code, const std::string& path, const std::string& what) {
+  return Status::error(code, "'" + path + "': " + what);
+}
+
+// For a failed call that just set errno: the code errno stands for.
+Status errnoError(const std::string& path, const std::string& what) {
+  return fileError(statusCodeForErrno(errno), path, what);
 }
 
 std::string errnoText() { return std::strerror(errno); }
@@ -110,25 +115,25 @@ Status resolveOutput(const std::string& output, std::span<const std::string> inp
       *target = output;
       return Status::ok();
     }
-    return ioError(output, "cannot check the output path: " + errnoText());
+    return errnoError(output, "cannot check the output path: " + errnoText());
   }
   std::string resolved = output;
   if (S_ISLNK(st.st_mode)) {
     char buf[PATH_MAX];
     if (::realpath(output.c_str(), buf) == nullptr || ::stat(buf, &st) != 0) {
-      return ioError(output, "is a symbolic link to a missing or unreachable file (" + errnoText() +
+      return fileError(StatusCode::kInvalidArgument, output, "is a symbolic link to a missing or unreachable file (" + errnoText() +
                                  "); refusing to replace the link");
     }
     resolved = buf;
   }
   if (!S_ISREG(st.st_mode)) {
-    return ioError(output, std::string("exists and is ") + fileTypeName(st.st_mode) +
+    return fileError(StatusCode::kInvalidArgument, output, std::string("exists and is ") + fileTypeName(st.st_mode) +
                                "; refusing to replace it (give the path of a new or regular file)");
   }
   for (const std::string& input : inputs) {
     struct stat in {};
     if (::stat(input.c_str(), &in) == 0 && in.st_dev == st.st_dev && in.st_ino == st.st_ino) {
-      return ioError(output, "is the input '" + input + "'; refusing to overwrite it (choose another output path)");
+      return fileError(StatusCode::kInvalidArgument, output, "is the input '" + input + "'; refusing to overwrite it (choose another output path)");
     }
   }
   *target = resolved;
@@ -137,17 +142,31 @@ Status resolveOutput(const std::string& output, std::span<const std::string> inp
 
 }  // namespace
 
+StatusCode statusCodeForErrno(int errorNumber) {
+  switch (errorNumber) {
+    case ENOENT:
+    case ENOTDIR: return StatusCode::kNotFound;
+    case ENOSPC:
+    case EDQUOT:
+    case ENOMEM:
+    case EMFILE:
+    case ENFILE:
+    case EFBIG: return StatusCode::kResourceExhausted;
+    default: return StatusCode::kIoError;
+  }
+}
+
 Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return ioError(path, errno == ENOENT ? "no such file" : "cannot open: " + errnoText());
+  if (fd < 0) return errnoError(path, errno == ENOENT ? "no such file" : "cannot open: " + errnoText());
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    return ioError(path, "not a regular file");
+    return fileError(StatusCode::kInvalidArgument, path, "not a regular file");
   }
   if (static_cast<std::uint64_t>(st.st_size) > maxBytes) {
     ::close(fd);
-    return ioError(path, "file is " + std::to_string(st.st_size) + " bytes; at most " + std::to_string(maxBytes) +
+    return fileError(StatusCode::kInvalidArgument, path, "file is " + std::to_string(st.st_size) + " bytes; at most " + std::to_string(maxBytes) +
                              " are accepted");
   }
   out->resize(static_cast<std::size_t>(st.st_size));
@@ -157,7 +176,8 @@ Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vecto
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       ::close(fd);
-      return ioError(path, n == 0 ? "file shrank while being read" : "read failed: " + errnoText());
+      return fileError(n == 0 ? StatusCode::kIoError : statusCodeForErrno(errno), path,
+                       n == 0 ? "file shrank while being read" : "read failed: " + errnoText());
     }
     done += static_cast<std::size_t>(n);
   }
@@ -175,7 +195,7 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
   std::string target;
   if (Status s = resolveOutput(path, inputs, &target); !s.isOk()) return s;
   const std::string pattern = target + ".prt-partial-XXXXXX";
-  if (pattern.size() >= sizeof gTempPath) return ioError(path, "the path is too long");
+  if (pattern.size() >= sizeof gTempPath) return fileError(StatusCode::kInvalidArgument, path, "the path is too long");
   installCleanupHandlers();
 
   int fd = -1;
@@ -185,14 +205,15 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
     fd = ::mkostemp(gTempPath, O_CLOEXEC);  // O_EXCL: never opens what someone else put there
     if (fd >= 0) gTempActive = 1;
   }
-  if (fd < 0) return ioError(path, "cannot create a temporary file beside it: " + errnoText());
+  if (fd < 0) return errnoError(path, "cannot create a temporary file beside it: " + errnoText());
   const std::string temp = gTempPath;
   auto abandon = [&](const std::string& what) {
+    const int savedErrno = errno;
     const std::string why = errnoText();
     if (fd >= 0) ::close(fd);
     ::unlink(temp.c_str());
     forgetTemp();
-    return ioError(path, what + ": " + why);
+    return fileError(statusCodeForErrno(savedErrno), path, what + ": " + why);
   };
 
   if (::fchmod(fd, 0644) != 0) return abandon("cannot set the temporary file's mode");
@@ -221,13 +242,13 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
 
   // The rename lives in the directory: flush it too, or a crash could bring the old file back.
   const int dir = ::open(directoryOf(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir < 0) return ioError(path, "written, but its directory cannot be opened to flush it: " + errnoText());
+  if (dir < 0) return errnoError(path, "written, but its directory cannot be opened to flush it: " + errnoText());
   const int synced = ::fsync(dir);
   const int syncErrno = errno;
   ::close(dir);
   if (synced != 0 && syncErrno != EINVAL) {  // EINVAL: the file system cannot sync directories
     errno = syncErrno;
-    return ioError(path, "written, but flushing its directory failed: " + errnoText());
+    return errnoError(path, "written, but flushing its directory failed: " + errnoText());
   }
   return Status::ok();
 }

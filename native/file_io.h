@@ -12,6 +12,10 @@ namespace prt {
 
 // Reads all of `path` into *out; fails (naming the path) when it is missing, not a regular
 // file, unreadable, or larger than maxBytes.
+// The Status code for a failed system call's errno: kNotFound for a missing path,
+// kResourceExhausted for a full disk, a quota or no memory or descriptors, else kIoError.
+StatusCode statusCodeForErrno(int errorNumber);
+
 Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out);
 
 // Checks that `output` may receive a new file without destroying anything else: it does not

@@ -16,12 +16,15 @@
 #include <ImfRgbaFile.h>
 #include <stb_image.h>
 
+#include "native/file_io.h"
 #include "native/radiance_hdr.h"
 
 namespace prt {
 namespace {
 
 Status problem(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+// A system call that just failed, with the code its errno stands for.
+Status failed(std::string message) { return Status::error(statusCodeForErrno(errno), std::move(message)); }
 
 // ---- OpenEXR ----------------------------------------------------------------------------
 
@@ -85,7 +88,7 @@ Status loadExr(const std::string& path, RgbImage* out) {
     out->rgb.resize(rowFloats * static_cast<std::size_t>(height), 0.0f);  // rows below the data: black
     return Status::ok();
   } catch (const std::bad_alloc&) {
-    return problem("out of memory while reading the OpenEXR file");
+    return Status::error(StatusCode::kResourceExhausted, "out of memory while reading the OpenEXR file");
   } catch (const std::exception& e) {
     return problem(std::string("cannot read OpenEXR data (the file is corrupt or truncated): ") + e.what());
   } catch (...) {
@@ -120,7 +123,7 @@ struct StbSource {
   Status rewind() {
     readPastEnd = false;
     std::clearerr(file);
-    if (std::fseek(file, 0, SEEK_SET) != 0) return problem(std::string("cannot seek: ") + std::strerror(errno));
+    if (std::fseek(file, 0, SEEK_SET) != 0) return failed(std::string("cannot seek: ") + std::strerror(errno));
     return Status::ok();
   }
 };
@@ -177,7 +180,7 @@ Status loadWithStb(std::FILE* file, ImageFormat format, const unsigned char* hea
   } else {
     pixels.reset(stbi_load_from_callbacks(&kStbCallbacks, &src, &dw, &dh, &dc, 3));
   }
-  if (src.readError) return problem(std::string("read error: ") + std::strerror(errno));
+  if (src.readError) return failed(std::string("read error: ") + std::strerror(errno));
   // A failure after reading up to the end of the file is almost always a cut-off file:
   // stb_image's reasons for it ("outofdata", "bad zlib header") do not say so.
   const bool atEnd = src.readPastEnd || std::feof(file);
@@ -226,14 +229,14 @@ std::string hexBytes(const unsigned char* bytes, std::size_t n) {
 Status loadImageUnguarded(const std::string& path, RgbImage* out) {
   std::error_code ec;
   const auto st = std::filesystem::status(path, ec);
-  if (st.type() == std::filesystem::file_type::not_found) return problem("no such file");
+  if (st.type() == std::filesystem::file_type::not_found) return Status::error(StatusCode::kNotFound, "no such file");
   if (st.type() == std::filesystem::file_type::directory) return problem("is a directory, not an image file");
 
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) return problem(std::string("cannot open: ") + std::strerror(errno));
+  if (!file) return failed(std::string("cannot open: ") + std::strerror(errno));
   unsigned char head[32] = {};
   const std::size_t got = std::fread(head, 1, sizeof head, file.get());
-  if (std::ferror(file.get())) return problem(std::string("cannot read: ") + std::strerror(errno));
+  if (std::ferror(file.get())) return failed(std::string("cannot read: ") + std::strerror(errno));
   if (got == 0) return problem("file is empty");
 
   const ImageFormat format = detectImageFormat(head, got);
@@ -244,7 +247,7 @@ Status loadImageUnguarded(const std::string& path, RgbImage* out) {
       s = loadExr(path, out);
       break;
     case ImageFormat::kRadianceHdr:
-      if (std::fseek(file.get(), 0, SEEK_SET) != 0) return problem(std::string("cannot seek: ") + std::strerror(errno));
+      if (std::fseek(file.get(), 0, SEEK_SET) != 0) return failed(std::string("cannot seek: ") + std::strerror(errno));
       s = readRadianceHdr(file.get(), out);
       break;
     case ImageFormat::kPng:
@@ -303,7 +306,7 @@ Status loadImage(const std::string& path, RgbImage* out) {
   try {
     s = loadImageUnguarded(path, out);
   } catch (const std::bad_alloc&) {
-    s = problem("out of memory while loading the image");
+    s = Status::error(StatusCode::kResourceExhausted, "out of memory while loading the image");
   } catch (const std::exception& e) {
     s = problem(std::string("cannot load: ") + e.what());
   }

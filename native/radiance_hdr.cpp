@@ -178,7 +178,7 @@ Status readScanline(ByteReader& in, int width, std::vector<unsigned char>& line)
 Status readRadianceHdr(std::FILE* file, RgbImage* out) {
   ByteReader in(file);
   Header h;
-  if (Status s = readHeader(in, &h); !s.isOk()) return in.failed() ? Status::error(StatusCode::kInvalidArgument, "read error") : s;
+  if (Status s = readHeader(in, &h); !s.isOk()) return in.failed() ? Status::error(StatusCode::kIoError, "read error") : s;
   const std::size_t rowFloats = static_cast<std::size_t>(h.width) * 3;
   out->width = h.width;
   out->height = h.height;
@@ -189,7 +189,7 @@ Status readRadianceHdr(std::FILE* file, RgbImage* out) {
   std::vector<unsigned char> line(static_cast<std::size_t>(h.width) * 4);
   for (int j = 0; j < h.height; ++j) {
     if (Status s = readScanline(in, h.width, line); !s.isOk()) {
-      return in.failed() ? Status::error(StatusCode::kInvalidArgument, "read error") : s;
+      return in.failed() ? Status::error(StatusCode::kIoError, "read error") : s;
     }
     for (int x = 0; x < h.width; ++x) {
       const unsigned char* p = &line[static_cast<std::size_t>(x) * 4];

@@ -3,7 +3,7 @@
 # Bakes a small room, checks the JSON report against what the codec guarantees (exact f32,
 # q8's transfer error far below 1%, CPCA within its target and smaller than float16 after
 # zstd), and checks that bad command lines and bad files fail with the right status and a
-# message naming the problem.
+# message naming the problem (exit statuses: native/exit_status.h; 3 not found, 4 invalid input).
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 set(asset ${WORK_DIR}/room.prta)
@@ -113,7 +113,7 @@ foreach(i 0 1)
     message(FATAL_ERROR "${blob}: ${size} bytes (report: ${bytes}), magic '${magic}'")
   endif()
 endforeach()
-run_checked(1 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings q8 --save-blobs ${WORK_DIR}/no-such-dir)
+run_checked(3 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings q8 --save-blobs ${WORK_DIR}/no-such-dir)
 expect_contains("${err}" "no-such-dir" "--save-blobs into a missing directory")
 
 run_checked(2 out err ${PRT_BAKE} compress-report)
@@ -124,14 +124,14 @@ run_checked(2 out err ${PRT_BAKE} compress-report ${asset} --quality 1.5)
 expect_contains("${err}" "--quality" "quality out of range")
 run_checked(2 out err ${PRT_BAKE} compress-report ${asset} --pass direct)
 expect_contains("${err}" "unknown --pass 'direct'" "bad pass")
-run_checked(1 out err ${PRT_BAKE} compress-report ${WORK_DIR}/missing.prta)
+run_checked(3 out err ${PRT_BAKE} compress-report ${WORK_DIR}/missing.prta)
 expect_contains("${err}" "missing.prta" "missing file")
 file(WRITE ${WORK_DIR}/garbage.prta "not an asset")
-run_checked(1 out err ${PRT_BAKE} compress-report ${WORK_DIR}/garbage.prta)
+run_checked(4 out err ${PRT_BAKE} compress-report ${WORK_DIR}/garbage.prta)
 expect_contains("${err}" "garbage.prta" "corrupt file")
-run_checked(1 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${WORK_DIR})
+run_checked(3 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${WORK_DIR})
 expect_contains("${err}" "no .exr files" "empty environment directory")
-run_checked(1 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings cpca8@0.000001 --max-clusters 2)
+run_checked(4 out err ${PRT_BAKE} compress-report ${asset} --env-dir ${ENV_DIR} --settings cpca8@0.000001 --max-clusters 2)
 expect_contains("${err}" "16-bit weights" "unreachable CPCA target")
 run_checked(0 out err ${PRT_BAKE} compress-report --help)
 expect_contains("${out}" "Usage: prt-bake compress-report" "help")

@@ -4,7 +4,9 @@
 #include <optional>
 #include <vector>
 
+#include "baker/cli/report_failure.h"
 #include "native/cli_args.h"
+#include "native/exit_status.h"
 #include "native/environment_map.h"
 #include "native/file_io.h"
 #include "native/image_io.h"
@@ -18,16 +20,9 @@ namespace {
 
 constexpr std::uint64_t kMaxAssetFileBytes = std::uint64_t{16} << 30;
 
-int fail(std::FILE* err, int code, const std::string& command, const std::string& message) {
-  std::fprintf(err, "prt-bake: error: %s\n", message.c_str());
-  if (code == kExitUsageError) std::fprintf(err, "Try 'prt-bake %s --help'.\n", command.c_str());
-  return code;
-}
-
 Status oneAsset(const ParsedArgs& p, std::string* path) {
   if (p.positionals.size() != 1) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         p.positionals.empty() ? "missing ASSET" : "expected one ASSET");
+    return usageError(p.positionals.empty() ? "missing ASSET" : "expected one ASSET");
   }
   *path = p.positionals[0];
   return Status::ok();
@@ -65,12 +60,12 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   static constexpr FlagSpec kFlags[] = {{"--json", false}};
   ParsedArgs p;
   std::string path;
-  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return fail(err, kExitUsageError, "info", s.message());
-  if (Status s = oneAsset(p, &path); !s.isOk()) return fail(err, kExitUsageError, "info", s.message());
+  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "info", s);
+  if (Status s = oneAsset(p, &path); !s.isOk()) return reportFailure(err, "info", s);
   std::vector<std::uint8_t> bytes;
-  if (Status s = readAsset(path, &bytes); !s.isOk()) return fail(err, kExitInputError, "info", s.message());
+  if (Status s = readAsset(path, &bytes); !s.isOk()) return reportFailure(err, "info", s);
   AssetSummary sum;
-  if (Status s = verifyAsset(bytes, &sum); !s.isOk()) return fail(err, kExitInputError, "info", prefixed(path, s));
+  if (Status s = verifyAsset(bytes, &sum); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   if (p.has("--json")) {
     std::string s = "{\n  \"file\": " + jsonString(path) + ",\n  \"bytes\": " + std::to_string(bytes.size()) + ",\n";
     s += "  \"version\": \"" + std::to_string(sum.versionMajor) + "." + std::to_string(sum.versionMinor) + "\",\n";
@@ -127,36 +122,35 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   static constexpr FlagSpec kFlags[] = {{"--light", true}, {"--pass", true}, {"--order", true}, {"--json", false}};
   ParsedArgs p;
   std::string path;
-  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return fail(err, kExitUsageError, "shade", s.message());
-  if (Status s = oneAsset(p, &path); !s.isOk()) return fail(err, kExitUsageError, "shade", s.message());
+  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "shade", s);
+  if (Status s = oneAsset(p, &path); !s.isOk()) return reportFailure(err, "shade", s);
   const std::string* light = p.value("--light");
-  if (!light) return fail(err, kExitUsageError, "shade", "missing --light constant|ENVMAP");
+  if (!light) return reportFailure(err, "shade", usageError("missing --light constant|ENVMAP"));
   std::optional<TransferKind> wanted;
   if (const std::string* ps = p.value("--pass")) {
     if (*ps == "unshadowed") wanted = TransferKind::kUnshadowed;
     else if (*ps == "shadowed") wanted = TransferKind::kShadowed;
     else if (*ps == "interreflected") wanted = TransferKind::kInterreflected;
-    else return fail(err, kExitUsageError, "shade", "unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)");
+    else return reportFailure(err, "shade", usageError("unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)"));
   }
   int order = 0;
   if (const std::string* o = p.value("--order")) {
-    if (Status s = parseIntArg("--order", *o, 1, kMaxShOrder, &order); !s.isOk()) return fail(err, kExitUsageError, "shade", s.message());
+    if (Status s = parseIntArg("--order", *o, 1, kMaxShOrder, &order); !s.isOk()) return reportFailure(err, "shade", s);
   }
 
   std::vector<std::uint8_t> bytes;
-  if (Status s = readAsset(path, &bytes); !s.isOk()) return fail(err, kExitInputError, "shade", s.message());
+  if (Status s = readAsset(path, &bytes); !s.isOk()) return reportFailure(err, "shade", s);
   BakedAsset asset;
-  if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return fail(err, kExitInputError, "shade", prefixed(path, s));
+  if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
   bytes = {};
   if (order == 0) order = asset.shOrder;
   if (order > asset.shOrder) {
-    return fail(err, kExitUsageError, "shade",
-                "--order " + std::to_string(order) + " exceeds the asset's order " + std::to_string(asset.shOrder));
+    return reportFailure(err, "shade", usageError("--order " + std::to_string(order) + " exceeds the asset's order " + std::to_string(asset.shOrder)));
   }
   const TransferPass* pass = nullptr;
   if (wanted) {
     pass = findPass(asset, *wanted);
-    if (!pass) return fail(err, kExitInputError, "shade", "'" + path + "' has no " + transferKindName(*wanted) + " pass");
+    if (!pass) return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument, "'" + path + "' has no " + transferKindName(*wanted) + " pass"));
   } else {
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed})
       if (!pass) pass = findPass(asset, k);
@@ -167,17 +161,17 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     lighting[0] = Rgb{1, 1, 1} * static_cast<float>(2.0 * std::sqrt(kPi));  // radiance 1 everywhere
   } else {
     RgbImage image;
-    if (Status s = loadImage(*light, &image); !s.isOk()) return fail(err, kExitInputError, "shade", s.message());
+    if (Status s = loadImage(*light, &image); !s.isOk()) return reportFailure(err, "shade", s);
     const char* aspect = "";
     const std::optional<EnvLayout> layout = guessLayout(image.width, image.height, &aspect);
-    if (!layout) return fail(err, kExitInputError, "shade", "'" + *light + "': cannot guess its layout from its aspect ratio");
-    if (Status s = projectLayout(*layout, order, image, &lighting); !s.isOk()) return fail(err, kExitInputError, "shade", s.message());
+    if (!layout) return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument, "'" + *light + "': cannot guess its layout from its aspect ratio"));
+    if (Status s = projectLayout(*layout, order, image, &lighting); !s.isOk()) return reportFailure(err, "shade", s);
   }
 
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
   std::vector<float> exit(3 * asset.positions.size());
   if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {
-    return fail(err, kExitInputError, "shade", prefixed(path, s));
+    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
   }
   const bool json = p.has("--json");
   std::string text = json ? "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + transferKindName(pass->kind) +

@@ -9,7 +9,7 @@
 namespace prt {
 
 // `prt-bake info ASSET [--json]`: verifies every checksum and prints counts, order, passes
-// and bake metadata. Returns the exit status (cli_args.h).
+// and bake metadata. Returns the exit status (native/exit_status.h).
 int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err);
 
 // `prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--order N] [--json]`: exit

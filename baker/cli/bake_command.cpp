@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "baker/cli/report_failure.h"
 #include "native/cli_args.h"
+#include "native/exit_status.h"
 #include "baker/scene/default_scene.h"
 #include "native/file_io.h"
 #include "baker/scene/gltf_loader.h"
@@ -73,7 +75,7 @@ struct BakeCli {
   bool quiet = false, json = false;
 };
 
-Status usage(std::string m) { return Status::error(StatusCode::kInvalidArgument, std::move(m)); }
+Status usage(std::string m) { return usageError(std::move(m)); }
 
 // "X,Y,Z": exactly three finite numbers.
 Status parseTriple(std::string_view flag, const std::string& text, Vec3* out) {
@@ -245,12 +247,6 @@ double peakMemoryMiB() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-int fail(std::FILE* err, int code, const std::string& message) {
-  std::fprintf(err, "prt-bake: error: %s\n", message.c_str());
-  if (code == kExitUsageError) std::fputs("Try 'prt-bake --help'.\n", err);
-  return code;
-}
-
 }  // namespace
 
 const char* bakeHelpText() { return kHelp; }
@@ -258,14 +254,16 @@ const char* bakeHelpText() { return kHelp; }
 int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
   if (wantsHelp(args)) {
     std::fputs(kHelp, out);
+    std::fputs("\n", out);
+    std::fputs(exitStatusHelp(), out);
     return kExitOk;
   }
   BakeCli c;
-  if (Status s = parseBakeArgs(args, &c); !s.isOk()) return fail(err, kExitUsageError, s.message());
+  if (Status s = parseBakeArgs(args, &c); !s.isOk()) return reportFailure(err, "", s);
   std::vector<std::string> inputs;
   if (!c.scene.empty()) inputs.push_back(c.scene);
   // Before the bake, not after it: a bad -o must not cost the user a long bake.
-  if (Status s = checkOutputPath(c.output, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
+  if (Status s = checkOutputPath(c.output, inputs); !s.isOk()) return reportFailure(err, "", s);
 
   const auto t0 = std::chrono::steady_clock::now();
   bake::Scene scene;
@@ -273,7 +271,7 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     scene = bake::makeDefaultScene();
   } else {
     std::vector<std::string> warnings;
-    if (Status s = bake::loadGltf(c.scene, &scene, &warnings); !s.isOk()) return fail(err, kExitInputError, s.message());
+    if (Status s = bake::loadGltf(c.scene, &scene, &warnings); !s.isOk()) return reportFailure(err, "", s);
     if (!c.quiet)
       for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
   }
@@ -292,7 +290,7 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     BakedAsset asset;
     const Status baked = bake::bakeAsset(std::move(scene), c.bake, &asset, &report, started);
     bar.finish();
-    if (!baked.isOk()) return fail(err, kExitInputError, baked.message());
+    if (!baked.isOk()) return reportFailure(err, "", baked);
     if (report.verticesOutsideLight > 0 && !c.quiet) {
       std::fprintf(err,
                    "prt-bake: warning: %zu of %zu vertices lie outside the lighting sphere (%s); their rays that "
@@ -303,9 +301,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       std::fprintf(err, "prt-bake: %s: %s\n", transferSettingName(*c.bake.compress).c_str(),
                    describeCompression(report.compressed).c_str());
     }
-    if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return fail(err, kExitInputError, "cannot encode asset: " + s.message());
+    if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return reportFailure(err, "", Status::error(s.code(), "cannot encode asset: " + s.message()));
   }
-  if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
+  if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return reportFailure(err, "", s);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!c.quiet) {
     std::fprintf(err, "prt-bake: wrote %s (%zu bytes, %d bounces) in %.2f s, peak memory %.0f MiB\n", c.output.c_str(),

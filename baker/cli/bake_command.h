@@ -12,7 +12,7 @@ namespace prt {
 const char* bakeHelpText();
 
 // Runs a bake with the full argument list (the scene path or --default included). Progress
-// and errors go to `err`, --json statistics to `out`. Returns the exit status (cli_args.h).
+// and errors go to `err`, --json statistics to `out`. Returns the exit status (native/exit_status.h).
 int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err);
 
 }  // namespace prt

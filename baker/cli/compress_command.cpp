@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "native/byte_compressors.h"
+#include "baker/cli/report_failure.h"
 #include "native/cli_args.h"
+#include "native/exit_status.h"
 #include "baker/cli/compress_lightings.h"
 #include "native/file_io.h"
 #include "native/json_text.h"
@@ -42,7 +44,7 @@ struct Options {
   std::string saveBlobs;  // directory for each setting's blob, or empty
 };
 
-Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+Status usage(std::string message) { return usageError(std::move(message)); }
 
 Status parseOptions(std::span<const std::string> args, Options* o) {
   ParsedArgs p;
@@ -125,12 +127,6 @@ struct Row {
   TransferEncodeReport report;
   std::vector<LightingError> perLighting;  // with --per-lighting, in lighting order
 };
-
-int fail(std::FILE* err, int code, const std::string& message) {
-  std::fprintf(err, "prt-bake: error: %s\n", message.c_str());
-  if (code == kExitUsageError) std::fputs("Try 'prt-bake compress-report --help'.\n", err);
-  return code;
-}
 
 std::string perVertex(std::size_t bytes, std::size_t vertices) {
   char s[32];
@@ -255,17 +251,17 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     return kExitOk;
   }
   Options o;
-  if (Status s = parseOptions(args, &o); !s.isOk()) return fail(err, kExitUsageError, s.message());
+  if (Status s = parseOptions(args, &o); !s.isOk()) return reportFailure(err, "compress-report", s);
 
   std::vector<std::uint8_t> bytes;
-  if (Status s = readFileBytes(o.asset, kMaxAssetFileBytes, &bytes); !s.isOk()) return fail(err, kExitInputError, s.message());
+  if (Status s = readFileBytes(o.asset, kMaxAssetFileBytes, &bytes); !s.isOk()) return reportFailure(err, "compress-report", s);
   BakedAsset asset;
-  if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return fail(err, kExitInputError, "'" + o.asset + "': " + s.toString());
+  if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return reportFailure(err, "compress-report", Status::error(s.code(), "'" + o.asset + "': " + s.toString()));
   bytes = {};
   const TransferPass* pass = nullptr;
   if (o.pass) {
     pass = findPass(asset, *o.pass);
-    if (!pass) return fail(err, kExitInputError, "'" + o.asset + "' has no " + transferKindName(*o.pass) + " pass");
+    if (!pass) return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " + transferKindName(*o.pass) + " pass"));
   } else {
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
       if (!pass) pass = findPass(asset, k);
@@ -275,11 +271,11 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   const std::size_t vertices = asset.positions.size();
 
   std::vector<TestLighting> lightings;
-  if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return fail(err, kExitInputError, s.message());
+  if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return reportFailure(err, "compress-report", s);
   std::vector<std::vector<double>> reference(lightings.size());
   for (std::size_t i = 0; i < lightings.size(); ++i) {
     if (Status s = passExitRadiance(*pass, pass->coeffs, asset.albedo, order, lightings[i].coeffs, &reference[i]); !s.isOk()) {
-      return fail(err, kExitInputError, s.message());
+      return reportFailure(err, "compress-report", s);
     }
   }
 
@@ -293,28 +289,28 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     std::vector<std::uint8_t> blob;
     const auto start = std::chrono::steady_clock::now();
     if (Status s = encodeTransfer(pass->coeffs, order, pass->channels, setting, &blob, &r.report); !s.isOk()) {
-      return fail(err, kExitInputError, r.setting + ": " + s.message());
+      return reportFailure(err, "compress-report", Status::error(s.code(), r.setting + ": " + s.message()));
     }
     r.encodeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (Status s = decodeTransfer(blob, order, std::span<float>(decoded)); !s.isOk()) {
-      return fail(err, kExitInputError, r.setting + ": the blob does not decode: " + s.toString());
+      return reportFailure(err, "compress-report", Status::error(StatusCode::kInternal, r.setting + ": the blob does not decode: " + s.toString()));
     }
     r.bytes = blob.size();
     if (!o.saveBlobs.empty()) {
       const std::string path = o.saveBlobs + "/" + r.setting + ".prtt";
       const std::string inputs[] = {o.asset};
-      if (Status s = writeFileAtomically(path, blob, inputs); !s.isOk()) return fail(err, kExitInputError, s.message());
+      if (Status s = writeFileAtomically(path, blob, inputs); !s.isOk()) return reportFailure(err, "compress-report", s);
     }
-    if (Status s = zstdCompressedSize(blob, kReportZstdLevel, &r.zstdBytes); !s.isOk()) return fail(err, kExitInputError, s.message());
+    if (Status s = zstdCompressedSize(blob, kReportZstdLevel, &r.zstdBytes); !s.isOk()) return reportFailure(err, "compress-report", s);
     if (Status s = brotliCompressedSize(blob, kReportBrotliQuality, kReportBrotliWindow, &r.brotliBytes); !s.isOk()) {
-      return fail(err, kExitInputError, s.message());
+      return reportFailure(err, "compress-report", s);
     }
     r.psnrWorst = std::numeric_limits<double>::infinity();
     double psnrSum = 0.0;
     std::size_t finite = 0;
     for (std::size_t i = 0; i < lightings.size(); ++i) {
       if (Status s = passExitRadiance(*pass, decoded, asset.albedo, order, lightings[i].coeffs, &radiance); !s.isOk()) {
-        return fail(err, kExitInputError, s.message());
+        return reportFailure(err, "compress-report", s);
       }
       const LightingError e = compareRadiance(reference[i], radiance);
       if (o.perLighting) r.perLighting.push_back(e);

@@ -14,7 +14,7 @@ const char* compressReportHelpText();
 
 // Runs the command on the arguments after "compress-report". The report goes to `out`;
 // progress notes and "prt-bake: error: ..." lines to `err`. Returns the exit status
-// (cli_args.h): 0, 1 for bad input, 2 for a bad command line.
+// (native/exit_status.h).
 int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err);
 
 }  // namespace prt

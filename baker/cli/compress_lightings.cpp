@@ -38,14 +38,19 @@ Mat3 rotationX(float deg) {
 Status listExrFiles(const std::string& dir, std::vector<std::string>* out) {
   std::error_code ec;
   std::filesystem::directory_iterator it(dir, ec);
-  if (ec) return Status::error(StatusCode::kInvalidArgument, "cannot list environment directory '" + dir + "': " + ec.message());
+  if (ec) {
+    const StatusCode code = ec == std::errc::no_such_file_or_directory || ec == std::errc::not_a_directory
+                                ? StatusCode::kNotFound
+                                : StatusCode::kIoError;
+    return Status::error(code, "cannot list environment directory '" + dir + "': " + ec.message());
+  }
   for (const auto& entry : it) {
     std::string ext = entry.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (ext == ".exr" && entry.is_regular_file(ec)) out->push_back(entry.path().string());
   }
   std::sort(out->begin(), out->end());
-  if (out->empty()) return Status::error(StatusCode::kInvalidArgument, "no .exr files in environment directory '" + dir + "'");
+  if (out->empty()) return Status::error(StatusCode::kNotFound, "no .exr files in environment directory '" + dir + "'");
   return Status::ok();
 }
 

@@ -2,7 +2,9 @@
 // file (probe_command.cpp, ...) and is the last wall before the OS: nothing throws past it.
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -10,7 +12,8 @@
 
 #include "baker/cli/asset_commands.h"
 #include "baker/cli/bake_command.h"
-#include "native/cli_args.h"
+#include "native/exit_status.h"
+#include "native/file_io.h"
 #include "baker/cli/compress_command.h"
 #include "baker/cli/probe_command.h"
 
@@ -41,7 +44,7 @@ constexpr const char* kHelp =
 
 int usageError(const std::string& message) {
   std::fprintf(stderr, "prt-bake: error: %s\nTry 'prt-bake --help'.\n", message.c_str());
-  return prt::kExitUsageError;
+  return prt::kExitUsage;
 }
 
 int run(const std::vector<std::string>& args) {
@@ -49,6 +52,8 @@ int run(const std::vector<std::string>& args) {
   const std::string& command = args[0];
   if (command == "--help" || command == "-h" || command == "help") {
     std::fputs(kHelp, stdout);
+    std::fputs("\n", stdout);
+    std::fputs(prt::exitStatusHelp(), stdout);
     return prt::kExitOk;
   }
   if (command == "--version") {
@@ -73,23 +78,24 @@ int run(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int code = prt::kExitInputError;
+  int code = prt::kExitInternal;
   try {
     code = run(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::bad_alloc&) {
     std::fputs("prt-bake: error: out of memory\n", stderr);
-    return prt::kExitInputError;
+    return prt::exitStatusFor(prt::StatusCode::kResourceExhausted);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "prt-bake: error: internal error: %s\n", e.what());
-    return prt::kExitInputError;
+    return prt::exitStatusFor(prt::StatusCode::kInternal);
   } catch (...) {
     std::fputs("prt-bake: error: internal error (unknown exception)\n", stderr);
-    return prt::kExitInputError;
+    return prt::exitStatusFor(prt::StatusCode::kInternal);
   }
   // A full disk or a closed pipe must not pass for success.
   if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    std::fputs("prt-bake: error: cannot write to standard output\n", stderr);
-    return prt::kExitInputError;
+    const int savedErrno = errno;
+    std::fprintf(stderr, "prt-bake: error: cannot write to standard output: %s\n", std::strerror(savedErrno));
+    return prt::exitStatusFor(prt::statusCodeForErrno(savedErrno));
   }
   return code;
 }

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "baker/cli/builtin_environment.h"
+#include "baker/cli/report_failure.h"
 #include "native/cli_args.h"
+#include "native/exit_status.h"
 #include "native/environment_map.h"
 #include "native/json_text.h"
 #include "native/image_io.h"
@@ -39,7 +41,7 @@ struct ProbeOptions {
 Status parseProbeOptions(std::span<const std::string> args, ProbeOptions* o) {
   ParsedArgs p;
   if (Status s = parseArgs(args, kProbeFlags, &p); !s.isOk()) return s;
-  auto usage = [](std::string m) { return Status::error(StatusCode::kInvalidArgument, std::move(m)); };
+  auto usage = [](std::string m) { return usageError(std::move(m)); };
 
   if (p.positionals.size() > 1) {
     return usage("expected one IMAGE, got " + std::to_string(p.positionals.size()) + " ('" + p.positionals[0] +
@@ -64,7 +66,7 @@ Status parseProbeOptions(std::span<const std::string> args, ProbeOptions* o) {
 
   if (const std::string* f = p.value("--format")) {
     EnvLayout layout{};
-    if (Status s = parseLayout(*f, &layout); !s.isOk()) return s;
+    if (Status s = parseLayout(*f, &layout); !s.isOk()) return usage(s.message());
     if (!o->builtin.empty() && layout != EnvLayout::kEquirect) {
       return usage("--format " + *f + " does not apply to --builtin (built-in environments are equirect)");
     }
@@ -137,12 +139,6 @@ std::string formatTable(const ProbeOptions& o, const ProbeResult& r) {
     s += line;
   }
   return s;
-}
-
-int report(std::FILE* err, int exitCode, const std::string& message) {
-  std::fprintf(err, "prt-bake: error: %s\n", message.c_str());
-  if (exitCode == kExitUsageError) std::fputs("Try 'prt-bake probe --help'.\n", err);
-  return exitCode;
 }
 
 // Loads the environment and projects it; every error here is an input error.
@@ -226,9 +222,9 @@ int runProbeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     return kExitOk;
   }
   ProbeOptions o;
-  if (Status s = parseProbeOptions(args, &o); !s.isOk()) return report(err, kExitUsageError, s.message());
+  if (Status s = parseProbeOptions(args, &o); !s.isOk()) return reportFailure(err, "probe", s);
   ProbeResult r;
-  if (Status s = probe(o, err, &r); !s.isOk()) return report(err, kExitInputError, s.message());
+  if (Status s = probe(o, err, &r); !s.isOk()) return reportFailure(err, "probe", s);
   const std::string text = o.json ? formatJson(o, r) : formatTable(o, r);
   std::fputs(text.c_str(), out);
   return kExitOk;

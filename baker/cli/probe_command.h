@@ -12,8 +12,8 @@ namespace prt {
 const char* probeHelpText();
 
 // Runs the command on the arguments after "probe". Results go to `out`; notes and
-// "prt-bake: error: ..." lines go to `err`. Returns the exit status (cli_args.h): 0, 1 for
-// bad input, 2 for a bad command line. Lets only std::bad_alloc escape.
+// "prt-bake: error: ..." lines go to `err`. Returns the exit status (native/exit_status.h).
+// Lets only std::bad_alloc escape.
 int runProbeCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err);
 
 }  // namespace prt

@@ -18,7 +18,7 @@ Status EmbreeScene::build(const Scene& scene, EmbreeScene* out) {
   }
   out->device_ = rtcNewDevice(nullptr);
   if (!out->device_) {
-    return Status::error(StatusCode::kInvalidArgument,
+    return Status::error(StatusCode::kInternal,
                          "Embree device creation failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   }
   out->scene_ = rtcNewScene(out->device_);
@@ -32,7 +32,7 @@ Status EmbreeScene::build(const Scene& scene, EmbreeScene* out) {
       rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangleCount));
   if (!vertices || !indices) {
     rtcReleaseGeometry(geom);
-    return Status::error(StatusCode::kInvalidArgument, "Embree could not allocate geometry buffers");
+    return Status::error(StatusCode::kResourceExhausted, "Embree could not allocate geometry buffers");
   }
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
   for (std::size_t v = 0; v < vertexCount; ++v) {
@@ -50,7 +50,8 @@ Status EmbreeScene::build(const Scene& scene, EmbreeScene* out) {
   rtcCommitScene(out->scene_);
   const RTCError err = rtcGetDeviceError(out->device_);
   if (err != RTC_ERROR_NONE) {
-    return Status::error(StatusCode::kInvalidArgument, "Embree scene build failed (error " + std::to_string(err) + ")");
+    return Status::error(err == RTC_ERROR_OUT_OF_MEMORY ? StatusCode::kResourceExhausted : StatusCode::kInternal,
+                         "Embree scene build failed (error " + std::to_string(err) + ")");
   }
   out->diagonal_ = length(hi - lo);
   return Status::ok();

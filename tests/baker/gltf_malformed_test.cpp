@@ -28,14 +28,15 @@ constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 
 // Loading `path` fails with a message containing `fragment` and the file name, and leaves
 // the scene empty.
-void expectLoadError(const std::string& path, const std::string& fragment) {
+void expectLoadError(const std::string& path, const std::string& fragment,
+                     StatusCode code = StatusCode::kInvalidArgument) {
   Scene scene;
   scene.name = "stale";
   scene.positions.push_back({1, 2, 3});
   std::vector<std::string> warnings;
   const Status s = loadGltf(path, &scene, &warnings);
   ASSERT_FALSE(s.isOk()) << "loaded " << path;
-  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(s.code(), code) << s.toString();
   EXPECT_NE(s.message().find(fragment), std::string::npos)
       << "message '" << s.message() << "' lacks '" << fragment << "'";
   EXPECT_NE(s.message().find(path), std::string::npos) << s.message();
@@ -60,7 +61,7 @@ GltfWriter triangleWriter() {
 
 TEST(GltfMalformed, MissingFile) {
   GltfDir dir;
-  expectLoadError(dir.path("nowhere.gltf"), "no such file");
+  expectLoadError(dir.path("nowhere.gltf"), "no such file", StatusCode::kNotFound);
 }
 
 TEST(GltfMalformed, EmptyFile) {

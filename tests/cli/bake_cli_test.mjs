@@ -15,6 +15,9 @@ fs.rmSync(workDir, { recursive: true, force: true });
 fs.mkdirSync(workDir, { recursive: true });
 const work = (name) => path.join(workDir, name);
 
+// prt-bake's exit statuses (native/exit_status.h, docs/baker.md "Exit status").
+const EXIT_NOT_FOUND = 3, EXIT_INVALID_INPUT = 4;
+
 const failures = [];
 let checks = 0;
 function check(ok, message) {
@@ -99,24 +102,24 @@ const cases = {
     const { out } = bakeDefault('good.prt', ['--passes', 'shadowed']);
     const bytes = fs.readFileSync(out);
     fs.writeFileSync(work('truncated.prt'), bytes.subarray(0, Math.floor(bytes.length / 2)));
-    expectExit(['info', work('truncated.prt')], 1, /truncated/);
+    expectExit(['info', work('truncated.prt')], EXIT_INVALID_INPUT, /truncated/);
     const flipped = Buffer.from(bytes);
     flipped[Math.floor(bytes.length * 0.7)] ^= 0x40;
     fs.writeFileSync(work('flipped.prt'), flipped);
-    expectExit(['info', work('flipped.prt')], 1, /checksum/);
+    expectExit(['info', work('flipped.prt')], EXIT_INVALID_INPUT, /checksum/);
     fs.writeFileSync(work('garbage.prt'), Buffer.from('definitely not an asset, just text'));
-    expectExit(['info', work('garbage.prt')], 1, /magic|truncated/);
-    expectExit(['info', work('missing.prt')], 1, /no such file/);
-    expectExit(['shade', out, '--light', 'constant', '--pass', 'interreflected'], 1, /no interreflected pass/);
+    expectExit(['info', work('garbage.prt')], EXIT_INVALID_INPUT, /magic|truncated/);
+    expectExit(['info', work('missing.prt')], EXIT_NOT_FOUND, /no such file/);
+    expectExit(['shade', out, '--light', 'constant', '--pass', 'interreflected'], EXIT_INVALID_INPUT, /no interreflected pass/);
     expectExit(['shade', out, '--light', 'constant', '--order', '9'], 2, /exceeds the asset's order/);
   },
 
   bad_scenes() {
-    expectExit([work('nothing.gltf'), '-o', work('x.prt')], 1, /nothing\.gltf/);
+    expectExit([work('nothing.gltf'), '-o', work('x.prt')], EXIT_NOT_FOUND, /nothing\.gltf/);
     fs.writeFileSync(work('broken.gltf'), '{"asset": {"version": "2.0"}, "meshes": [');
-    expectExit([work('broken.gltf'), '-o', work('x.prt'), '--quiet'], 1, /broken\.gltf/);
+    expectExit([work('broken.gltf'), '-o', work('x.prt'), '--quiet'], EXIT_INVALID_INPUT, /broken\.gltf/);
     fs.writeFileSync(work('empty.gltf'), '{"asset": {"version": "2.0"}}');
-    expectExit([work('empty.gltf'), '-o', work('x.prt'), '--quiet'], 1, /triangle/);
+    expectExit([work('empty.gltf'), '-o', work('x.prt'), '--quiet'], EXIT_INVALID_INPUT, /triangle/);
     check(!fs.existsSync(work('x.prt')), 'a failed bake wrote an asset');
   },
 
@@ -264,7 +267,7 @@ const cases = {
     const sceneBytes = fs.readFileSync(scene);
     const quickBowl = ['--order', '2', '--samples', '16', '--quiet'];
     const refused = (out, pattern) => {
-      const r = expectExit([scene, '-o', out, ...quickBowl], 1, pattern);
+      const r = expectExit([scene, '-o', out, ...quickBowl], EXIT_INVALID_INPUT, pattern);
       check(r.stderr.includes(`'${out}'`), `the refusal names ${out}: ${r.stderr}`);
     };
     const fifo = work('fifo');

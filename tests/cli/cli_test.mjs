@@ -13,6 +13,9 @@ if (!blenderDir) {
   process.exit(2);
 }
 
+// prt-bake's exit statuses (native/exit_status.h, docs/baker.md "Exit status").
+const EXIT_USAGE = 2, EXIT_NOT_FOUND = 3, EXIT_INVALID_INPUT = 4, EXIT_RESOURCE_EXHAUSTED = 6;
+
 const failures = [];
 let checks = 0;
 function check(ok, message) {
@@ -119,7 +122,7 @@ function expectTruncationsFail(src, cuts, kind) {
     const length = cut < 0 ? size + cut : cut < 1 ? Math.floor(size * cut) : cut;
     const p = truncated(src, length, `${path.basename(src)}.cut${length}`);
     if (!p) continue;
-    const r = expectExit(['probe', p, '--order', '2', '--format', 'equirect'], 1);
+    const r = expectExit(['probe', p, '--order', '2', '--format', 'equirect'], EXIT_INVALID_INPUT);
     check(r.stderr.includes(p), `${show(r)}: the message should name ${p}: ${JSON.stringify(r.stderr)}`);
     check(/truncated|corrupt|ends early/i.test(r.stderr) && r.stderr.includes(kind),
           `${show(r)}: the message should say the ${kind} file is truncated or corrupt: ${JSON.stringify(r.stderr)}`);
@@ -140,6 +143,20 @@ const cases = {
     expectExit(['probe', '--order', 'abc', '--help'], 0);
     r = expectExit(['--version'], 0);
     check(/^prt-bake \d+\.\d+\.\d+\n$/.test(r.stdout), `--version output: ${JSON.stringify(r.stdout)}`);
+    // Both help pages list every exit status the tool returns.
+    for (const args of [['--help'], ['--default', '--help']]) {
+      r = expectExit(args, 0);
+      for (const status of [0, 2, 3, 4, 5, 6, 7]) {
+        check(new RegExp(`^  ${status}  \\S`, 'm').test(r.stdout), `${show(r)} should list exit status ${status}: ${r.stdout}`);
+      }
+    }
+    // Standard output on a full disk (/dev/full: every write fails with ENOSPC) is an error,
+    // not a success: exit 6 (out of disk space), and the message says why.
+    const full = fs.openSync('/dev/full', 'w');
+    const f = spawnSync(bake, ['--help'], { encoding: 'utf8', stdio: ['ignore', full, 'pipe'] });
+    fs.closeSync(full);
+    check(f.status === EXIT_RESOURCE_EXHAUSTED && /cannot write to standard output: No space left on device/.test(f.stderr),
+          `prt-bake --help > /dev/full: expected exit ${EXIT_RESOURCE_EXHAUSTED} and a message, got exit ${f.status}, stderr ${JSON.stringify(f.stderr)}`);
   },
 
   usage_errors() {
@@ -179,9 +196,9 @@ const cases = {
       [['probe', 'a.exr', '--builtin', 'sky', '--order', '3'], /either IMAGE or --builtin/],
       [['probe', '--builtin', 'moon', '--order', '3'], /unknown --builtin 'moon'/],
     ];
-    for (const [args, pattern] of cases2) expectExit(args, 2, pattern);
+    for (const [args, pattern] of cases2) expectExit(args, EXIT_USAGE, pattern);
     // "--" ends the options: a file named "--json" is an IMAGE, here a missing one (exit 1).
-    expectExit(['probe', '--order', '2', '--', '--json'], 1, /'--json': no such file/);
+    expectExit(['probe', '--order', '2', '--', '--json'], EXIT_NOT_FOUND, /'--json': no such file/);
     // Valid spellings.
     expectExit([...sky, '--order=2', '--window=lanczos', '--window-width=1.5e0'], 0);
   },
@@ -235,14 +252,14 @@ const cases = {
 
   missing_file() {
     const missing = path.join(workDir, 'no', 'such', 'env.exr');
-    let r = expectExit(['probe', missing, '--order', '3'], 1, /no such file/);
+    let r = expectExit(['probe', missing, '--order', '3'], EXIT_NOT_FOUND, /no such file/);
     check(r.stderr.includes(missing), `${show(r)}: message should name the path: ${r.stderr}`);
-    r = expectExit(['probe', workDir, '--order', '3'], 1, /is a directory/);
+    r = expectExit(['probe', workDir, '--order', '3'], EXIT_INVALID_INPUT, /is a directory/);
     check(r.stderr.includes(workDir), `${show(r)}: message should name the path`);
     if (process.getuid && process.getuid() !== 0) {  // root reads anything
       const p = workFile('unreadable.exr', fs.readFileSync(fixture('const1_zip.exr')));
       fs.chmodSync(p, 0);
-      expectExit(['probe', p, '--order', '3'], 1, /cannot open: Permission denied/);
+      expectExit(['probe', p, '--order', '3'], EXIT_NOT_FOUND, /cannot open: Permission denied/);
     }
   },
 
@@ -252,11 +269,11 @@ const cases = {
     bytes[0] = 0x42;  // not the first byte of any recognised signature
     for (const name of ['random.bin', 'random.exr', 'random.png']) {
       const p = workFile(name, bytes);
-      const r = expectExit(['probe', p, '--order', '3'], 1, /unknown image format/);
+      const r = expectExit(['probe', p, '--order', '3'], EXIT_INVALID_INPUT, /unknown image format/);
       check(r.stderr.includes(p), `${show(r)}: message should name the path`);
     }
-    expectExit(['probe', workFile('text.hdr', 'hello, world\n'), '--order', '3'], 1, /unknown image format/);
-    expectExit(['probe', workFile('empty.exr', ''), '--order', '3'], 1, /file is empty/);
+    expectExit(['probe', workFile('text.hdr', 'hello, world\n'), '--order', '3'], EXIT_INVALID_INPUT, /unknown image format/);
+    expectExit(['probe', workFile('empty.exr', ''), '--order', '3'], EXIT_INVALID_INPUT, /file is empty/);
     // Content, not the extension, picks the decoder.
     const p = workFile('png_named.exr', fs.readFileSync(fixture('const1.png')));
     expectConstant(probeJson([p, '--order', '2']), 1, 1e-4, 4e-3);
@@ -309,10 +326,10 @@ const cases = {
     const j = probeJson([fixture('const1_cross.exr'), '--order', '2', '--format', 'equirect']);
     if (j) check(j.format === 'equirect' && j.format_guessed === false && /not 2:1/.test(j.stderr),
                  `${j.show}: explicit equirect on 4:3: ${j.format} ${JSON.stringify(j.stderr)}`);
-    expectExit(['probe', fixture('const1_zip.exr'), '--order', '2', '--format', 'angular'], 1, /must be square/);
-    expectExit(['probe', fixture('const1_zip.exr'), '--order', '2', '--format', 'cross'], 1, /4:3/);
+    expectExit(['probe', fixture('const1_zip.exr'), '--order', '2', '--format', 'angular'], EXIT_INVALID_INPUT, /must be square/);
+    expectExit(['probe', fixture('const1_zip.exr'), '--order', '2', '--format', 'cross'], EXIT_INVALID_INPUT, /4:3/);
     // No layout fits 5:3: the error asks for --format, which then works.
-    expectExit(['probe', fixture('odd_aspect.png'), '--order', '2'], 1, /50x30: cannot guess its layout.*pass --format/);
+    expectExit(['probe', fixture('odd_aspect.png'), '--order', '2'], EXIT_INVALID_INPUT, /50x30: cannot guess its layout.*pass --format/);
     probeJson([fixture('odd_aspect.png'), '--order', '2', '--format', 'equirect']);
   },
 
@@ -332,15 +349,15 @@ const cases = {
   },
 
   bad_content() {
-    expectExit(['probe', fixture('nan.exr'), '--order', '2'], 1, /nan\.exr': image has a non-finite value at pixel \(5, 7\)/);
-    expectExit(['probe', fixture('wide.exr'), '--order', '2'], 1, /image is too large \(40000x2\); each side must be at most 32768/);
-    expectExit(['probe', fixture('wide.png'), '--order', '2'], 1, /image is too large \(40000x1\); each side must be at most 32768/);
-    expectExit(['probe', fixture('zero.png'), '--order', '2'], 1, /zero\.png'.*(0-pixel|zero size)/);
+    expectExit(['probe', fixture('nan.exr'), '--order', '2'], EXIT_INVALID_INPUT, /nan\.exr': image has a non-finite value at pixel \(5, 7\)/);
+    expectExit(['probe', fixture('wide.exr'), '--order', '2'], EXIT_INVALID_INPUT, /image is too large \(40000x2\); each side must be at most 32768/);
+    expectExit(['probe', fixture('wide.png'), '--order', '2'], EXIT_INVALID_INPUT, /image is too large \(40000x1\); each side must be at most 32768/);
+    expectExit(['probe', fixture('zero.png'), '--order', '2'], EXIT_INVALID_INPUT, /zero\.png'.*(0-pixel|zero size)/);
     // An EXR signature followed by garbage reaches OpenEXR, whose exception becomes a message.
     const next = rng(7);
     const junk = Buffer.alloc(2048, 0).map(() => Math.floor(next() * 256));
     junk.set([0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0]);
-    expectExit(['probe', workFile('junk.exr', junk), '--order', '2'], 1, /junk\.exr': cannot read OpenEXR data/);
+    expectExit(['probe', workFile('junk.exr', junk), '--order', '2'], EXIT_INVALID_INPUT, /junk\.exr': cannot read OpenEXR data/);
   },
 
   blender_exr() {
@@ -387,7 +404,7 @@ const cases = {
         try { j = JSON.parse(r.stdout); } catch { /* reported below */ }
         check(j && j.coefficients.length === 9 && j.coefficients.flat().every(Number.isFinite),
               `${show(r)}: exit 0 but bad JSON: ${r.stdout.slice(0, 200)}`);
-      } else if (check(r.code === 1, `${show(r)}: expected exit 0 or 1, got ${detail(r)}`)) {
+      } else if (check(r.code === EXIT_INVALID_INPUT, `${show(r)}: expected exit 0 or ${EXIT_INVALID_INPUT}, got ${detail(r)}`)) {
         rejected++;
         check(r.stderr.includes(`prt-bake: error: '${p}'`), `${show(r)}: the error should start by naming the file: ${r.stderr}`);
       }
