@@ -15,6 +15,7 @@
 
 #include "prt/asset.h"
 #include "prt/checksum.h"
+#include "prt/little_endian.h"
 #include "prt/transfer_codec.h"
 #include "prt/sh_basis.h"
 
@@ -22,17 +23,6 @@ namespace prt {
 namespace {
 
 namespace L = asset_layout;
-
-std::uint16_t getU16(const std::uint8_t* p) {
-  return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
-}
-std::uint32_t getU32(const std::uint8_t* p) {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 | static_cast<std::uint32_t>(p[2]) << 16 |
-         static_cast<std::uint32_t>(p[3]) << 24;
-}
-std::uint64_t getU64(const std::uint8_t* p) {
-  return static_cast<std::uint64_t>(getU32(p)) | static_cast<std::uint64_t>(getU32(p + 4)) << 32;
-}
 
 std::string hex32(std::uint32_t v) {
   static constexpr char kDigits[] = "0123456789abcdef";
@@ -115,8 +105,8 @@ Status parseHeader(std::span<const std::uint8_t> bytes, Parsed* p) {
     return Status::error(StatusCode::kTruncated, "asset is " + num(bytes.size()) + " bytes, shorter than its " +
                                                      num(kAssetHeaderSize) + "-byte header");
   }
-  p->major = getU16(b + L::kVersionMajor);
-  p->minor = getU16(b + L::kVersionMinor);
+  p->major = readLe16(b + L::kVersionMajor);
+  p->minor = readLe16(b + L::kVersionMinor);
   // Checked before the header checksum: another major version may lay its header out
   // differently, and "too new" is the error its reader needs to see.
   if (p->major != kAssetVersionMajor) {
@@ -131,22 +121,22 @@ Status parseHeader(std::span<const std::uint8_t> bytes, Parsed* p) {
     return Status::error(StatusCode::kTruncated, "asset is " + num(bytes.size()) + " bytes, shorter than its " +
                                                      num(kAssetHeaderSize) + "-byte header");
   }
-  const std::uint32_t storedCrc = getU32(b + L::kHeaderCrc);
+  const std::uint32_t storedCrc = readLe32(b + L::kHeaderCrc);
   const std::uint32_t crc = crc32c(bytes.first(L::kHeaderCrc));
   if (storedCrc != crc) {
     return Status::error(StatusCode::kChecksumMismatch,
                          "header checksum " + hex32(storedCrc) + " stored, " + hex32(crc) + " computed");
   }
-  const std::uint32_t flags = getU32(b + L::kFlags);
+  const std::uint32_t flags = readLe32(b + L::kFlags);
   if (flags != 0) return corrupt("header flags " + hex32(flags) + " are not defined in format version 1");
   for (std::size_t i = L::kReserved; i < L::kHeaderCrc; ++i) {
     if (b[i] != 0) return corrupt("reserved header byte " + num(i) + " is not zero");
   }
-  p->order = getU32(b + L::kShOrder);
-  p->vertexCount = getU32(b + L::kVertexCount);
-  p->triangleCount = getU32(b + L::kTriangleCount);
-  p->sectionCount = getU32(b + L::kSectionCount);
-  p->fileSize = getU64(b + L::kFileSize);
+  p->order = readLe32(b + L::kShOrder);
+  p->vertexCount = readLe32(b + L::kVertexCount);
+  p->triangleCount = readLe32(b + L::kTriangleCount);
+  p->sectionCount = readLe32(b + L::kSectionCount);
+  p->fileSize = readLe64(b + L::kFileSize);
   if (p->order < static_cast<std::uint32_t>(kMinShOrder) || p->order > static_cast<std::uint32_t>(kMaxShOrder)) {
     return corrupt("header SH order " + num(p->order) + " is outside [" + num(kMinShOrder) + ", " + num(kMaxShOrder) + "]");
   }
@@ -273,7 +263,7 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
                                                      num(tableEnd));
   }
   const auto table = bytes.subspan(kAssetHeaderSize, static_cast<std::size_t>(tableBytes));
-  const std::uint32_t storedCrc = getU32(bytes.data() + L::kTableCrc);
+  const std::uint32_t storedCrc = readLe32(bytes.data() + L::kTableCrc);
   const std::uint32_t crc = crc32c(table);
   if (storedCrc != crc) {
     return Status::error(StatusCode::kChecksumMismatch,
@@ -284,14 +274,14 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
     const std::uint8_t* t = table.data() + static_cast<std::size_t>(i) * kAssetSectionEntrySize;
     Entry& e = p->entries[i];
     e.index = i;
-    e.type = getU32(t + L::kEntryType);
-    e.format = getU32(t + L::kEntryFormat);
-    e.offset = getU64(t + L::kEntryOffset);
-    e.size = getU64(t + L::kEntrySize);
-    e.arg0 = getU32(t + L::kEntryArg0);
-    e.arg1 = getU32(t + L::kEntryArg1);
-    e.arg2 = getU32(t + L::kEntryArg2);
-    e.crc = getU32(t + L::kEntryCrc);
+    e.type = readLe32(t + L::kEntryType);
+    e.format = readLe32(t + L::kEntryFormat);
+    e.offset = readLe64(t + L::kEntryOffset);
+    e.size = readLe64(t + L::kEntrySize);
+    e.arg0 = readLe32(t + L::kEntryArg0);
+    e.arg1 = readLe32(t + L::kEntryArg1);
+    e.arg2 = readLe32(t + L::kEntryArg2);
+    e.crc = readLe32(t + L::kEntryCrc);
     const std::string label = sectionLabel(e);
     if (e.type == 0) return corrupt(label + ": section type 0 is reserved");
     if (e.offset % kAssetAlignment != 0) {
@@ -367,10 +357,10 @@ Status checkPadding(std::span<const std::uint8_t> bytes, const Parsed& p) {
 Status parseMetadata(std::span<const std::uint8_t> payload, const Entry& e, Metadata* m) {
   // The entry check guaranteed 24 <= size <= 24 + 32 + 4096.
   const std::uint8_t* b = payload.data();
-  m->samples = getU64(b);
-  m->seed = getU64(b + 8);
-  const std::uint64_t samplingLength = getU32(b + 16);
-  const std::uint64_t nameLength = getU32(b + 20);
+  m->samples = readLe64(b);
+  m->seed = readLe64(b + 8);
+  const std::uint64_t samplingLength = readLe32(b + 16);
+  const std::uint64_t nameLength = readLe32(b + 20);
   if (kMetadataFixedBytes + samplingLength + nameLength != payload.size()) {
     return corrupt(sectionLabel(e) + " is " + num(payload.size()) + " bytes but holds a " + num(samplingLength) +
                    "-byte sampling name and a " + num(nameLength) + "-byte asset name after its 24 fixed bytes");
@@ -390,22 +380,15 @@ Status parseMetadata(std::span<const std::uint8_t> payload, const Entry& e, Meta
   return Status::ok();
 }
 
-// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks.
-float floatFromBits(std::uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
 Status parseLighting(std::span<const std::uint8_t> payload, const Entry& e, LightingInfo* out) {
   namespace LL = asset_lighting_layout;
   // The entry check guaranteed the size.
   const std::uint8_t* b = payload.data();
   LightingInfo l;
-  l.model = static_cast<LightingModel>(getU32(b + LL::kModel));
-  l.center = {floatFromBits(getU32(b + LL::kCenterX)), floatFromBits(getU32(b + LL::kCenterY)),
-              floatFromBits(getU32(b + LL::kCenterZ))};
-  l.radius = floatFromBits(getU32(b + LL::kRadius));
+  l.model = static_cast<LightingModel>(readLe32(b + LL::kModel));
+  l.center = {floatFromBits(readLe32(b + LL::kCenterX)), floatFromBits(readLe32(b + LL::kCenterY)),
+              floatFromBits(readLe32(b + LL::kCenterZ))};
+  l.radius = floatFromBits(readLe32(b + LL::kRadius));
   if (Status s = checkLightingInfo(l); !s.isOk()) return corrupt(sectionLabel(e) + ": " + s.message());
   *out = l;
   return Status::ok();
@@ -416,7 +399,7 @@ Status checkFloats(std::span<const std::uint8_t> payload, const Entry& e) {
   const std::size_t count = payload.size() / 4;
   const std::uint8_t* b = payload.data();
   for (std::size_t i = 0; i < count; ++i) {
-    if ((getU32(b + 4 * i) & 0x7F800000u) == 0x7F800000u) {
+    if ((readLe32(b + 4 * i) & 0x7F800000u) == 0x7F800000u) {
       return corrupt(sectionLabel(e) + ": value " + num(i) + " is not finite");
     }
   }
@@ -428,7 +411,7 @@ Status checkTransferFloats(std::span<const std::uint8_t> payload, const Entry& e
   if (Status s = checkFloats(payload, e); !s.isOk()) return s;
   const std::size_t count = payload.size() / 4;
   for (std::size_t i = 0; i < count; ++i) {
-    const float x = floatFromBits(getU32(payload.data() + 4 * i));
+    const float x = floatFromBits(readLe32(payload.data() + 4 * i));
     if (x > kMaxTransferMagnitude || x < -kMaxTransferMagnitude) {
       return corrupt(sectionLabel(e) + ": value " + num(i) + " is " + std::to_string(x) +
                      ", beyond the transfer range (65504)");
@@ -441,7 +424,7 @@ Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::
   const std::size_t count = payload.size() / 4;
   const std::uint8_t* b = payload.data();
   for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t index = getU32(b + 4 * i);
+    const std::uint32_t index = readLe32(b + 4 * i);
     if (index >= vertexCount) {
       return corrupt(sectionLabel(e) + ": index " + num(i) + " (triangle " + num(i / 3) + ") is " + num(index) +
                      ", not below the vertex count " + num(vertexCount));
@@ -561,7 +544,7 @@ void readFloats(std::span<const std::uint8_t> payload, float* dst) {
   if constexpr (std::endian::native == std::endian::little) {
     if (count > 0) std::memcpy(dst, payload.data(), count * 4);
   } else {
-    for (std::size_t i = 0; i < count; ++i) dst[i] = floatFromBits(getU32(payload.data() + 4 * i));
+    for (std::size_t i = 0; i < count; ++i) dst[i] = floatFromBits(readLe32(payload.data() + 4 * i));
   }
 }
 
@@ -694,7 +677,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     if constexpr (std::endian::native == std::endian::little) {
       std::memcpy(a.indices.data(), b.data(), b.size());
     } else {
-      for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = getU32(b.data() + 4 * i);
+      for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = readLe32(b.data() + 4 * i);
     }
   }
   for (int t : p.transfer) {
@@ -752,7 +735,7 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out) 
   readTriples(payload(p.albedo), &a.albedo);
   const auto b = payload(p.indices);
   a.indices.resize(b.size() / 4);
-  for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = getU32(b.data() + 4 * i);
+  for (std::size_t i = 0; i < a.indices.size(); ++i) a.indices[i] = readLe32(b.data() + 4 * i);
   a.samples = m.samples;
   a.seed = m.seed;
   a.sampling = std::move(m.sampling);

@@ -9,6 +9,7 @@
 
 #include "prt/asset.h"
 #include "prt/checksum.h"
+#include "prt/little_endian.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 
@@ -17,26 +18,8 @@ namespace {
 
 namespace L = asset_layout;
 
-// Everything is written byte by byte in little-endian order, so the encoding does not
-// depend on the host; bulk copies below are only taken where the host is little-endian.
-void putU16(std::uint8_t* p, std::uint16_t v) {
-  p[0] = static_cast<std::uint8_t>(v);
-  p[1] = static_cast<std::uint8_t>(v >> 8);
-}
-void putU32(std::uint8_t* p, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-void putU64(std::uint8_t* p, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-
-// memcpy, not std::bit_cast, which Emscripten's libc++ (LLVM 14) lacks. Only the big-endian
-// branches use it, hence maybe_unused.
-[[maybe_unused]] std::uint32_t floatBits(float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, 4);
-  return u;
-}
+// Everything is written in little-endian order (prt/little_endian.h), so the encoding does
+// not depend on the host; bulk copies below are only taken where the host is little-endian.
 
 // Writes `count` floats; memcpy is the same bytes on a little-endian host, per-value
 // stores are the portable fallback.
@@ -44,7 +27,7 @@ void putFloats(std::uint8_t* p, const float* src, std::size_t count) {
   if constexpr (std::endian::native == std::endian::little) {
     if (count > 0) std::memcpy(p, src, count * sizeof(float));
   } else {
-    for (std::size_t i = 0; i < count; ++i) putU32(p + 4 * i, floatBits(src[i]));
+    for (std::size_t i = 0; i < count; ++i) writeLe32(p + 4 * i, floatBits(src[i]));
   }
 }
 
@@ -246,16 +229,16 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
     std::uint8_t* p = base + s.offset;
     switch (s.type) {
       case AssetSectionType::kMetadata:
-        putU64(p, asset.samples);
-        putU64(p + 8, asset.seed);
-        putU32(p + 16, static_cast<std::uint32_t>(asset.sampling.size()));
-        putU32(p + 20, static_cast<std::uint32_t>(asset.name.size()));
+        writeLe64(p, asset.samples);
+        writeLe64(p + 8, asset.seed);
+        writeLe32(p + 16, static_cast<std::uint32_t>(asset.sampling.size()));
+        writeLe32(p + 20, static_cast<std::uint32_t>(asset.name.size()));
         if (!asset.sampling.empty()) std::memcpy(p + 24, asset.sampling.data(), asset.sampling.size());
         if (!asset.name.empty()) std::memcpy(p + 24 + asset.sampling.size(), asset.name.data(), asset.name.size());
         break;
       case AssetSectionType::kLighting: {
         namespace LL = asset_lighting_layout;
-        putU32(p + LL::kModel, static_cast<std::uint32_t>(asset.lighting.model));
+        writeLe32(p + LL::kModel, static_cast<std::uint32_t>(asset.lighting.model));
         static_assert(LL::kCenterY == LL::kCenterX + 4 && LL::kCenterZ == LL::kCenterX + 8 && LL::kRadius == LL::kCenterX + 12,
                       "centre and radius are four consecutive floats");
         const float fields[4] = {asset.lighting.center.x, asset.lighting.center.y, asset.lighting.center.z,
@@ -270,38 +253,38 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         if constexpr (std::endian::native == std::endian::little) {
           std::memcpy(p, asset.indices.data(), asset.indices.size() * 4);
         } else {
-          for (std::size_t k = 0; k < asset.indices.size(); ++k) putU32(p + 4 * k, asset.indices[k]);
+          for (std::size_t k = 0; k < asset.indices.size(); ++k) writeLe32(p + 4 * k, asset.indices[k]);
         }
         break;
       case AssetSectionType::kTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
       case AssetSectionType::kEncodedTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
     }
     std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
-    putU32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
-    putU32(e + L::kEntryFormat, static_cast<std::uint32_t>(s.format));
-    putU64(e + L::kEntryOffset, s.offset);
-    putU64(e + L::kEntrySize, s.size);
-    putU32(e + L::kEntryArg0, s.arg0);
-    putU32(e + L::kEntryArg1, s.arg1);
-    putU32(e + L::kEntryArg2, s.arg2);
-    putU32(e + L::kEntryCrc, crc32c({p, static_cast<std::size_t>(s.size)}));
+    writeLe32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
+    writeLe32(e + L::kEntryFormat, static_cast<std::uint32_t>(s.format));
+    writeLe64(e + L::kEntryOffset, s.offset);
+    writeLe64(e + L::kEntrySize, s.size);
+    writeLe32(e + L::kEntryArg0, s.arg0);
+    writeLe32(e + L::kEntryArg1, s.arg1);
+    writeLe32(e + L::kEntryArg2, s.arg2);
+    writeLe32(e + L::kEntryCrc, crc32c({p, static_cast<std::size_t>(s.size)}));
   }
 
   std::memcpy(base + L::kMagic, kAssetMagic, 4);
-  putU16(base + L::kVersionMajor, kAssetVersionMajor);
+  writeLe16(base + L::kVersionMajor, kAssetVersionMajor);
   // The lowest minor version that has every section written: a file without encoded
   // transfer stays readable, and byte-identical, for 1.1 readers.
   bool anyEncoded = false;
   for (const TransferPass& pass : asset.passes) anyEncoded = anyEncoded || !pass.encoded.empty();
-  putU16(base + L::kVersionMinor, anyEncoded ? kAssetVersionMinor : std::uint16_t{1});
-  putU32(base + L::kFlags, 0);
-  putU32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));
-  putU32(base + L::kVertexCount, static_cast<std::uint32_t>(vertexCount));
-  putU32(base + L::kTriangleCount, static_cast<std::uint32_t>(triangleCount));
-  putU32(base + L::kSectionCount, static_cast<std::uint32_t>(sections.size()));
-  putU32(base + L::kTableCrc, crc32c({base + kAssetHeaderSize, static_cast<std::size_t>(tableEnd - kAssetHeaderSize)}));
-  putU64(base + L::kFileSize, fileSize);
-  putU32(base + L::kHeaderCrc, crc32c({base, L::kHeaderCrc}));
+  writeLe16(base + L::kVersionMinor, anyEncoded ? kAssetVersionMinor : std::uint16_t{1});
+  writeLe32(base + L::kFlags, 0);
+  writeLe32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));
+  writeLe32(base + L::kVertexCount, static_cast<std::uint32_t>(vertexCount));
+  writeLe32(base + L::kTriangleCount, static_cast<std::uint32_t>(triangleCount));
+  writeLe32(base + L::kSectionCount, static_cast<std::uint32_t>(sections.size()));
+  writeLe32(base + L::kTableCrc, crc32c({base + kAssetHeaderSize, static_cast<std::size_t>(tableEnd - kAssetHeaderSize)}));
+  writeLe64(base + L::kFileSize, fileSize);
+  writeLe32(base + L::kHeaderCrc, crc32c({base, L::kHeaderCrc}));
 
   *out = std::move(bytes);
   return Status::ok();

@@ -111,8 +111,8 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
     return Status::error(StatusCode::kTruncated,
                          "transfer blob is " + num(bytes.size()) + " bytes, shorter than its " + num(kHeaderBytes) + "-byte header");
   }
-  info->versionMajor = getU16(b + layout::kVersionMajor);
-  info->versionMinor = getU16(b + layout::kVersionMinor);
+  info->versionMajor = readLe16(b + layout::kVersionMajor);
+  info->versionMinor = readLe16(b + layout::kVersionMinor);
   // Before the checksum: another major version may lay out its header differently.
   if (info->versionMajor != kTransferCodecVersionMajor) {
     return Status::error(StatusCode::kBadVersion,
@@ -124,7 +124,7 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
     return Status::error(StatusCode::kTruncated,
                          "transfer blob is " + num(bytes.size()) + " bytes, shorter than its " + num(kHeaderBytes) + "-byte header");
   }
-  const std::uint32_t storedCrc = getU32(b + layout::kHeaderCrc);
+  const std::uint32_t storedCrc = readLe32(b + layout::kHeaderCrc);
   const std::uint32_t crc = crc32c({b, layout::kHeaderCrc});
   if (storedCrc != crc) return Status::error(StatusCode::kChecksumMismatch, "transfer blob header checksum mismatch");
 
@@ -145,11 +145,11 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
   if (info->channels != 1 && info->channels != 3) {
     return corrupt("channels " + num(static_cast<std::uint64_t>(info->channels)) + " (expected 1 or 3)");
   }
-  info->vertexCount = getU32(b + layout::kVertexCount);
+  info->vertexCount = readLe32(b + layout::kVertexCount);
   if (info->vertexCount < 1 || info->vertexCount > kMaxTransferVertices) {
     return corrupt("vertex count " + num(info->vertexCount) + " is outside 1.." + num(kMaxTransferVertices));
   }
-  info->clusterCount = getU32(b + layout::kClusterCount);
+  info->clusterCount = readLe32(b + layout::kClusterCount);
   if (cpca) {
     const std::uint32_t maxClusters = std::min(info->vertexCount, kMaxTransferClusters);
     if (info->clusterCount < 1 || info->clusterCount > maxClusters) {
@@ -158,7 +158,7 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
   } else if (info->clusterCount != 0) {
     return corrupt("cluster count " + num(info->clusterCount) + " (expected 0 for " + transferEncodingName(info->encoding) + ")");
   }
-  *partCount = getU32(b + layout::kPartCount);
+  *partCount = readLe32(b + layout::kPartCount);
   const std::uint32_t expectedParts = static_cast<std::uint32_t>(info->order) + (cpca ? 1u : 0u);
   if (*partCount != expectedParts) {
     return corrupt("part count " + num(*partCount) + " (expected " + num(expectedParts) + " for order " +
@@ -167,7 +167,7 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
   for (std::size_t i = layout::kReserved; i < layout::kHeaderCrc; ++i) {
     if (b[i] != 0) return corrupt("reserved header byte " + num(i) + " is not zero");
   }
-  info->blobSize = getU64(b + layout::kBlobSize);
+  info->blobSize = readLe64(b + layout::kBlobSize);
   const std::uint64_t tableEnd = kHeaderBytes + kPartEntryBytes * std::uint64_t{*partCount};
   if (info->blobSize < tableEnd) {
     return corrupt("blob size " + num(info->blobSize) + " is smaller than header and part table (" + num(tableEnd) + ")");
@@ -196,7 +196,7 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
     return corrupt("transfer blob is " + num(bytes.size()) + " bytes, longer than its declared size " + num(info.blobSize));
   }
   const std::size_t tableBytes = static_cast<std::size_t>(tableEnd) - kHeaderBytes;
-  if (getU32(b + layout::kTableCrc) != crc32c({b + kHeaderBytes, tableBytes})) {
+  if (readLe32(b + layout::kTableCrc) != crc32c({b + kHeaderBytes, tableBytes})) {
     return Status::error(StatusCode::kChecksumMismatch, "transfer blob part table checksum mismatch");
   }
 
@@ -206,7 +206,7 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
   for (std::uint32_t i = 0; i < partCount; ++i) {
     const std::uint8_t* e = b + kHeaderBytes + kPartEntryBytes * i;
     TransferPartInfo& p = info.parts[i];
-    const std::uint16_t type = getU16(e + layout::kPartType), band = getU16(e + layout::kPartBand);
+    const std::uint16_t type = readLe16(e + layout::kPartType), band = readLe16(e + layout::kPartBand);
     const bool clusters = cpca && i == 0;
     const std::uint16_t wantType = static_cast<std::uint16_t>(clusters ? TransferPartType::kClusters : TransferPartType::kBand);
     const std::uint32_t wantBand = clusters ? 0u : i - (cpca ? 1u : 0u);
@@ -216,9 +216,9 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
     }
     p.type = static_cast<TransferPartType>(type);
     p.band = band;
-    p.crc = getU32(e + layout::kPartCrc);
-    p.offset = getU64(e + layout::kPartOffset);
-    p.size = getU64(e + layout::kPartSize);
+    p.crc = readLe32(e + layout::kPartCrc);
+    p.offset = readLe64(e + layout::kPartOffset);
+    p.size = readLe64(e + layout::kPartSize);
     if (p.offset != expectedOffset) {
       return corrupt(partLabel(i, p) + " starts at " + num(p.offset) + ", expected " + num(expectedOffset) +
                      " (parts follow the table back to back)");

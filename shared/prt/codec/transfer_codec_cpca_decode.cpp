@@ -48,7 +48,7 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
   const int levels = quantLevels(info.weightBits);
   if (part.size < 4) return corrupt(name + " is " + std::to_string(part.size) + " bytes, too short for its vector count");
   const std::uint8_t* p = bytes.data() + part.offset;
-  const std::uint32_t vectors = getU32(p);
+  const std::uint32_t vectors = readLe32(p);
   if (vectors > static_cast<std::uint32_t>(dims)) {
     return corrupt(name + ": " + std::to_string(vectors) + " principal vectors, more than the band's " + std::to_string(dims) +
                    " dimensions");
@@ -66,12 +66,12 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
   p += 4;
   std::vector<float> steps(K);
   for (std::size_t k = 0; k < K; ++k, p += 4) {
-    steps[k] = getF32(p);
+    steps[k] = readLeF32(p);
     if (Status s = checkStep(steps[k], levels, name + ": weight step of cluster " + std::to_string(k)); !s.isOk()) return s;
   }
   out->means.resize(K * D);
   for (std::size_t i = 0; i < K * D; ++i, p += 4) {
-    out->means[i] = getF32(p);
+    out->means[i] = readLeF32(p);
     if (!(std::fabs(out->means[i]) <= kMaxTransferMagnitude)) {  // NaN fails too
       return corrupt(name + ": mean of cluster " + std::to_string(i / D) + ", dimension " + std::to_string(i % D) +
                      " is not finite or beyond the transfer range (65504)");
@@ -79,7 +79,7 @@ Status decodeCpcaBand(std::span<const std::uint8_t> bytes, const TransferBlobInf
   }
   out->basis.resize(K * N * D);
   for (std::size_t i = 0; i < K * N * D; ++i, p += 2) {
-    const std::uint16_t h = getU16(p);
+    const std::uint16_t h = readLe16(p);
     if (!isFiniteHalf(h)) {
       return corrupt(name + ": principal vector " + std::to_string((i / D) % N) + " of cluster " + std::to_string(i / (D * N)) +
                      " is not finite");

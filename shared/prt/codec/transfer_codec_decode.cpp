@@ -42,7 +42,7 @@ Status decodeBand(std::span<const std::uint8_t> bytes, const TransferBlobInfo& i
     const std::string what = partName(index, part) + ", channel " + std::to_string(c) + " coefficient " + std::to_string(first + m);
     float step = 0.0f;
     if (quantised) {
-      step = getF32(p + 4 * s);
+      step = readLeF32(p + 4 * s);
       if (Status st = checkStep(step, levels, what + ": step"); !st.isOk()) return st;
     }
     if (!getStream(group, streams, vertices, bytesPerValue, s, values)) {

@@ -19,27 +19,6 @@ void putU64(std::vector<std::uint8_t>& out, std::uint64_t v) {
 }
 void putF32(std::vector<std::uint8_t>& out, float v) { putU32(out, floatBits(v)); }
 
-std::uint16_t getU16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
-std::uint32_t getU32(const std::uint8_t* p) {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-}
-std::uint64_t getU64(const std::uint8_t* p) {
-  return static_cast<std::uint64_t>(getU32(p)) | static_cast<std::uint64_t>(getU32(p + 4)) << 32;
-}
-float getF32(const std::uint8_t* p) { return floatFromBits(getU32(p)); }
-
-std::uint32_t floatBits(float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-float floatFromBits(std::uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
-
 std::uint32_t zigzag(std::int32_t value, int width) {
   const auto u = static_cast<std::uint32_t>(value);
   const std::uint32_t signMask = value < 0 ? 0xffffffffu : 0u;

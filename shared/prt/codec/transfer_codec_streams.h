@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "prt/little_endian.h"
+
 namespace prt::transfer_codec {
 
 // ---- Little-endian fields ----------------------------------------------------------------
@@ -19,14 +21,7 @@ void putU32(std::vector<std::uint8_t>& out, std::uint32_t v);
 void putU64(std::vector<std::uint8_t>& out, std::uint64_t v);
 void putF32(std::vector<std::uint8_t>& out, float v);
 
-// Readers of fields at `p`; the caller has checked that the bytes exist.
-std::uint16_t getU16(const std::uint8_t* p);
-std::uint32_t getU32(const std::uint8_t* p);
-std::uint64_t getU64(const std::uint8_t* p);
-float getF32(const std::uint8_t* p);
-
-std::uint32_t floatBits(float f);
-float floatFromBits(std::uint32_t u);
+// Readers of fields at a pointer, and floatBits/floatFromBits: prt/little_endian.h.
 
 // ---- Integer streams ---------------------------------------------------------------------
 
