@@ -157,7 +157,9 @@ StatusCode statusCodeForErrno(int errorNumber) {
 }
 
 Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is then refused as not a
+  // regular file); reads of regular files ignore the flag.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) return errnoError(path, errno == ENOENT ? "no such file" : "cannot open: " + errnoText());
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {

@@ -11,7 +11,7 @@
 namespace prt {
 
 // Reads all of `path` into *out; fails (naming the path) when it is missing, not a regular
-// file, unreadable, or larger than maxBytes.
+// file (a FIFO or device is refused without blocking), unreadable, or larger than maxBytes.
 // The Status code for a failed system call's errno: kNotFound for a missing path,
 // kResourceExhausted for a full disk, a quota or no memory or descriptors, else kIoError.
 StatusCode statusCodeForErrno(int errorNumber);

@@ -26,6 +26,7 @@
 #include "baker/scene/gltf_texture.h"
 #include "baker/scene/mesh_cleanup.h"
 #include "baker/scene/mesh_normals.h"
+#include "native/file_io.h"
 
 namespace prt::bake {
 namespace {
@@ -52,26 +53,6 @@ std::string plural(std::size_t n, const char* singular, const char* pluralForm) 
 }
 
 // ---- the file and its container -------------------------------------------------------
-
-Status readWholeFile(const std::string& path, std::vector<unsigned char>* bytes) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) return Status::error(StatusCode::kNotFound, "no such file");
-  if (!std::filesystem::is_regular_file(status)) return fail("not a regular file");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return Status::error(StatusCode::kIoError, "cannot read the file size: " + ec.message());
-  if (size == 0) return fail("the file is empty");
-  if (size > kMaxGltfFileBytes) {
-    return fail("the file has " + std::to_string(size) + " bytes, above the limit of " +
-                std::to_string(kMaxGltfFileBytes));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::error(StatusCode::kIoError, "cannot open the file");
-  bytes->resize(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes->data()), static_cast<std::streamsize>(size));
-  if (static_cast<std::uintmax_t>(in.gcount()) != size) return Status::error(StatusCode::kIoError, "cannot read the file");
-  return Status::ok();
-}
 
 std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t at) {
   std::uint32_t v;
@@ -719,11 +700,10 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
 Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::string>* warnings) {
   const std::string quoted = "'" + path + "'";
   auto failFile = [&](const std::string& problem) { return fail(quoted + ": " + problem); };
-  // The same, keeping the code of a Status from below (not found, I/O error, ...).
-  auto failFileWith = [&](const Status& s) { return Status::error(s.code(), quoted + ": " + s.message()); };
 
   std::vector<unsigned char> bytes;
-  if (Status s = readWholeFile(path, &bytes); !s.isOk()) return failFileWith(s);
+  if (Status s = readFileBytes(path, kMaxGltfFileBytes, &bytes); !s.isOk()) return s;  // names the path
+  if (bytes.empty()) return failFile("the file is empty");
 
   std::filesystem::path fsPath(path);
   std::string baseDir = fsPath.parent_path().string();

@@ -110,6 +110,14 @@ const cases = {
     fs.writeFileSync(work('garbage.prt'), Buffer.from('definitely not an asset, just text'));
     expectExit(['info', work('garbage.prt')], EXIT_INVALID_INPUT, /magic|truncated/);
     expectExit(['info', work('missing.prt')], EXIT_NOT_FOUND, /no such file/);
+    // A FIFO given as an input is refused at once, not waited on (no writer ever comes).
+    const fifo = work('fifo.prt');
+    fs.rmSync(fifo, { force: true });
+    check(spawnSync('mkfifo', [fifo]).status === 0, 'mkfifo failed');
+    expectExit(['info', fifo], EXIT_INVALID_INPUT, /fifo\.prt': not a regular file/);
+    expectExit([fifo.replace(/\.prt$/, '.gltf'), '-o', work('x.prt')], EXIT_NOT_FOUND, /no such file/);
+    fs.renameSync(fifo, work('fifo.gltf'));
+    expectExit([work('fifo.gltf'), '-o', work('x.prt'), '--quiet'], EXIT_INVALID_INPUT, /fifo\.gltf': not a regular file/);
     expectExit(['shade', out, '--light', 'constant', '--pass', 'interreflected'], EXIT_INVALID_INPUT, /no interreflected pass/);
     expectExit(['shade', out, '--light', 'constant', '--order', '9'], 2, /exceeds the asset's order/);
   },
