@@ -231,6 +231,8 @@ Status loadImageUnguarded(const std::string& path, RgbImage* out) {
   const auto st = std::filesystem::status(path, ec);
   if (st.type() == std::filesystem::file_type::not_found) return Status::error(StatusCode::kNotFound, "no such file");
   if (st.type() == std::filesystem::file_type::directory) return problem("is a directory, not an image file");
+  // A FIFO or device would block or never end: refused before it is opened.
+  if (!ec && st.type() != std::filesystem::file_type::regular) return problem("not a regular file");
 
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) return failed(std::string("cannot open: ") + std::strerror(errno));

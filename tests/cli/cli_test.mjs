@@ -255,6 +255,11 @@ const cases = {
     let r = expectExit(['probe', missing, '--order', '3'], EXIT_NOT_FOUND, /no such file/);
     check(r.stderr.includes(missing), `${show(r)}: message should name the path: ${r.stderr}`);
     r = expectExit(['probe', workDir, '--order', '3'], EXIT_INVALID_INPUT, /is a directory/);
+    // A FIFO is refused at once, not waited on.
+    const fifo = workFile('env.fifo', '');
+    fs.rmSync(fifo);
+    check(spawnSync('mkfifo', [fifo]).status === 0, 'mkfifo failed');
+    expectExit(['probe', fifo, '--order', '3'], EXIT_INVALID_INPUT, /env\.fifo': not a regular file/);
     check(r.stderr.includes(workDir), `${show(r)}: message should name the path`);
     if (process.getuid && process.getuid() !== 0) {  // root reads anything
       const p = workFile('unreadable.exr', fs.readFileSync(fixture('const1_zip.exr')));
