@@ -175,6 +175,45 @@ TEST(ExrLoader, HalfChannelsThroughGeneralWriter) {
     for (int x = 0; x < 5; ++x) expectPixel(image, x, y, halfExact(0, x, y), halfExact(1, x, y), halfExact(2, x, y));
 }
 
+// "EXR and HDR values are used as stored": a float channel keeps its 24-bit mantissa and
+// its range. A sun in a float EXR is commonly brighter than half's largest value (65504).
+TEST(ExrLoader, FloatChannelsKeepFullPrecision) {
+  ScratchDir dir;
+  const std::vector<float> values = {0.1f, 1.0f / 3.0f, 3.0e-6f, 1.0e-30f, 2.5f};
+  const std::string path = dir.path("float.exr");
+  writeExr(path, exrSpec(5, 1),
+           [&](int c, int x, int) { return values[static_cast<std::size_t>(x)] * static_cast<float>(c + 1); });
+  const RgbImage image = loadOk(path);
+  ASSERT_EQ(image.width, 5);
+  for (int x = 0; x < 5; ++x) {
+    const float v = values[static_cast<std::size_t>(x)];
+    expectPixel(image, x, 0, v, v * 2.0f, v * 3.0f);
+  }
+}
+
+TEST(ExrLoader, FloatValuesAboveHalfRangeLoad) {
+  ScratchDir dir;
+  const std::string path = dir.path("sun.exr");
+  writeExr(path, exrSpec(2, 1),
+           [](int c, int x, int) { return x == 0 ? 150000.0f + static_cast<float>(c) : 70000.0f; });
+  const RgbImage image = loadOk(path);
+  ASSERT_EQ(image.width, 2);
+  expectPixel(image, 0, 0, 150000.0f, 150001.0f, 150002.0f);
+  expectPixel(image, 1, 0, 70000.0f, 70000.0f, 70000.0f);
+}
+
+TEST(ExrLoader, FloatRgbaDropsAlpha) {
+  ScratchDir dir;
+  ExrSpec spec = exrSpec(3, 2);
+  spec.channels = {"R", "G", "B", "A"};
+  const std::string path = dir.path("rgba.exr");
+  writeExr(path, spec, [](int c, int x, int y) { return c == 3 ? 0.5f : halfExact(c, x, y) + 0.01f; });
+  const RgbImage image = loadOk(path);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x)
+      expectPixel(image, x, y, halfExact(0, x, y) + 0.01f, halfExact(1, x, y) + 0.01f, halfExact(2, x, y) + 0.01f);
+}
+
 // Missing colour channels read as 0; channels other than R, G, B, Y are ignored.
 TEST(ExrLoader, OddChannelSets) {
   ScratchDir dir;
@@ -212,6 +251,27 @@ TEST(ExrLoader, OddChannelSets) {
         }
       }
     }
+  }
+}
+
+// A luminance-only file is grey: R = G = B = Y, as stored.
+TEST(ExrLoader, LuminanceOnlyIsGrey) {
+  ScratchDir dir;
+  for (const Imf::PixelType type : {Imf::HALF, Imf::FLOAT}) {
+    ExrSpec spec = exrSpec(4, 3);
+    spec.channels = {"Y"};
+    spec.type = type;
+    const std::string path = dir.path(type == Imf::HALF ? "y_half.exr" : "y_float.exr");
+    // 0.3 + ... is not a half value: the float file must keep it exactly.
+    const auto value = [type](int, int x, int y) {
+      const float v = 0.3f + static_cast<float>(x + 4 * y);
+      return type == Imf::HALF ? static_cast<float>(half(v)) : v;
+    };
+    writeExr(path, spec, value);
+    const RgbImage image = loadOk(path);
+    ASSERT_EQ(image.width, 4);
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 4; ++x) expectPixel(image, x, y, value(0, x, y), value(0, x, y), value(0, x, y));
   }
 }
 
