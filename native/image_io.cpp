@@ -150,7 +150,14 @@ struct StbSource {
     auto* self = static_cast<StbSource*>(user);
     if (std::fseek(self->file, n, SEEK_CUR) != 0) self->readError = true;
   }
-  static int eof(void* user) { return std::feof(static_cast<StbSource*>(user)->file) ? 1 : 0; }
+  // Not feof() alone: skip()'s fseek clears the end-of-file indicator, and once stb_image
+  // has seen the end it reads no more, so the indicator would never come back. Its loops
+  // that scan for a marker until eof() (JPEG, after a segment skipped past the end) would
+  // then spin forever.
+  static int eof(void* user) {
+    auto* self = static_cast<StbSource*>(user);
+    return self->readPastEnd || std::feof(self->file) ? 1 : 0;
+  }
 
   Status rewind() {
     readPastEnd = false;

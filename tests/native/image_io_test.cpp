@@ -713,6 +713,23 @@ TEST(JpegLoader, GradientDecodesThroughSrgb) {
   }
 }
 
+// Cuts inside the APP0 segment (bytes 6-10), which stb_image skips past the end of the
+// file, used to make loadImage spin forever.
+TEST(JpegLoader, TruncatedFilesFail) {
+  ScratchDir dir;
+  const Bytes full = jpegBytes(32, 32, noiseCodes(32, 32), 90);
+  ASSERT_TRUE(loadOk(dir.write("full.jpg", full)).width == 32);
+  for (std::size_t cut = 1; cut + 2 < full.size(); cut += (cut < 700 ? 5 : 1)) {
+    SCOPED_TRACE(::testing::Message() << "cut at " << cut << " of " << full.size());
+    const std::string path = dir.write("cut.jpg", Bytes(full.begin(), full.begin() + static_cast<std::ptrdiff_t>(cut)));
+    const Status s = loadFails(path);
+    EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+    if (cut >= 3) {
+      EXPECT_TRUE(contains(s.message(), "JPEG"));
+    }
+  }
+}
+
 // ---- Failures before any decoder --------------------------------------------------------
 
 TEST(ImageLoader, MissingFile) {
