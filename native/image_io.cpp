@@ -13,6 +13,10 @@
 #include <new>
 #include <vector>
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfRgbaFile.h>
 #include <stb_image.h>
 
@@ -32,14 +36,24 @@ Status loadExr(const std::string& path, RgbImage* out) {
   // OpenEXR reports every problem (bad header, truncated chunk, unsupported compression)
   // by throwing; this function is the wall that turns them into a Status.
   try {
-    Imf::RgbaInputFile file(path.c_str());
-    if ((file.channels() & (Imf::WRITE_R | Imf::WRITE_G | Imf::WRITE_B | Imf::WRITE_Y)) == 0) {
+    // Imf::RgbaInputFile reads every channel as half: a float channel would lose its low
+    // mantissa bits, and values above 65504 (a sun) would become infinite. So pixels are
+    // read as float through the general interface, with RgbaInputFile's choice of
+    // channels: Y, when present, as grey (missing R, G or B as 0 otherwise), and only
+    // luminance/chroma files (Y with RY, BY) through RgbaInputFile, which converts them.
+    Imf::InputFile file(path.c_str());
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool hasY = channels.findChannel("Y") != nullptr;
+    const bool hasChroma = channels.findChannel("RY") != nullptr || channels.findChannel("BY") != nullptr;
+    if (!hasY && !channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B")) {
       return problem("OpenEXR file has no R, G, B or Y channel");
     }
+    std::unique_ptr<Imf::RgbaInputFile> yca;
+    if (hasY && hasChroma) yca = std::make_unique<Imf::RgbaInputFile>(path.c_str());
     // The display window is the image; the data window holds the stored pixels, which may
     // cover only part of it (the rest is black) or spill past it (cropped).
-    const Imath::Box2i disp = file.displayWindow();
-    const Imath::Box2i data = file.dataWindow();
+    const Imath::Box2i disp = file.header().displayWindow();
+    const Imath::Box2i data = file.header().dataWindow();
     const std::int64_t width = std::int64_t{disp.max.x} - disp.min.x + 1;
     const std::int64_t height = std::int64_t{disp.max.y} - disp.min.y + 1;
     if (Status s = checkImageSize(width, height); !s.isOk()) return s;
@@ -60,27 +74,48 @@ Status loadExr(const std::string& path, RgbImage* out) {
     const int y0 = std::max(disp.min.y, data.min.y), y1 = std::min(disp.max.y, data.max.y);
     if (x0 <= x1) {
       // Strips of 256 rows (the largest chunk any compression uses, DWAB's) bound memory
-      // without decompressing a chunk twice.
+      // without decompressing a chunk twice. 3 floats per pixel (only the first for Y).
       constexpr int kStrip = 256;
       const std::size_t stride = static_cast<std::size_t>(dataWidth);
-      std::vector<Imf::Rgba> strip(stride * kStrip);
+      std::vector<float> strip(stride * kStrip * 3);
+      std::vector<Imf::Rgba> ycaStrip(yca ? stride * kStrip : 0);
       for (int ys = y0; ys <= y1; ys += kStrip) {
         const int ye = std::min(y1, ys + kStrip - 1);
-        // OpenEXR addresses the frame buffer by absolute pixel coordinates.
-        Imf::Rgba* origin = strip.data() - static_cast<std::ptrdiff_t>(data.min.x) -
-                            static_cast<std::ptrdiff_t>(ys) * static_cast<std::ptrdiff_t>(stride);
-        file.setFrameBuffer(origin, 1, stride);
-        file.readPixels(ys, ye);
+        if (yca) {
+          // OpenEXR addresses the frame buffer by absolute pixel coordinates.
+          Imf::Rgba* origin = ycaStrip.data() - static_cast<std::ptrdiff_t>(data.min.x) -
+                              static_cast<std::ptrdiff_t>(ys) * static_cast<std::ptrdiff_t>(stride);
+          yca->setFrameBuffer(origin, 1, stride);
+          yca->readPixels(ys, ye);
+          for (std::size_t i = 0; i < stride * static_cast<std::size_t>(ye - ys + 1); ++i) {
+            strip[i * 3] = ycaStrip[i].r;
+            strip[i * 3 + 1] = ycaStrip[i].g;
+            strip[i * 3 + 2] = ycaStrip[i].b;
+          }
+        } else {
+          Imf::FrameBuffer fb;
+          const Imath::V2i origin(data.min.x, ys);
+          const std::size_t xStride = 3 * sizeof(float), yStride = xStride * stride;
+          const char* names[3] = {"R", "G", "B"};
+          for (int c = 0; c < (hasY ? 1 : 3); ++c) {
+            // Channels the file lacks read as the fill value, 0.
+            fb.insert(hasY ? "Y" : names[c], Imf::Slice::Make(Imf::FLOAT, strip.data() + c, origin, dataWidth,
+                                                              ye - ys + 1, xStride, yStride, 1, 1, 0.0));
+          }
+          file.setFrameBuffer(fb);
+          file.readPixels(ys, ye);
+        }
+        const bool grey = hasY && !yca;
         out->rgb.resize(rowFloats * static_cast<std::size_t>(ye - disp.min.y + 1), 0.0f);
         for (int y = ys; y <= ye; ++y) {
-          const Imf::Rgba* row = strip.data() + static_cast<std::size_t>(y - ys) * stride;
+          const float* row = strip.data() + static_cast<std::size_t>(y - ys) * stride * 3;
           float* dst = out->rgb.data() + rowFloats * static_cast<std::size_t>(y - disp.min.y);
           for (int x = x0; x <= x1; ++x) {
-            const Imf::Rgba& p = row[x - data.min.x];
+            const float* p = row + static_cast<std::size_t>(x - data.min.x) * 3;
             float* d = dst + static_cast<std::size_t>(x - disp.min.x) * 3;
-            d[0] = p.r;
-            d[1] = p.g;
-            d[2] = p.b;
+            d[0] = p[0];
+            d[1] = grey ? p[0] : p[1];
+            d[2] = grey ? p[0] : p[2];
           }
         }
       }
@@ -118,7 +153,14 @@ struct StbSource {
     auto* self = static_cast<StbSource*>(user);
     if (std::fseek(self->file, n, SEEK_CUR) != 0) self->readError = true;
   }
-  static int eof(void* user) { return std::feof(static_cast<StbSource*>(user)->file) ? 1 : 0; }
+  // Not feof() alone: skip()'s fseek clears the end-of-file indicator, and once stb_image
+  // has seen the end it reads no more, so the indicator would never come back. Its loops
+  // that scan for a marker until eof() (JPEG, after a segment skipped past the end) would
+  // then spin forever.
+  static int eof(void* user) {
+    auto* self = static_cast<StbSource*>(user);
+    return self->readPastEnd || std::feof(self->file) ? 1 : 0;
+  }
 
   Status rewind() {
     readPastEnd = false;
