@@ -31,8 +31,11 @@ Status checkImageSize(std::int64_t width, std::int64_t height);
 // Loads `path` into `out` (row 0 at the top). On success the image passes checkImage:
 // 1..kMaxImageSide on each side, every value finite. Every failure (missing, unreadable,
 // unknown format, corrupt or truncated data, zero or oversized dimensions, non-finite
-// pixels) returns an error (kInvalidArgument; kNotFinite for inf/NaN pixels) whose message
-// names the file. Never throws; `out` is left empty on failure.
+// pixels, not a regular file) returns an error whose message names the file: kNotFound for
+// a missing file, kIoError (or kNotFound, kResourceExhausted, by errno) when the system
+// refuses a read, kResourceExhausted when out of memory, kNotFinite for inf/NaN pixels,
+// kInvalidArgument for everything about the contents. Never throws; `out` is left empty on
+// failure.
 Status loadImage(const std::string& path, RgbImage* out);
 
 }  // namespace prt

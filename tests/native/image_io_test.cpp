@@ -736,7 +736,7 @@ TEST(ImageLoader, MissingFile) {
   ScratchDir dir;
   const std::string path = dir.path("absent.exr");
   const Status s = loadFails(path);
-  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);  // image_io.h: every failure
+  EXPECT_EQ(s.code(), StatusCode::kNotFound);
   EXPECT_EQ(s.message(), cat("'", path, "': no such file"));
 }
 
