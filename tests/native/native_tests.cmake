@@ -1,6 +1,7 @@
 # Unit tests of native/ (native only): the image loaders on files written at test time
 # with OpenEXR, stb_image_write and hand-built bytes (valid and malformed), JSON text
-# against nlohmann_json's parser, the strict flag parser and the exit-status table.
+# against nlohmann_json's parser, the strict flag parser, the exit-status table and the
+# file reader's refusals.
 # include()d from tests/CMakeLists.txt; paths are relative to this file.
 
 if(NOT TARGET OpenEXR::OpenEXR)  # native/ finds it GLOBAL
@@ -15,11 +16,12 @@ add_executable(prt_native_tests
   ${CMAKE_CURRENT_LIST_DIR}/json_text_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cli_args_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exit_status_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/file_io_test.cpp
 )
 # OpenEXR and prt_stb (stb_image_write, and stb_image as a second HDR decoder) write and
 # cross-check the test images.
 target_link_libraries(prt_native_tests PRIVATE
-  prt_image_io prt_json_text prt_cli_args prt_exit_status
+  prt_image_io prt_json_text prt_cli_args prt_exit_status prt_file_io
   OpenEXR::OpenEXR prt_stb nlohmann_json::nlohmann_json GTest::gtest_main)
 target_compile_options(prt_native_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME native_tests COMMAND prt_native_tests)
