@@ -8,7 +8,9 @@
 namespace prt {
 namespace {
 
-Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+// kUsage: every error here is about the command line, so callers can map it to exit
+// status 2 (native/exit_status.h) without knowing which check failed.
+Status usage(std::string message) { return Status::error(StatusCode::kUsage, std::move(message)); }
 
 const FlagSpec* findSpec(std::span<const FlagSpec> specs, std::string_view name) {
   for (const FlagSpec& s : specs)
