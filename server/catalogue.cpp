@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
 
 #include "content_hash.h"
 #include "encoded_variants.h"
 #include "native/json_text.h"
+#include "os_error.h"
 #include "public_error.h"
 #include "request_target.h"
 #include "temp_file.h"
@@ -40,7 +40,7 @@ Status readAll(int fd, std::uint64_t size, std::vector<std::uint8_t>* out) {
   while (done < out->size()) {
     const ssize_t n = ::pread(fd, out->data() + done, out->size() - done, static_cast<off_t>(done));
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return Status::error(StatusCode::kInvalidArgument, std::string("read failed: ") + std::strerror(errno));
+    if (n < 0) return errnoStatus(errno, "read failed");
     if (n == 0) return Status::error(StatusCode::kTruncated, "file shrank while being read");
     done += static_cast<std::size_t>(n);
   }

@@ -49,7 +49,8 @@ std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000.0 + 0.5));
 }
 
-// Opens, binds and listens; the error says what to do about a busy port.
+// Opens, binds and listens; the error says what to do about a busy port. Failing to bind
+// or listen is kUnavailable (exit 7): the port or the address may be free later.
 Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acceptor* out) {
   beast::error_code ec;
   const asio::ip::address address = asio::ip::make_address(options.bind, ec);
@@ -59,7 +60,12 @@ Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acc
   tcp::acceptor acceptor(ioc);
   acceptor.open(endpoint.protocol(), ec);
   if (ec) {
-    return Status::error(StatusCode::kInvalidArgument, "cannot open a socket: " + ec.message());
+    // Out of descriptors is a limit; no IPv6 on this host (EAFNOSUPPORT) is unavailable.
+    const bool exhausted = ec == boost::system::errc::too_many_files_open ||
+                           ec == boost::system::errc::too_many_files_open_in_system ||
+                           ec == boost::system::errc::not_enough_memory;
+    return Status::error(exhausted ? StatusCode::kResourceExhausted : StatusCode::kUnavailable,
+                         "cannot open a socket: " + ec.message());
   }
   // Lets a restarted server bind while old connections sit in TIME_WAIT; on Linux it does
   // not let two servers listen on one port.
@@ -70,12 +76,10 @@ Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acc
     if (ec == asio::error::address_in_use) hint = " (another server is using the port; stop it or pick another --port)";
     if (ec == asio::error::access_denied) hint = " (ports below 1024 need privileges; pick another --port)";
     if (ec == boost::system::errc::address_not_available) hint = " (no interface has this address; check --bind)";
-    return Status::error(StatusCode::kInvalidArgument, "cannot listen on " + where + ": " + ec.message() + hint);
+    return Status::error(StatusCode::kUnavailable, "cannot listen on " + where + ": " + ec.message() + hint);
   }
   acceptor.listen(asio::socket_base::max_listen_connections, ec);
-  if (ec) {
-    return Status::error(StatusCode::kInvalidArgument, "cannot listen on " + where + ": " + ec.message());
-  }
+  if (ec) return Status::error(StatusCode::kUnavailable, "cannot listen on " + where + ": " + ec.message());
   *out = std::move(acceptor);
   return Status::ok();
 }

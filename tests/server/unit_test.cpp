@@ -1,16 +1,22 @@
 // The server's pure pieces, checked directly: content hash, request-target parsing,
-// content negotiation, ranges, log escaping, media types.
+// content negotiation, ranges, log escaping, media types, the Status codes of failed
+// system calls.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstdlib>
 #include <string>
 
 #include "access_log.h"
 #include "content_hash.h"
 #include "mime_types.h"
 #include "negotiation.h"
+#include "os_error.h"
 #include "public_error.h"
 #include "request_checks.h"
 #include "request_target.h"
+#include "root_dir.h"
+#include "temp_file.h"
 
 namespace prt::serve {
 namespace {
@@ -212,6 +218,37 @@ TEST(MimeTypes, CoverTheClientsFiles) {
   EXPECT_EQ(contentTypeFor("dir.d/noext"), "application/octet-stream");
   EXPECT_TRUE(isCompressibleType("application/wasm"));
   EXPECT_FALSE(isCompressibleType("image/png"));
+}
+
+TEST(OsError, CodesFollowErrno) {
+  EXPECT_EQ(codeForErrno(ENOENT), StatusCode::kNotFound);
+  EXPECT_EQ(codeForErrno(ENOTDIR), StatusCode::kNotFound);
+  EXPECT_EQ(codeForErrno(ENOSPC), StatusCode::kResourceExhausted);
+  EXPECT_EQ(codeForErrno(EMFILE), StatusCode::kResourceExhausted);
+  EXPECT_EQ(codeForErrno(ENOMEM), StatusCode::kResourceExhausted);
+  EXPECT_EQ(codeForErrno(EACCES), StatusCode::kIoError);
+  EXPECT_EQ(codeForErrno(EIO), StatusCode::kIoError);
+  const Status s = errnoStatus(ENOENT, "--root '/x' is not a directory");
+  EXPECT_EQ(s.code(), StatusCode::kNotFound);
+  EXPECT_EQ(s.message(), "--root '/x' is not a directory: No such file or directory");
+}
+
+TEST(OsError, RootDirAndTempFileReportTheirCodes) {
+  RootDir dir;
+  EXPECT_EQ(RootDir::open("/nonexistent-prt-serve-test", "--root", &dir).code(), StatusCode::kNotFound);
+  EXPECT_EQ(RootDir::open("/proc/self/status", "--root", &dir).code(), StatusCode::kNotFound);  // a file
+  EXPECT_EQ(RootDir::open("", "--web", &dir).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(RootDir::open("/", "--root", &dir).isOk());
+
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old ? old : "";
+  ::setenv("TMPDIR", "/nonexistent-prt-serve-test", 1);
+  FileRef file;
+  const Status s = writeTempFile("bytes", &file);
+  if (old) ::setenv("TMPDIR", saved.c_str(), 1);
+  else ::unsetenv("TMPDIR");
+  EXPECT_EQ(s.code(), StatusCode::kNotFound) << s.toString();
+  EXPECT_NE(s.message().find("'/nonexistent-prt-serve-test'"), std::string::npos) << s.message();
 }
 
 }  // namespace
