@@ -38,9 +38,11 @@ struct ServeOptions {
 // The text --help prints.
 const char* serveHelpText();
 
-// Parses `args` (without the program name) into *out. Errors (kInvalidArgument) name the
-// flag: unknown flags, missing values, values out of range, a missing --root. --help and
-// --version are ok without --root.
+// Parses `args` (without the program name) into *out with the shared strict parser
+// (native/cli_args.h). Errors (kUsage) name the flag: unknown flags, missing values, a flag
+// given twice, values out of range, a --bind that is no IP address, stray arguments, a
+// missing --root. --help or -h anywhere wins over every error; --version is ok without
+// --root.
 Status parseServeOptions(std::span<const std::string> args, ServeOptions* out);
 
 }  // namespace prt::serve

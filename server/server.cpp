@@ -54,7 +54,8 @@ std::chrono::milliseconds millis(double seconds) {
 Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acceptor* out) {
   beast::error_code ec;
   const asio::ip::address address = asio::ip::make_address(options.bind, ec);
-  if (ec) return Status::error(StatusCode::kInvalidArgument, "--bind '" + options.bind + "' is not an IP address");
+  // parseServeOptions has checked --bind already.
+  if (ec) return Status::error(StatusCode::kInternal, "--bind '" + options.bind + "' is not an IP address");
   const tcp::endpoint endpoint(address, static_cast<unsigned short>(options.port));
   const std::string where = (address.is_v6() ? "[" + options.bind + "]" : options.bind) + ":" + std::to_string(options.port);
   tcp::acceptor acceptor(ioc);

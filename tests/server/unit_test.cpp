@@ -1,16 +1,18 @@
 // The server's pure pieces, checked directly: content hash, request-target parsing,
-// content negotiation, ranges, log escaping, media types, the Status codes of failed
-// system calls.
+// content negotiation, ranges, log escaping, media types, options, the Status codes of
+// failed system calls.
 #include <gtest/gtest.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "access_log.h"
 #include "content_hash.h"
 #include "mime_types.h"
 #include "negotiation.h"
+#include "options.h"
 #include "os_error.h"
 #include "public_error.h"
 #include "request_checks.h"
@@ -218,6 +220,49 @@ TEST(MimeTypes, CoverTheClientsFiles) {
   EXPECT_EQ(contentTypeFor("dir.d/noext"), "application/octet-stream");
   EXPECT_TRUE(isCompressibleType("application/wasm"));
   EXPECT_FALSE(isCompressibleType("image/png"));
+}
+
+TEST(ServeOptions, EveryFlagReachesItsField) {
+  const std::vector<std::string> args{"--root", "/r", "--web=/w", "--bind", "::1", "--port", "0", "--threads", "3",
+                                      "--max-connections", "10", "--max-connections-per-client", "5",
+                                      "--read-timeout", "0.25", "--write-timeout=7", "--max-parts-mib", "0", "--quiet"};
+  ServeOptions o;
+  ASSERT_TRUE(parseServeOptions(args, &o).isOk());
+  EXPECT_EQ(o.root, "/r");
+  EXPECT_EQ(o.web, "/w");
+  EXPECT_EQ(o.bind, "::1");
+  EXPECT_EQ(o.port, 0);
+  EXPECT_EQ(o.threads, 3);
+  EXPECT_EQ(o.maxConnections, 10);
+  EXPECT_EQ(o.perClientLimit(), 5);
+  EXPECT_DOUBLE_EQ(o.readTimeoutSeconds, 0.25);
+  EXPECT_DOUBLE_EQ(o.writeTimeoutSeconds, 7.0);
+  EXPECT_EQ(o.maxPartsMiB, 0);
+  EXPECT_TRUE(o.quiet);
+  EXPECT_FALSE(o.help);
+  EXPECT_FALSE(o.version);
+
+  ServeOptions d;
+  ASSERT_TRUE(parseServeOptions(std::vector<std::string>{"--root", "/r"}, &d).isOk());
+  EXPECT_EQ(d.bind, "127.0.0.1");
+  EXPECT_EQ(d.port, 8080);
+  EXPECT_EQ(d.perClientLimit(), 256);  // a quarter of --max-connections 1024
+  EXPECT_FALSE(d.quiet);
+}
+
+TEST(ServeOptions, CommandLineErrorsAreUsage) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {}, {"--root"}, {"--root", "/r", "--nope"}, {"--root", "/r", "x"}, {"--root", "/r", "--port", "-1"},
+           {"--root", "/r", "--read-timeout", "0.01"}, {"--root", "/r", "--bind", "localhost"},
+           {"--root", "/r", "--quiet", "--quiet"}}) {
+    ServeOptions o;
+    const Status s = parseServeOptions(args, &o);
+    EXPECT_EQ(s.code(), StatusCode::kUsage) << s.toString();
+    EXPECT_FALSE(s.message().empty());
+  }
+  ServeOptions v;
+  EXPECT_TRUE(parseServeOptions(std::vector<std::string>{"--version"}, &v).isOk());  // no --root needed
+  EXPECT_TRUE(v.version);
 }
 
 TEST(OsError, CodesFollowErrno) {
