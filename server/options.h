@@ -9,11 +9,6 @@
 
 namespace prt::serve {
 
-// Process exit statuses.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;     // the environment: missing directory, busy port
-inline constexpr int kExitUsageError = 2;  // the command line
-
 struct ServeOptions {
   std::string root;                 // --root: baked assets and environment maps
   std::string web;                  // --web: the client's static files ("" = none)
@@ -35,7 +30,7 @@ struct ServeOptions {
   }
 };
 
-// The text --help prints.
+// The text --help prints, before native/exit_status.h's table of exit statuses.
 const char* serveHelpText();
 
 // Parses `args` (without the program name) into *out with the shared strict parser

@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <exception>
 #include <mutex>
+#include <new>
 #include <optional>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -29,11 +31,6 @@ namespace {
 
 constexpr auto kShutdownGrace = std::chrono::seconds(10);
 constexpr auto kRecheck = std::chrono::milliseconds(1000);
-
-int fail(const std::string& message) {
-  std::fprintf(stderr, "prt-serve: error: %s\n", message.c_str());
-  return kExitFailure;
-}
 
 // Each connection holds a descriptor, and responses hold files: lift the soft limit
 // (often 1024) to the hard one so --max-connections is what caps connections.
@@ -85,16 +82,16 @@ Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acc
   return Status::ok();
 }
 
-int run(const ServeOptions& options) {
+Status run(const ServeOptions& options) {
   ::signal(SIGPIPE, SIG_IGN);  // sendfile to a closed socket must fail with EPIPE, not kill us
   raiseDescriptorLimit();
 
   RootDir root;
-  if (Status s = RootDir::open(options.root, "--root", &root); !s.isOk()) return fail(s.message());
+  PRT_RETURN_IF_ERROR(RootDir::open(options.root, "--root", &root));
   std::optional<RootDir> web;
   if (!options.web.empty()) {
     RootDir dir;
-    if (Status s = RootDir::open(options.web, "--web", &dir); !s.isOk()) return fail(s.message());
+    PRT_RETURN_IF_ERROR(RootDir::open(options.web, "--web", &dir));
     web = std::move(dir);
   }
   const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -112,7 +109,7 @@ int run(const ServeOptions& options) {
   tcp::acceptor acceptor(ioc);
   // Bound before the scan, so a busy port is reported at once and early clients wait in
   // the backlog instead of being refused.
-  if (Status s = openAcceptor(ioc, options, &acceptor); !s.isOk()) return fail(s.message());
+  PRT_RETURN_IF_ERROR(openAcceptor(ioc, options, &acceptor));
   const unsigned short port = acceptor.local_endpoint().port();
 
   CatalogueOptions catalogueOptions;
@@ -195,18 +192,27 @@ int run(const ServeOptions& options) {
   } else {
     std::fprintf(stderr, "prt-serve: stopped; %zu connections were closed without finishing\n", left);
   }
-  return kExitOk;
+  return Status::ok();
 }
 
 }  // namespace
 
-int runServer(const ServeOptions& options) noexcept {
+Status runServer(const ServeOptions& options) noexcept {
   try {
     return run(options);
+  } catch (const std::bad_alloc&) {
+    return Status::error(StatusCode::kResourceExhausted, "out of memory");
+  } catch (const std::system_error& e) {
+    // std::thread reports a process out of threads as EAGAIN.
+    const bool exhausted = e.code() == std::errc::resource_unavailable_try_again;
+    return Status::error(exhausted ? StatusCode::kResourceExhausted : StatusCode::kInternal,
+                         std::string(exhausted ? "" : "internal error: ") + e.what());
   } catch (const std::exception& e) {
-    return fail(std::string("internal error: ") + e.what());
+    // Handlers catch their own; what reaches here (a thread that cannot start, a throwing
+    // constructor) is a failure to start or stop the server.
+    return Status::error(StatusCode::kInternal, std::string("internal error: ") + e.what());
   } catch (...) {
-    return fail("internal error");
+    return Status::error(StatusCode::kInternal, "internal error");
   }
 }
 

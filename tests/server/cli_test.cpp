@@ -1,6 +1,9 @@
 // prt-serve's command line: help, usage errors, and clear failures for a missing
-// directory or a busy port.
+// directory or a busy port, each with its exit status from native/exit_status.h.
 #include <gtest/gtest.h>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
 
 #include "serve_env.h"
 
@@ -8,6 +11,11 @@ namespace prt::serve::test {
 namespace {
 
 constexpr auto kQuick = std::chrono::seconds(30);
+
+// The statuses of native/exit_status.h, spelled out: the test pins the numbers scripts see.
+constexpr int kUsage = 2;
+constexpr int kNotFound = 3;
+constexpr int kUnavailable = 7;
 
 TEST(Cli, HelpAndVersion) {
   const ExitResult help = runServe({"--help"}, kQuick);
@@ -17,7 +25,15 @@ TEST(Cli, HelpAndVersion) {
                            "--max-parts-mib"}) {
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   }
+  // The exit-status table closes the help, so scripts can look the numbers up.
+  const std::size_t table = help.out.find("Exit status:");
+  ASSERT_NE(table, std::string::npos) << help.out;
+  for (const char* row : {"  2  usage", "  3  a file is missing", "  7  unavailable"}) {
+    EXPECT_NE(help.out.find(row, table), std::string::npos) << row;
+  }
   EXPECT_EQ(runServe({"-h"}, kQuick).exitCode, 0);
+  // Help wins over every error, as for prt-bake.
+  EXPECT_EQ(runServe({"--bogus", "--port", "x", "--help"}, kQuick).exitCode, 0);
   const ExitResult version = runServe({"--version"}, kQuick);
   EXPECT_EQ(version.exitCode, 0);
   EXPECT_TRUE(version.out.starts_with("prt-serve "));
@@ -53,7 +69,7 @@ TEST(Cli, UsageErrors) {
            Case{{"--root", tree.root, "--bind", "not-an-address"}, "--bind 'not-an-address' is not an IP address"},
        }) {
     const ExitResult r = runServe(c.args, kQuick);
-    EXPECT_EQ(r.exitCode, 2) << c.message;
+    EXPECT_EQ(r.exitCode, kUsage) << c.message;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("Try 'prt-serve --help'"), std::string::npos);
   }
@@ -62,14 +78,18 @@ TEST(Cli, UsageErrors) {
 TEST(Cli, MissingDirectoriesAreClearErrors) {
   const TestTree tree = makeTestTree(workDir());
   ExitResult r = runServe({"--root", tree.dir + "/nope", "--port", "0"}, kQuick);
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, kNotFound);
   EXPECT_NE(r.err.find("--root '" + tree.dir + "/nope' is not a directory: No such file or directory"), std::string::npos)
       << r.err;
+  EXPECT_EQ(r.err.find("Try 'prt-serve --help'"), std::string::npos) << "not a usage error: " << r.err;
   r = runServe({"--root", tree.root + "/room.prt", "--port", "0"}, kQuick);
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, kNotFound);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
+  r = runServe({"--root", tree.root + "/room.prt/below", "--port", "0"}, kQuick);  // ENOTDIR
+  EXPECT_EQ(r.exitCode, kNotFound);
+  EXPECT_NE(r.err.find("is not a directory: Not a directory"), std::string::npos) << r.err;
   r = runServe({"--root", tree.root, "--web", tree.dir + "/missing-web", "--port", "0"}, kQuick);
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, kNotFound);
   EXPECT_NE(r.err.find("--web '" + tree.dir + "/missing-web' is not a directory"), std::string::npos) << r.err;
 }
 
@@ -79,11 +99,32 @@ TEST(Cli, BusyPortIsAClearError) {
   ASSERT_TRUE(first);
   const std::string port = std::to_string(first->port());
   const ExitResult second = runServe({"--root", tree.root, "--port", port}, kQuick);
-  EXPECT_EQ(second.exitCode, 1);
+  EXPECT_EQ(second.exitCode, kUnavailable);
   EXPECT_NE(second.err.find("cannot listen on 127.0.0.1:" + port), std::string::npos) << second.err;
   EXPECT_NE(second.err.find("in use"), std::string::npos) << second.err;
   EXPECT_TRUE(healthy(first->port()));  // the first server is unaffected
   EXPECT_EQ(first->stop(SIGINT, std::chrono::seconds(20)), 0);  // SIGINT stops it like SIGTERM
+}
+
+TEST(Cli, PortHeldByAnyProgramIsUnavailable) {
+  // A plain listening socket, not a prt-serve: the status depends on the port, not on who
+  // holds it.
+  boost::asio::io_context ioc;
+  boost::asio::ip::tcp::acceptor holder(ioc, {boost::asio::ip::make_address("127.0.0.1"), 0});
+  const std::string port = std::to_string(holder.local_endpoint().port());
+  const TestTree tree = makeTestTree(workDir());
+  const ExitResult r = runServe({"--root", tree.root, "--port", port}, kQuick);
+  EXPECT_EQ(r.exitCode, kUnavailable) << r.err;
+  EXPECT_NE(r.err.find("another server is using the port"), std::string::npos) << r.err;
+}
+
+TEST(Cli, AddressNoInterfaceHasIsUnavailable) {
+  // 192.0.2.1 is TEST-NET-1 (RFC 5737), never assigned to a host.
+  const TestTree tree = makeTestTree(workDir());
+  const ExitResult r = runServe({"--root", tree.root, "--bind", "192.0.2.1", "--port", "0"}, kQuick);
+  EXPECT_EQ(r.exitCode, kUnavailable) << r.err;
+  EXPECT_NE(r.err.find("cannot listen on 192.0.2.1:0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("check --bind"), std::string::npos) << r.err;
 }
 
 }  // namespace
