@@ -296,5 +296,17 @@ TEST(OsError, RootDirAndTempFileReportTheirCodes) {
   EXPECT_NE(s.message().find("'/nonexistent-prt-serve-test'"), std::string::npos) << s.message();
 }
 
+TEST(OsError, ReadAllAtReadsTheDescriptorAndNamesShortFiles) {
+  FileRef file;
+  ASSERT_TRUE(writeTempFile("abc", &file).isOk());
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(readAllAt(file->fd(), 3, &bytes).isOk());
+  EXPECT_EQ(std::string(bytes.begin(), bytes.end()), "abc");
+  EXPECT_EQ(readAllAt(file->fd(), 5, &bytes).code(), StatusCode::kTruncated);  // shrank since its stat
+  const Status bad = readAllAt(-1, 3, &bytes);
+  EXPECT_EQ(bad.code(), StatusCode::kIoError);
+  EXPECT_NE(bad.message().find("Bad file descriptor"), std::string::npos) << bad.message();
+}
+
 }  // namespace
 }  // namespace prt::serve
