@@ -8,6 +8,8 @@
 namespace prt {
 namespace {
 
+// kUsage: every error here is about the command line, so callers can map it to exit
+// status 2 (native/exit_status.h) without knowing which check failed.
 Status usage(std::string message) { return Status::error(StatusCode::kUsage, std::move(message)); }
 
 const FlagSpec* findSpec(std::span<const FlagSpec> specs, std::string_view name) {

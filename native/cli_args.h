@@ -30,12 +30,12 @@ struct ParsedArgs {
 // True when args (before any "--") hold "--help" or "-h": help wins over every other error.
 bool wantsHelp(std::span<const std::string> args);
 
-// Splits `args` by `specs`. Errors (kUsage): unknown flag, missing value, a value
-// given to a switch, a flag given twice.
+// Splits `args` by `specs`. Errors (kUsage): unknown flag, missing value, a value given to
+// a switch, a flag given twice.
 Status parseArgs(std::span<const std::string> args, std::span<const FlagSpec> specs, ParsedArgs* out);
 
 // Parses a whole decimal integer in [min, max]; trailing characters, overflow and values out
-// of range are errors that name the flag and the valid range.
+// of range are errors (kUsage) that name the flag and the valid range.
 Status parseIntArg(std::string_view flag, std::string_view text, int min, int max, int* out);
 
 // Parses a whole finite decimal number in [min, max], same rules as parseIntArg.

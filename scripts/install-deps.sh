@@ -16,9 +16,9 @@ packages=(
   libmeshoptimizer-dev
   # JSON checks of glTF files that tinygltf does not make (header-only)
   nlohmann-json3-dev
-  # the server: Boost.Beast/Asio (header-only), and the encoders of its precompressed
-  # variants (gzip, zstd, brotli)
-  libboost-dev zlib1g-dev libzstd-dev libbrotli-dev
+  # the server: Boost.Beast/Asio (header-only), the encoders of its precompressed
+  # variants (gzip, zstd, brotli), and XXH64 for its content-addressed URLs
+  libboost-dev zlib1g-dev libzstd-dev libbrotli-dev libxxhash-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
   # a corpus of real glTF files, valid and malformed (glTF 1.0 among them), for loader tests

@@ -1,10 +1,6 @@
 #include "catalogue.h"
 
 #include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 
 #include "content_hash.h"
 #include "encoded_variants.h"
@@ -31,20 +27,6 @@ std::string baseName(const std::string& rel) {
 std::string stem(const std::string& fileName) {
   const std::size_t dot = fileName.rfind('.');
   return dot == std::string::npos ? fileName : fileName.substr(0, dot);
-}
-
-// Reads all `size` bytes of `fd` from offset 0.
-Status readAll(int fd, std::uint64_t size, std::vector<std::uint8_t>* out) {
-  out->resize(static_cast<std::size_t>(size));
-  std::size_t done = 0;
-  while (done < out->size()) {
-    const ssize_t n = ::pread(fd, out->data() + done, out->size() - done, static_cast<off_t>(done));
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return Status::error(StatusCode::kInvalidArgument, std::string("read failed: ") + std::strerror(errno));
-    if (n == 0) return Status::error(StatusCode::kTruncated, "file shrank while being read");
-    done += static_cast<std::size_t>(n);
-  }
-  return Status::ok();
 }
 
 bool urlSafeName(std::string_view name) {
@@ -85,7 +67,7 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
     return e;
   }
   std::vector<std::uint8_t> bytes;
-  if (Status s = readAll(file->fd(), e->bytes, &bytes); !s.isOk()) {
+  if (Status s = readAllAt(file->fd(), e->bytes, &bytes); !s.isOk()) {
     e->error = s.message();
     *unstable = true;
     return e;

@@ -1,9 +1,9 @@
 // The 64-bit content hash behind the server's content-addressed asset URLs and ETags.
-// XXH64 (Yann Collet's xxHash, 64-bit variant), written out here from its published
-// specification: fast (several GB/s, so hashing at scan time costs little next to reading
-// the file), well distributed, and with reference implementations in every language, so a
-// client or a CDN script can recompute a URL's hash. It names versions; it is not a
-// defence against someone crafting collisions (assets come from the operator's disk).
+// XXH64 (Yann Collet's xxHash, 64-bit variant), from Debian's libxxhash: fast (several
+// GB/s, so hashing at scan time costs little next to reading the file), well distributed,
+// and with implementations in every language, so a client or a CDN script can recompute a
+// URL's hash. It names versions; it is not a defence against someone crafting collisions
+// (assets come from the operator's disk).
 #pragma once
 
 #include <cstdint>

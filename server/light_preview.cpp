@@ -52,7 +52,8 @@ Status makePreviewPng(const RgbImage& image, int maxWidth, std::string* png) {
   }
   png->clear();
   if (!stbi_write_png_to_func(appendBytes, png, w, h, 3, pixels.data(), w * 3)) {
-    return Status::error(StatusCode::kInvalidArgument, "PNG encoding failed");
+    // stb fails only when it cannot allocate the compressed image.
+    return Status::error(StatusCode::kResourceExhausted, "PNG encoding failed (out of memory)");
   }
   return Status::ok();
 }

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "native/exit_status.h"
 #include "options.h"
 #include "server.h"
 
@@ -13,17 +14,22 @@
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   prt::serve::ServeOptions options;
-  if (prt::Status s = prt::serve::parseServeOptions(args, &options); !s.isOk()) {
-    std::fprintf(stderr, "prt-serve: error: %s\nTry 'prt-serve --help'.\n", s.message().c_str());
-    return prt::serve::kExitUsageError;
-  }
-  if (options.help) {
+  prt::Status status = prt::serve::parseServeOptions(args, &options);
+  if (status.isOk() && options.help) {
     std::fputs(prt::serve::serveHelpText(), stdout);
-    return prt::serve::kExitOk;
+    std::fputs("\n", stdout);
+    std::fputs(prt::exitStatusHelp(), stdout);
+    return prt::kExitOk;
   }
-  if (options.version) {
+  if (status.isOk() && options.version) {
     std::printf("prt-serve %s\n", PRT_VERSION);
-    return prt::serve::kExitOk;
+    return prt::kExitOk;
   }
-  return prt::serve::runServer(options);
+  if (status.isOk()) status = prt::serve::runServer(options);
+  if (status.isOk()) return prt::kExitOk;
+  // Every failure, from the command line to a busy port, leaves through here: one line on
+  // stderr and the exit status of its code, from the table prt-bake shares.
+  std::fprintf(stderr, "prt-serve: error: %s\n", status.message().c_str());
+  if (status.code() == prt::StatusCode::kUsage) std::fputs("Try 'prt-serve --help'.\n", stderr);
+  return prt::exitStatusFor(status.code());
 }

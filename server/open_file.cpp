@@ -2,6 +2,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+
+#include "os_error.h"
+
 namespace prt::serve {
 
 FileStamp stampOf(const struct stat& st) {
@@ -16,6 +20,19 @@ FileStamp stampOf(const struct stat& st) {
 
 OpenFile::~OpenFile() {
   if (fd_ >= 0) ::close(fd_);
+}
+
+Status readAllAt(int fd, std::uint64_t size, std::vector<std::uint8_t>* out) {
+  out->resize(static_cast<std::size_t>(size));
+  std::size_t done = 0;
+  while (done < out->size()) {
+    const ssize_t n = ::pread(fd, out->data() + done, out->size() - done, static_cast<off_t>(done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errnoStatus(errno, "read failed");
+    if (n == 0) return Status::error(StatusCode::kTruncated, "file shrank while being read");
+    done += static_cast<std::size_t>(n);
+  }
+  return Status::ok();
 }
 
 }  // namespace prt::serve

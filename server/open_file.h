@@ -6,6 +6,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
+
+#include "prt/status.h"
 
 namespace prt::serve {
 
@@ -40,5 +43,12 @@ class OpenFile {
 };
 
 using FileRef = std::shared_ptr<const OpenFile>;
+
+// Reads bytes [0, size) of the open file `fd` into *out (pread, so the descriptor's offset
+// is left alone and responses may share it). By descriptor, not by path as
+// native/file_io.h's readFileBytes does: the bytes must come from the very file
+// RootDir::openRelative checked, which a path reopened later need not name. Errors:
+// errno's code (os_error.h) for a failed read, kTruncated when the file shrank below `size`.
+Status readAllAt(int fd, std::uint64_t size, std::vector<std::uint8_t>* out);
 
 }  // namespace prt::serve

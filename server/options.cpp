@@ -1,34 +1,42 @@
 #include "options.h"
 
-#include <charconv>
-#include <cmath>
-#include <cstdlib>
+#include <boost/asio/ip/address.hpp>
+
 #include <string_view>
+
+#include "native/cli_args.h"
 
 namespace prt::serve {
 namespace {
 
-Status usage(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
+Status usage(std::string message) { return Status::error(StatusCode::kUsage, std::move(message)); }
 
-Status parseInt(std::string_view flag, const std::string& text, int min, int max, int* out) {
-  int v = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || v < min || v > max) {
-    return usage(std::string(flag) + " must be a whole number from " + std::to_string(min) + " to " +
-                 std::to_string(max) + ", not '" + text + "'");
-  }
+constexpr FlagSpec kFlags[] = {
+    {"--root", true},          {"--web", true},
+    {"--bind", true},          {"--port", true},
+    {"--threads", true},       {"--max-connections", true},
+    {"--max-connections-per-client", true},
+    {"--read-timeout", true},  {"--write-timeout", true},
+    {"--max-parts-mib", true}, {"--quiet", false},
+    {"--version", false},
+};
+
+// Timeouts: from 50 ms (a fraction of a second is a useful setting) to a day.
+constexpr float kMinSeconds = 0.05f;
+constexpr float kMaxSeconds = 86400.0f;
+
+Status parseSeconds(const ParsedArgs& p, std::string_view flag, double* out) {
+  const std::string* text = p.value(flag);
+  if (!text) return Status::ok();
+  float v = 0;
+  PRT_RETURN_IF_ERROR(parseFloatArg(flag, *text, kMinSeconds, kMaxSeconds, &v));
   *out = v;
   return Status::ok();
 }
 
-Status parseSeconds(std::string_view flag, const std::string& text, double* out) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0.05 || v > 86400) {
-    return usage(std::string(flag) + " must be a number of seconds from 0.05 to 86400, not '" + text + "'");
-  }
-  *out = v;
-  return Status::ok();
+Status parseInt(const ParsedArgs& p, std::string_view flag, int min, int max, int* out) {
+  const std::string* text = p.value(flag);
+  return text ? parseIntArg(flag, *text, min, max, out) : Status::ok();
 }
 
 }  // namespace
@@ -72,56 +80,33 @@ const char* serveHelpText() {
 }
 
 Status parseServeOptions(std::span<const std::string> args, ServeOptions* out) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string flag = args[i];
-    std::string value;
-    bool hasInlineValue = false;
-    if (flag.starts_with("--") && flag.find('=') != std::string::npos) {
-      value = flag.substr(flag.find('=') + 1);
-      flag = flag.substr(0, flag.find('='));
-      hasInlineValue = true;
-    }
-    if (flag == "-h" || flag == "--help") {
-      out->help = true;
-      continue;
-    }
-    if (flag == "--version") {
-      out->version = true;
-      continue;
-    }
-    if (flag == "--quiet") {
-      if (hasInlineValue) return usage("--quiet takes no value");
-      out->quiet = true;
-      continue;
-    }
-    static constexpr std::string_view kValued[] = {"--root", "--web", "--bind", "--port", "--threads",
-                                                   "--max-connections", "--max-connections-per-client",
-                                                   "--read-timeout", "--write-timeout", "--max-parts-mib"};
-    bool known = false;
-    for (std::string_view k : kValued) known = known || flag == k;
-    if (!known) {
-      return usage(flag.starts_with("-") ? "unknown option '" + flag + "'" : "unexpected argument '" + flag + "'");
-    }
-    if (!hasInlineValue) {
-      if (i + 1 >= args.size()) return usage(flag + " needs a value");
-      value = args[++i];
-    }
-    Status s;
-    if (flag == "--root") out->root = value;
-    else if (flag == "--web") out->web = value;
-    else if (flag == "--bind") out->bind = value;
-    else if (flag == "--port") s = parseInt(flag, value, 0, 65535, &out->port);
-    else if (flag == "--threads") s = parseInt(flag, value, 1, 256, &out->threads);
-    else if (flag == "--max-connections") s = parseInt(flag, value, 1, 1000000, &out->maxConnections);
-    else if (flag == "--max-connections-per-client") {
-      s = parseInt(flag, value, 1, 1000000, &out->maxConnectionsPerClient);
-    }
-    else if (flag == "--read-timeout") s = parseSeconds(flag, value, &out->readTimeoutSeconds);
-    else if (flag == "--write-timeout") s = parseSeconds(flag, value, &out->writeTimeoutSeconds);
-    else if (flag == "--max-parts-mib") s = parseInt(flag, value, 0, 1024, &out->maxPartsMiB);
-    if (!s.isOk()) return s;
+  if (wantsHelp(args)) {
+    out->help = true;
+    return Status::ok();
   }
-  if (out->help || out->version) return Status::ok();
+  ParsedArgs p;
+  PRT_RETURN_IF_ERROR(parseArgs(args, kFlags, &p));
+  if (!p.positionals.empty()) return usage("unexpected argument '" + p.positionals.front() + "'");
+  if (const std::string* v = p.value("--root")) out->root = *v;
+  if (const std::string* v = p.value("--web")) out->web = *v;
+  if (const std::string* v = p.value("--bind")) {
+    // Checked here, with the other values, so a typo is a usage error (exit 2) reported
+    // before the directories are opened.
+    boost::system::error_code ec;
+    boost::asio::ip::make_address(*v, ec);
+    if (ec) return usage("--bind '" + *v + "' is not an IP address");
+    out->bind = *v;
+  }
+  PRT_RETURN_IF_ERROR(parseInt(p, "--port", 0, 65535, &out->port));
+  PRT_RETURN_IF_ERROR(parseInt(p, "--threads", 1, 256, &out->threads));
+  PRT_RETURN_IF_ERROR(parseInt(p, "--max-connections", 1, 1000000, &out->maxConnections));
+  PRT_RETURN_IF_ERROR(parseInt(p, "--max-connections-per-client", 1, 1000000, &out->maxConnectionsPerClient));
+  PRT_RETURN_IF_ERROR(parseSeconds(p, "--read-timeout", &out->readTimeoutSeconds));
+  PRT_RETURN_IF_ERROR(parseSeconds(p, "--write-timeout", &out->writeTimeoutSeconds));
+  PRT_RETURN_IF_ERROR(parseInt(p, "--max-parts-mib", 0, 1024, &out->maxPartsMiB));
+  out->quiet = p.has("--quiet");
+  out->version = p.has("--version");
+  if (out->version) return Status::ok();
   if (out->root.empty()) return usage("--root DIR is required");
   return Status::ok();
 }

@@ -9,11 +9,6 @@
 
 namespace prt::serve {
 
-// Process exit statuses.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;     // the environment: missing directory, busy port
-inline constexpr int kExitUsageError = 2;  // the command line
-
 struct ServeOptions {
   std::string root;                 // --root: baked assets and environment maps
   std::string web;                  // --web: the client's static files ("" = none)
@@ -35,12 +30,14 @@ struct ServeOptions {
   }
 };
 
-// The text --help prints.
+// The text --help prints, before native/exit_status.h's table of exit statuses.
 const char* serveHelpText();
 
-// Parses `args` (without the program name) into *out. Errors (kInvalidArgument) name the
-// flag: unknown flags, missing values, values out of range, a missing --root. --help and
-// --version are ok without --root.
+// Parses `args` (without the program name) into *out with the shared strict parser
+// (native/cli_args.h). Errors (kUsage) name the flag: unknown flags, missing values, a flag
+// given twice, values out of range, a --bind that is no IP address, stray arguments, a
+// missing --root. --help or -h anywhere wins over every error; --version is ok without
+// --root.
 Status parseServeOptions(std::span<const std::string> args, ServeOptions* out);
 
 }  // namespace prt::serve

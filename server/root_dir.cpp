@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
+#include <cstdio>
 #include <memory>
+
+#include "os_error.h"
 
 namespace prt::serve {
 namespace {
@@ -27,17 +29,16 @@ std::string realPathOf(int fd) {
 
 Status RootDir::open(const std::string& path, std::string_view flag, RootDir* out) {
   const std::string what = std::string(flag) + " '" + path + "'";
+  // The option parser turns "--root ''" away; an empty path here is a caller's mistake.
   if (path.empty()) return Status::error(StatusCode::kInvalidArgument, std::string(flag) + " is empty");
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    return Status::error(StatusCode::kInvalidArgument, what + " is not a directory: " + std::strerror(errno));
-  }
-  if (!S_ISDIR(st.st_mode)) return Status::error(StatusCode::kInvalidArgument, what + " is not a directory");
-  if (::access(path.c_str(), R_OK | X_OK) != 0) {
-    return Status::error(StatusCode::kInvalidArgument, what + " is not readable: " + std::strerror(errno));
-  }
+  if (::stat(path.c_str(), &st) != 0) return errnoStatus(errno, what + " is not a directory");
+  // Not found rather than invalid: the directory the option names is not there (a file
+  // is in its place), as ENOTDIR reads for a path through a file.
+  if (!S_ISDIR(st.st_mode)) return Status::error(StatusCode::kNotFound, what + " is not a directory");
+  if (::access(path.c_str(), R_OK | X_OK) != 0) return errnoStatus(errno, what + " is not readable");
   std::unique_ptr<char, decltype(&::free)> real(::realpath(path.c_str(), nullptr), &::free);
-  if (!real) return Status::error(StatusCode::kInvalidArgument, what + " cannot be resolved: " + std::strerror(errno));
+  if (!real) return errnoStatus(errno, what + " cannot be resolved");
   out->path_ = real.get();
   return Status::ok();
 }

@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <exception>
 #include <mutex>
+#include <new>
 #include <optional>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -30,11 +32,6 @@ namespace {
 constexpr auto kShutdownGrace = std::chrono::seconds(10);
 constexpr auto kRecheck = std::chrono::milliseconds(1000);
 
-int fail(const std::string& message) {
-  std::fprintf(stderr, "prt-serve: error: %s\n", message.c_str());
-  return kExitFailure;
-}
-
 // Each connection holds a descriptor, and responses hold files: lift the soft limit
 // (often 1024) to the hard one so --max-connections is what caps connections.
 void raiseDescriptorLimit() {
@@ -49,17 +46,24 @@ std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000.0 + 0.5));
 }
 
-// Opens, binds and listens; the error says what to do about a busy port.
+// Opens, binds and listens; the error says what to do about a busy port. Failing to bind
+// or listen is kUnavailable (exit 7): the port or the address may be free later.
 Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acceptor* out) {
   beast::error_code ec;
   const asio::ip::address address = asio::ip::make_address(options.bind, ec);
-  if (ec) return Status::error(StatusCode::kInvalidArgument, "--bind '" + options.bind + "' is not an IP address");
+  // parseServeOptions has checked --bind already.
+  if (ec) return Status::error(StatusCode::kInternal, "--bind '" + options.bind + "' is not an IP address");
   const tcp::endpoint endpoint(address, static_cast<unsigned short>(options.port));
   const std::string where = (address.is_v6() ? "[" + options.bind + "]" : options.bind) + ":" + std::to_string(options.port);
   tcp::acceptor acceptor(ioc);
   acceptor.open(endpoint.protocol(), ec);
   if (ec) {
-    return Status::error(StatusCode::kInvalidArgument, "cannot open a socket: " + ec.message());
+    // Out of descriptors is a limit; no IPv6 on this host (EAFNOSUPPORT) is unavailable.
+    const bool exhausted = ec == boost::system::errc::too_many_files_open ||
+                           ec == boost::system::errc::too_many_files_open_in_system ||
+                           ec == boost::system::errc::not_enough_memory;
+    return Status::error(exhausted ? StatusCode::kResourceExhausted : StatusCode::kUnavailable,
+                         "cannot open a socket: " + ec.message());
   }
   // Lets a restarted server bind while old connections sit in TIME_WAIT; on Linux it does
   // not let two servers listen on one port.
@@ -70,26 +74,24 @@ Status openAcceptor(asio::io_context& ioc, const ServeOptions& options, tcp::acc
     if (ec == asio::error::address_in_use) hint = " (another server is using the port; stop it or pick another --port)";
     if (ec == asio::error::access_denied) hint = " (ports below 1024 need privileges; pick another --port)";
     if (ec == boost::system::errc::address_not_available) hint = " (no interface has this address; check --bind)";
-    return Status::error(StatusCode::kInvalidArgument, "cannot listen on " + where + ": " + ec.message() + hint);
+    return Status::error(StatusCode::kUnavailable, "cannot listen on " + where + ": " + ec.message() + hint);
   }
   acceptor.listen(asio::socket_base::max_listen_connections, ec);
-  if (ec) {
-    return Status::error(StatusCode::kInvalidArgument, "cannot listen on " + where + ": " + ec.message());
-  }
+  if (ec) return Status::error(StatusCode::kUnavailable, "cannot listen on " + where + ": " + ec.message());
   *out = std::move(acceptor);
   return Status::ok();
 }
 
-int run(const ServeOptions& options) {
+Status run(const ServeOptions& options) {
   ::signal(SIGPIPE, SIG_IGN);  // sendfile to a closed socket must fail with EPIPE, not kill us
   raiseDescriptorLimit();
 
   RootDir root;
-  if (Status s = RootDir::open(options.root, "--root", &root); !s.isOk()) return fail(s.message());
+  PRT_RETURN_IF_ERROR(RootDir::open(options.root, "--root", &root));
   std::optional<RootDir> web;
   if (!options.web.empty()) {
     RootDir dir;
-    if (Status s = RootDir::open(options.web, "--web", &dir); !s.isOk()) return fail(s.message());
+    PRT_RETURN_IF_ERROR(RootDir::open(options.web, "--web", &dir));
     web = std::move(dir);
   }
   const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -107,7 +109,7 @@ int run(const ServeOptions& options) {
   tcp::acceptor acceptor(ioc);
   // Bound before the scan, so a busy port is reported at once and early clients wait in
   // the backlog instead of being refused.
-  if (Status s = openAcceptor(ioc, options, &acceptor); !s.isOk()) return fail(s.message());
+  PRT_RETURN_IF_ERROR(openAcceptor(ioc, options, &acceptor));
   const unsigned short port = acceptor.local_endpoint().port();
 
   CatalogueOptions catalogueOptions;
@@ -190,18 +192,27 @@ int run(const ServeOptions& options) {
   } else {
     std::fprintf(stderr, "prt-serve: stopped; %zu connections were closed without finishing\n", left);
   }
-  return kExitOk;
+  return Status::ok();
 }
 
 }  // namespace
 
-int runServer(const ServeOptions& options) noexcept {
+Status runServer(const ServeOptions& options) noexcept {
   try {
     return run(options);
+  } catch (const std::bad_alloc&) {
+    return Status::error(StatusCode::kResourceExhausted, "out of memory");
+  } catch (const std::system_error& e) {
+    // std::thread reports a process out of threads as EAGAIN.
+    const bool exhausted = e.code() == std::errc::resource_unavailable_try_again;
+    return Status::error(exhausted ? StatusCode::kResourceExhausted : StatusCode::kInternal,
+                         std::string(exhausted ? "" : "internal error: ") + e.what());
   } catch (const std::exception& e) {
-    return fail(std::string("internal error: ") + e.what());
+    // Handlers catch their own; what reaches here (a thread that cannot start, a throwing
+    // constructor) is a failure to start or stop the server.
+    return Status::error(StatusCode::kInternal, std::string("internal error: ") + e.what());
   } catch (...) {
-    return fail("internal error");
+    return Status::error(StatusCode::kInternal, "internal error");
   }
 }
 

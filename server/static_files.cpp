@@ -1,8 +1,5 @@
 #include "static_files.h"
 
-#include <unistd.h>
-
-#include <cerrno>
 #include <cstdio>
 
 #include "encoded_variants.h"
@@ -30,18 +27,6 @@ std::string hex(std::uint64_t v) {
   return buf;
 }
 
-bool readAll(int fd, std::uint64_t size, std::vector<std::uint8_t>* out) {
-  out->resize(static_cast<std::size_t>(size));
-  std::size_t done = 0;
-  while (done < out->size()) {
-    const ssize_t n = ::pread(fd, out->data() + done, out->size() - done, static_cast<off_t>(done));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 }  // namespace
 
 StaticFiles::StaticFiles(RootDir web) : web_(std::move(web)) {}
@@ -61,7 +46,8 @@ std::vector<Variant> StaticFiles::variantsFor(const FileRef& file, const FileSta
   Cached c;
   c.stamp = stamp;
   std::vector<std::uint8_t> bytes;
-  if (!readAll(file->fd(), stamp.size, &bytes)) return {};
+  // Unreadable now: served as it is, uncompressed, from the descriptor.
+  if (!readAllAt(file->fd(), stamp.size, &bytes).isOk()) return {};
   // Rewritten while being read: the bytes may be half old, half new, and must not be
   // cached under the old version's stamp.
   struct stat after {};

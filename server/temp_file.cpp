@@ -5,8 +5,9 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
 #include <string>
+
+#include "os_error.h"
 
 namespace prt::serve {
 
@@ -19,19 +20,14 @@ Status writeTempFile(std::string_view bytes, FileRef* out) {
     fd = ::mkostemp(pattern.data(), O_CLOEXEC);
     if (fd >= 0) ::unlink(pattern.c_str());
   }
-  if (fd < 0) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "cannot create a temporary file in '" + dir + "': " + std::strerror(errno));
-  }
+  if (fd < 0) return errnoStatus(errno, "cannot create a temporary file in '" + dir + "'");
   auto file = std::make_shared<const OpenFile>(fd);
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      return Status::error(StatusCode::kInvalidArgument,
-                           "cannot write a temporary file in '" + dir + "': " + std::strerror(errno));
-    }
+    // A write that stores nothing yet reports no error is taken as an I/O error.
+    if (n <= 0) return errnoStatus(n < 0 ? errno : EIO, "cannot write a temporary file in '" + dir + "'");
     done += static_cast<std::size_t>(n);
   }
   *out = std::move(file);

@@ -13,7 +13,6 @@
 
 #include <unistd.h>
 
-#include "mini_json.h"
 #include "public_error.h"
 #include "serve_env.h"
 
@@ -32,16 +31,16 @@ Json getJson(int port, const std::string& target, int* status = nullptr) {
 }
 
 const Json* findByFile(const Json& list, const std::string& file) {
-  for (const Json& e : list.array) {
-    if (e["file"].string == file) return &e;
+  for (const Json& e : asArray(list)) {
+    if (e.at("file").get<std::string>() == file) return &e;
   }
   return nullptr;
 }
 
 std::string roomUrl(int port) {
   const Json cat = getJson(port, "/api/scenes");
-  const Json* room = findByFile(cat["scenes"], "room.prt");
-  return room ? (*room)["url"].string : std::string();
+  const Json* room = findByFile(cat.at("scenes"), "room.prt");
+  return room ? room->at("url").get<std::string>() : std::string();
 }
 
 TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
@@ -55,59 +54,59 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   Json cat;
   std::string error;
   ASSERT_TRUE(parseJson(r.body, &cat, &error)) << error;
-  const Json& scenes = cat["scenes"];
-  ASSERT_EQ(scenes.type, Json::Type::kArray);
+  const Json& scenes = cat.at("scenes");
+  ASSERT_TRUE(scenes.is_array());
 
   const Json* room = findByFile(scenes, "room.prt");
   ASSERT_NE(room, nullptr) << r.body;
-  EXPECT_TRUE((*room)["usable"].boolean);
-  EXPECT_EQ((*room)["name"].string, "test room");
-  EXPECT_EQ((*room)["vertices"].number, 6000);
-  EXPECT_EQ((*room)["triangles"].number, 5998);
-  EXPECT_EQ((*room)["shOrder"].number, 4);
-  EXPECT_EQ((*room)["bytes"].number, static_cast<double>(s.tree.room.size()));
-  EXPECT_EQ((*room)["hash"].string, hexHash(s.tree.room));
-  EXPECT_EQ((*room)["url"].string, "/assets/" + hexHash(s.tree.room) + "/room.prt");
-  ASSERT_EQ((*room)["passes"].array.size(), 2u);
-  EXPECT_EQ((*room)["passes"][0]["kind"].string, "unshadowed");
-  EXPECT_EQ((*room)["passes"][1]["kind"].string, "interreflected");
-  EXPECT_EQ((*room)["passes"][1]["channels"].number, 3);
-  EXPECT_EQ((*room)["passes"][1]["bounces"].number, 2);
-  EXPECT_EQ((*room)["samples"].number, 64);
-  EXPECT_EQ((*room)["lighting"].string, "distant");
-  EXPECT_FALSE(room->has("lightCenter"));
-  EXPECT_FALSE(room->has("lightRadius"));
+  EXPECT_TRUE(room->at("usable").get<bool>());
+  EXPECT_EQ(room->at("name").get<std::string>(), "test room");
+  EXPECT_EQ(room->at("vertices").get<double>(), 6000);
+  EXPECT_EQ(room->at("triangles").get<double>(), 5998);
+  EXPECT_EQ(room->at("shOrder").get<double>(), 4);
+  EXPECT_EQ(room->at("bytes").get<double>(), static_cast<double>(s.tree.room.size()));
+  EXPECT_EQ(room->at("hash").get<std::string>(), hexHash(s.tree.room));
+  EXPECT_EQ(room->at("url").get<std::string>(), "/assets/" + hexHash(s.tree.room) + "/room.prt");
+  ASSERT_EQ(asArray(room->at("passes")).size(), 2u);
+  EXPECT_EQ(room->at("passes").at(0).at("kind").get<std::string>(), "unshadowed");
+  EXPECT_EQ(room->at("passes").at(1).at("kind").get<std::string>(), "interreflected");
+  EXPECT_EQ(room->at("passes").at(1).at("channels").get<double>(), 3);
+  EXPECT_EQ(room->at("passes").at(1).at("bounces").get<double>(), 2);
+  EXPECT_EQ(room->at("samples").get<double>(), 64);
+  EXPECT_EQ(room->at("lighting").get<std::string>(), "distant");
+  EXPECT_FALSE(room->contains("lightCenter"));
+  EXPECT_FALSE(room->contains("lightRadius"));
 
   const Json* small = findByFile(scenes, "sub/small.prt");
   ASSERT_NE(small, nullptr);
-  EXPECT_TRUE((*small)["usable"].boolean);
-  EXPECT_EQ((*small)["url"].string, "/assets/" + hexHash(s.tree.small) + "/small.prt");
-  EXPECT_EQ((*small)["version"].string, "1.1");
-  EXPECT_EQ((*small)["lighting"].string, "local-sphere");
-  ASSERT_EQ((*small)["lightCenter"].array.size(), 3u);
-  EXPECT_EQ((*small)["lightCenter"][0].number, 0.5);
-  EXPECT_EQ((*small)["lightCenter"][1].number, 1.25);
-  EXPECT_EQ((*small)["lightCenter"][2].number, -2.0);
-  EXPECT_EQ((*small)["lightRadius"].number, 3.5);
+  EXPECT_TRUE(small->at("usable").get<bool>());
+  EXPECT_EQ(small->at("url").get<std::string>(), "/assets/" + hexHash(s.tree.small) + "/small.prt");
+  EXPECT_EQ(small->at("version").get<std::string>(), "1.1");
+  EXPECT_EQ(small->at("lighting").get<std::string>(), "local-sphere");
+  ASSERT_EQ(asArray(small->at("lightCenter")).size(), 3u);
+  EXPECT_EQ(small->at("lightCenter").at(0).get<double>(), 0.5);
+  EXPECT_EQ(small->at("lightCenter").at(1).get<double>(), 1.25);
+  EXPECT_EQ(small->at("lightCenter").at(2).get<double>(), -2.0);
+  EXPECT_EQ(small->at("lightRadius").get<double>(), 3.5);
 
   const Json* corrupt = findByFile(scenes, "corrupt.prt");
   ASSERT_NE(corrupt, nullptr);
-  EXPECT_FALSE((*corrupt)["usable"].boolean);
-  EXPECT_NE((*corrupt)["error"].string.find("checksum"), std::string::npos) << (*corrupt)["error"].string;
-  EXPECT_FALSE(corrupt->has("url"));
+  EXPECT_FALSE(corrupt->at("usable").get<bool>());
+  EXPECT_NE(corrupt->at("error").get<std::string>().find("checksum"), std::string::npos) << corrupt->at("error").get<std::string>();
+  EXPECT_FALSE(corrupt->contains("url"));
   const Json* truncated = findByFile(scenes, "truncated.prt");
   ASSERT_NE(truncated, nullptr);
-  EXPECT_FALSE((*truncated)["usable"].boolean);
-  EXPECT_NE((*truncated)["error"].string.find("truncated"), std::string::npos);
+  EXPECT_FALSE(truncated->at("usable").get<bool>());
+  EXPECT_NE(truncated->at("error").get<std::string>().find("truncated"), std::string::npos);
   const Json* escape = findByFile(scenes, "escape.prt");
   ASSERT_NE(escape, nullptr);
-  EXPECT_FALSE((*escape)["usable"].boolean);
-  EXPECT_NE((*escape)["error"].string.find("outside the root"), std::string::npos);
+  EXPECT_FALSE(escape->at("usable").get<bool>());
+  EXPECT_NE(escape->at("error").get<std::string>().find("outside the root"), std::string::npos);
 
   EXPECT_EQ(findByFile(scenes, "notes.txt"), nullptr);
   EXPECT_EQ(findByFile(scenes, "outdir/secret.prt"), nullptr);  // a directory symlink out is not walked
-  EXPECT_EQ(cat["usable"].number, 2);
-  EXPECT_EQ(cat["unusable"].number, 3);
+  EXPECT_EQ(cat.at("usable").get<double>(), 2);
+  EXPECT_EQ(cat.at("unusable").get<double>(), 3);
 }
 
 TEST(Assets, ServedByteExactWithImmutableCaching) {
@@ -426,39 +425,39 @@ TEST(Lights, ProjectedAtTheRequestedOrder) {
   int status = 0;
   const Json doc = getJson(s.port, "/api/lights", &status);
   ASSERT_EQ(status, 200);
-  EXPECT_EQ(doc["order"].number, 5);
-  const Json* sky = findByFile(doc["lights"], "sky.hdr");
+  EXPECT_EQ(doc.at("order").get<double>(), 5);
+  const Json* sky = findByFile(doc.at("lights"), "sky.hdr");
   ASSERT_NE(sky, nullptr);
-  ASSERT_TRUE((*sky)["usable"].boolean) << (*sky)["error"].string;
-  EXPECT_EQ((*sky)["name"].string, "sky");
-  EXPECT_EQ((*sky)["format"].string, "Radiance HDR");
-  EXPECT_EQ((*sky)["layout"].string, "equirect");
-  ASSERT_EQ((*sky)["coefficients"].array.size(), 25u);
+  ASSERT_TRUE(sky->at("usable").get<bool>()) << sky->at("error").get<std::string>();
+  EXPECT_EQ(sky->at("name").get<std::string>(), "sky");
+  EXPECT_EQ(sky->at("format").get<std::string>(), "Radiance HDR");
+  EXPECT_EQ(sky->at("layout").get<std::string>(), "equirect");
+  ASSERT_EQ(asArray(sky->at("coefficients")).size(), 25u);
   // Constant radiance L projects to L * sqrt(4 pi) on y00 and nothing else.
   const double k = std::sqrt(4.0 * M_PI);
-  EXPECT_NEAR((*sky)["coefficients"][0][0].number, 0.5 * k, 1e-3);
-  EXPECT_NEAR((*sky)["coefficients"][0][1].number, 0.75 * k, 1e-3);
-  EXPECT_NEAR((*sky)["coefficients"][0][2].number, 1.0 * k, 1e-3);
+  EXPECT_NEAR(sky->at("coefficients").at(0).at(0).get<double>(), 0.5 * k, 1e-3);
+  EXPECT_NEAR(sky->at("coefficients").at(0).at(1).get<double>(), 0.75 * k, 1e-3);
+  EXPECT_NEAR(sky->at("coefficients").at(0).at(2).get<double>(), 1.0 * k, 1e-3);
   // Higher bands vanish up to the quadrature error of a 64x32 image.
-  for (std::size_t i = 1; i < 25; ++i) EXPECT_NEAR((*sky)["coefficients"][i][2].number, 0.0, 1e-2) << i;
-  const Json* bad = findByFile(doc["lights"], "bad.hdr");
+  for (std::size_t i = 1; i < 25; ++i) EXPECT_NEAR(sky->at("coefficients").at(i).at(2).get<double>(), 0.0, 1e-2) << i;
+  const Json* bad = findByFile(doc.at("lights"), "bad.hdr");
   ASSERT_NE(bad, nullptr);
-  EXPECT_FALSE((*bad)["usable"].boolean);
-  EXPECT_FALSE((*bad)["error"].string.empty());
+  EXPECT_FALSE(bad->at("usable").get<bool>());
+  EXPECT_FALSE(bad->at("error").get<std::string>().empty());
   if (s.tree.hasExr) {
-    const Json* studio = findByFile(doc["lights"], "studio.exr");
+    const Json* studio = findByFile(doc.at("lights"), "studio.exr");
     ASSERT_NE(studio, nullptr);
-    EXPECT_TRUE((*studio)["usable"].boolean) << (*studio)["error"].string;
-    EXPECT_EQ((*studio)["format"].string, "OpenEXR");
-    EXPECT_GT((*studio)["coefficients"][0][0].number, 0.0);
+    EXPECT_TRUE(studio->at("usable").get<bool>()) << studio->at("error").get<std::string>();
+    EXPECT_EQ(studio->at("format").get<std::string>(), "OpenEXR");
+    EXPECT_GT(studio->at("coefficients").at(0).at(0).get<double>(), 0.0);
   }
 
   for (int order : {1, 2, 8, 16}) {
     const Json d = getJson(s.port, "/api/lights?order=" + std::to_string(order));
-    const Json* l = findByFile(d["lights"], "sky.hdr");
+    const Json* l = findByFile(d.at("lights"), "sky.hdr");
     ASSERT_NE(l, nullptr);
-    EXPECT_EQ((*l)["coefficients"].array.size(), static_cast<std::size_t>(order * order));
-    EXPECT_NEAR((*l)["coefficients"][0][0].number, 0.5 * k, 1e-3);
+    EXPECT_EQ(asArray(l->at("coefficients")).size(), static_cast<std::size_t>(order * order));
+    EXPECT_NEAR(l->at("coefficients").at(0).at(0).get<double>(), 0.5 * k, 1e-3);
   }
   for (const char* order : {"0", "17", "-1", "x", "", "2.5", "5abc", "99999999999"}) {
     const HttpResponse r = fetch(s.port, std::string("/api/lights?order=") + order);
@@ -496,10 +495,10 @@ TEST(Lights, ErrorsNameNoServerPaths) {
     std::string error;
     ASSERT_TRUE(parseJson(r.body, &doc, &error)) << error;
     for (const char* file : {"damaged.exr", "sub/notimage.exr", "bad.hdr"}) {
-      const Json* l = findByFile(doc["lights"], file);
+      const Json* l = findByFile(doc.at("lights"), file);
       ASSERT_NE(l, nullptr) << file;
-      EXPECT_FALSE((*l)["usable"].boolean) << file;
-      const std::string message = (*l)["error"].string;
+      EXPECT_FALSE(l->at("usable").get<bool>()) << file;
+      const std::string message = l->at("error").get<std::string>();
       EXPECT_FALSE(message.empty()) << file;
       EXPECT_FALSE(mentionsAbsolutePath(message)) << file << ": " << message;
       ++errors;
@@ -510,9 +509,9 @@ TEST(Lights, ErrorsNameNoServerPaths) {
   Json scenes;
   std::string error;
   ASSERT_TRUE(parseJson(cat.body, &scenes, &error));
-  for (const Json& e : scenes["scenes"].array) {
-    if (e.has("error")) {
-      EXPECT_FALSE(mentionsAbsolutePath(e["error"].string)) << e["error"].string;
+  for (const Json& e : asArray(scenes.at("scenes"))) {
+    if (e.contains("error")) {
+      EXPECT_FALSE(mentionsAbsolutePath(e.at("error").get<std::string>())) << e.at("error").get<std::string>();
     }
   }
   EXPECT_EQ(errors, 6);
@@ -533,9 +532,9 @@ TEST(Lights, ErrorsNameNoServerPaths) {
 TEST(Lights, PreviewImages) {
   SharedServer& s = sharedServer();
   const Json doc = getJson(s.port, "/api/lights?order=2");
-  const Json* sky = findByFile(doc["lights"], "sky.hdr");
+  const Json* sky = findByFile(doc.at("lights"), "sky.hdr");
   ASSERT_NE(sky, nullptr);
-  const std::string url = (*sky)["preview"].string;
+  const std::string url = sky->at("preview").get<std::string>();
   ASSERT_TRUE(url.starts_with("/api/lights/preview/")) << url;
   const HttpResponse r = fetch(s.port, url);
   ASSERT_EQ(r.status, 200);
@@ -658,7 +657,7 @@ TEST(Rescan, CatalogueFollowsTheDirectory) {
   // A new asset appears.
   const std::vector<std::uint8_t> extra = makeAssetBytes(50, 2, 9, "extra");
   writeFile(tree.root + "/extra.prt", extra);
-  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c["scenes"], "extra.prt") != nullptr; }));
+  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c.at("scenes"), "extra.prt") != nullptr; }));
   EXPECT_EQ(fetch(port, "/assets/" + hexHash(extra) + "/extra.prt").body, std::string(extra.begin(), extra.end()));
 
   // The room is replaced by a new version (a rename over it, as the baker writes): the new
@@ -667,8 +666,8 @@ TEST(Rescan, CatalogueFollowsTheDirectory) {
   writeFile(tree.root + "/room.prt.tmp", room2);
   ASSERT_EQ(std::rename((tree.root + "/room.prt.tmp").c_str(), (tree.root + "/room.prt").c_str()), 0);
   EXPECT_TRUE(waitFor([&](const Json& c) {
-    const Json* r = findByFile(c["scenes"], "room.prt");
-    return r && (*r)["hash"].string == hexHash(room2);
+    const Json* r = findByFile(c.at("scenes"), "room.prt");
+    return r && r->at("hash").get<std::string>() == hexHash(room2);
   }));
   EXPECT_EQ(fetch(port, "/assets/" + hexHash(room2) + "/room.prt").body, std::string(room2.begin(), room2.end()));
   EXPECT_EQ(fetch(port, oldUrl).status, 404);
@@ -684,14 +683,14 @@ TEST(Rescan, CatalogueFollowsTheDirectory) {
     std::fclose(f);
   }
   EXPECT_TRUE(waitFor([](const Json& c) {
-    const Json* e = findByFile(c["scenes"], "extra.prt");
-    return e && !(*e)["usable"].boolean;
+    const Json* e = findByFile(c.at("scenes"), "extra.prt");
+    return e && !e->at("usable").get<bool>();
   }));
   EXPECT_EQ(fetch(port, extraUrl).status, 404);
 
   // Removed: gone from the listing.
   ASSERT_EQ(std::remove((tree.root + "/sub/small.prt").c_str()), 0);
-  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c["scenes"], "sub/small.prt") == nullptr; }));
+  EXPECT_TRUE(waitFor([](const Json& c) { return findByFile(c.at("scenes"), "sub/small.prt") == nullptr; }));
   EXPECT_EQ(server->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 

@@ -11,7 +11,6 @@
 #include <tuple>
 
 #include "encoded_asset.h"
-#include "mini_json.h"
 #include "prt/transfer_codec.h"
 #include "serve_env.h"
 
@@ -58,8 +57,8 @@ Json catalogue(int port) {
 }
 
 const Json* entry(const Json& cat, const std::string& file) {
-  for (const Json& e : cat["scenes"].array) {
-    if (e["file"].string == file) return &e;
+  for (const Json& e : asArray(cat.at("scenes"))) {
+    if (e.at("file").get<std::string>() == file) return &e;
   }
   return nullptr;
 }
@@ -75,22 +74,22 @@ std::string decodeAs(const std::string& encoding, const std::string& body) {
 // Fetches every part of `e` (identity) and places it at its offset in a buffer of the
 // asset's size, as a progressive client does; checks the list tiles the file on the way.
 std::string assemble(int port, const Json& e) {
-  const Json& parts = e["parts"];
-  EXPECT_EQ(parts.type, Json::Type::kArray) << e["file"].string;
-  std::string file(static_cast<std::size_t>(e["bytes"].number), '\0');
+  const Json& parts = e.at("parts");
+  EXPECT_TRUE(parts.is_array()) << e.at("file").get<std::string>();
+  std::string file(static_cast<std::size_t>(e.at("bytes").get<double>()), '\0');
   std::uint64_t at = 0;
-  for (const Json& p : parts.array) {
-    const auto offset = static_cast<std::uint64_t>(p["offset"].number);
-    const auto size = static_cast<std::uint64_t>(p["size"].number);
-    EXPECT_EQ(offset, at) << p["url"].string;
+  for (const Json& p : asArray(parts)) {
+    const auto offset = static_cast<std::uint64_t>(p.at("offset").get<double>());
+    const auto size = static_cast<std::uint64_t>(p.at("size").get<double>());
+    EXPECT_EQ(offset, at) << p.at("url").get<std::string>();
     EXPECT_GT(size, 0u);
     at = offset + size;
-    const HttpResponse r = fetch(port, p["url"].string);
-    EXPECT_EQ(r.status, 200) << p["url"].string;
-    EXPECT_EQ(r.body.size(), size) << p["url"].string;
+    const HttpResponse r = fetch(port, p.at("url").get<std::string>());
+    EXPECT_EQ(r.status, 200) << p.at("url").get<std::string>();
+    EXPECT_EQ(r.body.size(), size) << p.at("url").get<std::string>();
     if (r.body.size() == size && offset + size <= file.size()) file.replace(offset, size, r.body);
   }
-  EXPECT_EQ(at, file.size()) << e["file"].string;
+  EXPECT_EQ(at, file.size()) << e.at("file").get<std::string>();
   return file;
 }
 
@@ -106,25 +105,25 @@ TEST(Parts, CatalogueListsPartsThatTileEveryAsset) {
     SCOPED_TRACE(x.file);
     const Json* e = entry(cat, x.file);
     ASSERT_NE(e, nullptr);
-    ASSERT_TRUE(e->has("parts"));
-    const Json& parts = (*e)["parts"];
-    ASSERT_GE(parts.array.size(), 2u);
-    EXPECT_EQ(parts[0]["kind"].string, "head");
-    EXPECT_FALSE(parts[0].has("section"));
+    ASSERT_TRUE(e->contains("parts"));
+    const Json& parts = e->at("parts");
+    ASSERT_GE(asArray(parts).size(), 2u);
+    EXPECT_EQ(parts.at(0).at("kind").get<std::string>(), "head");
+    EXPECT_FALSE(parts.at(0).contains("section"));
     AssetSummary summary;
     ASSERT_TRUE(verifyAsset(*x.bytes, &summary).isOk());
     // The head ends where the first payload begins; every section of the table is listed.
     std::uint64_t firstPayload = x.bytes->size();
     for (const AssetSectionInfo& sec : summary.sections) firstPayload = std::min(firstPayload, sec.offset);
-    EXPECT_EQ(parts[0]["size"].number, static_cast<double>(firstPayload));
+    EXPECT_EQ(parts.at(0).at("size").get<double>(), static_cast<double>(firstPayload));
     std::set<int> sections;
-    for (const Json& p : parts.array) {
-      const std::string& url = p["url"].string;
+    for (const Json& p : asArray(parts)) {
+      const std::string& url = p.at("url").get<std::string>();
       EXPECT_TRUE(url.starts_with("/parts/") && url.size() == 7 + 16) << url;
-      if (p.has("section")) sections.insert(static_cast<int>(p["section"].number));
-      if (p["kind"].string == "section" && p.has("section")) {
-        const AssetSectionInfo& sec = summary.sections.at(static_cast<std::size_t>(p["section"].number));
-        EXPECT_EQ(p["offset"].number, static_cast<double>(sec.offset));
+      if (p.contains("section")) sections.insert(static_cast<int>(p.at("section").get<double>()));
+      if (p.at("kind").get<std::string>() == "section" && p.contains("section")) {
+        const AssetSectionInfo& sec = summary.sections.at(static_cast<std::size_t>(p.at("section").get<double>()));
+        EXPECT_EQ(p.at("offset").get<double>(), static_cast<double>(sec.offset));
       }
     }
     EXPECT_EQ(sections.size(), summary.sections.size());
@@ -141,10 +140,10 @@ TEST(Parts, EveryEncodingDecodesToThePartBytes) {
     const Json* e = entry(cat, file);
     ASSERT_NE(e, nullptr);
     const std::vector<std::uint8_t>& bytes = std::string(file) == "room.prt" ? s.tree.room : s.encoded.bytes;
-    for (const Json& p : (*e)["parts"].array) {
-      const std::string& url = p["url"].string;
-      const std::string want = asString(bytes).substr(static_cast<std::size_t>(p["offset"].number),
-                                                      static_cast<std::size_t>(p["size"].number));
+    for (const Json& p : asArray(e->at("parts"))) {
+      const std::string& url = p.at("url").get<std::string>();
+      const std::string want = asString(bytes).substr(static_cast<std::size_t>(p.at("offset").get<double>()),
+                                                      static_cast<std::size_t>(p.at("size").get<double>()));
       std::set<std::string> etags;
       for (const char* accept : {"identity", "gzip", "zstd", "br", "gzip, deflate, br, zstd"}) {
         const HttpResponse r = fetch(s.port, url, {{"Accept-Encoding", accept}});
@@ -177,14 +176,14 @@ TEST(Parts, ImmutableCachingValidatorsRangesAndHead) {
   ASSERT_NE(room, nullptr);
   // The largest part: a transfer section, certainly compressible.
   const Json* biggest = nullptr;
-  for (const Json& p : (*room)["parts"].array) {
-    if (!biggest || p["size"].number > (*biggest)["size"].number) biggest = &p;
+  for (const Json& p : asArray(room->at("parts"))) {
+    if (!biggest || p.at("size").get<double>() > biggest->at("size").get<double>()) biggest = &p;
   }
   ASSERT_NE(biggest, nullptr);
-  const std::string url = (*biggest)["url"].string;
+  const std::string url = biggest->at("url").get<std::string>();
   const std::string hash = url.substr(7);
-  const std::string want = asString(s.tree.room).substr(static_cast<std::size_t>((*biggest)["offset"].number),
-                                                        static_cast<std::size_t>((*biggest)["size"].number));
+  const std::string want = asString(s.tree.room).substr(static_cast<std::size_t>(biggest->at("offset").get<double>()),
+                                                        static_cast<std::size_t>(biggest->at("size").get<double>()));
   EXPECT_EQ(hexHash(std::vector<std::uint8_t>(want.begin(), want.end())), hash);  // content-addressed
 
   const HttpResponse r = fetch(s.port, url);
@@ -237,34 +236,34 @@ TEST(Parts, EncodedTransferIsCutAtBandBoundaries) {
         std::tuple{std::string("shadowed"), &s.encoded.quantBlob, false}}) {
     SCOPED_TRACE(pass);
     std::vector<const Json*> mine;
-    for (const Json& p : (*e)["parts"].array) {
-      if (p["pass"].string == pass) mine.push_back(&p);
+    for (const Json& p : asArray(e->at("parts"))) {
+      if (p.value("pass", "") == pass) mine.push_back(&p);  // parts outside a transfer have no pass
     }
     ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + (clusters ? 1 : 0) + order));
-    const int section = static_cast<int>((*mine[0])["section"].number);
+    const int section = static_cast<int>(mine[0]->at("section").get<double>());
     EXPECT_EQ(summary.sections.at(static_cast<std::size_t>(section)).type,
               static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer));
-    EXPECT_EQ((*mine[0])["offset"].number, static_cast<double>(summary.sections[static_cast<std::size_t>(section)].offset));
+    EXPECT_EQ(mine[0]->at("offset").get<double>(), static_cast<double>(summary.sections[static_cast<std::size_t>(section)].offset));
     std::size_t k = 0;
-    EXPECT_EQ((*mine[k++])["kind"].string, "transfer-head");
+    EXPECT_EQ(mine[k++]->at("kind").get<std::string>(), "transfer-head");
     if (clusters) {
-      EXPECT_EQ((*mine[k++])["kind"].string, "transfer-clusters");
+      EXPECT_EQ(mine[k++]->at("kind").get<std::string>(), "transfer-clusters");
     }
     for (int l = 0; l < order; ++l, ++k) {
-      EXPECT_EQ((*mine[k])["kind"].string, "transfer-band");
-      EXPECT_EQ((*mine[k])["band"].number, l);
-      EXPECT_EQ((*mine[k])["section"].number, section);
+      EXPECT_EQ(mine[k]->at("kind").get<std::string>(), "transfer-band");
+      EXPECT_EQ(mine[k]->at("band").get<double>(), l);
+      EXPECT_EQ(mine[k]->at("section").get<double>(), section);
     }
     // A progressive client: blob head (+ clusters), then band after band, decoding as it
     // goes; each prefix decodes like the whole blob at that many bands.
     std::vector<std::uint8_t> prefix;
     for (std::size_t i = 0; i < mine.size(); ++i) {
-      const HttpResponse r = fetch(s.port, (*mine[i])["url"].string, {{"Accept-Encoding", "br, gzip"}});
+      const HttpResponse r = fetch(s.port, mine[i]->at("url").get<std::string>(), {{"Accept-Encoding", "br, gzip"}});
       ASSERT_EQ(r.status, 200);
       const std::string bytes = decodeAs(r.header("content-encoding"), r.body);
       prefix.insert(prefix.end(), bytes.begin(), bytes.end());
-      if ((*mine[i])["kind"].string != "transfer-band") continue;
-      const int bands = static_cast<int>((*mine[i])["band"].number) + 1;
+      if (mine[i]->at("kind").get<std::string>() != "transfer-band") continue;
+      const int bands = static_cast<int>(mine[i]->at("band").get<double>()) + 1;
       std::vector<std::uint8_t> usable = prefix;
       if (bands == order) usable.resize(blob->size());  // the section's padding follows the blob
       std::vector<float> got, want;
@@ -284,19 +283,21 @@ TEST(Parts, IdenticalPartsShareOneUrl) {
   ASSERT_NE(room, nullptr);
   ASSERT_NE(twin, nullptr);
   std::set<std::string> roomUrls;
-  for (const Json& p : (*room)["parts"].array) roomUrls.insert(p["url"].string);
+  for (const Json& p : asArray(room->at("parts"))) roomUrls.insert(p.at("url").get<std::string>());
   // Only the name differs: the head (sizes in the table) and the metadata differ, the
   // mesh and transfer parts are the same bytes at the same URLs.
   int shared = 0, own = 0;
-  for (const Json& p : (*twin)["parts"].array) (roomUrls.count(p["url"].string) ? shared : own)++;
+  for (const Json& p : asArray(twin->at("parts"))) (roomUrls.count(p.at("url").get<std::string>()) ? shared : own)++;
   EXPECT_EQ(own, 2);
-  EXPECT_EQ(shared, static_cast<int>((*twin)["parts"].array.size()) - 2);
+  EXPECT_EQ(shared, static_cast<int>(asArray(twin->at("parts")).size()) - 2);
 }
 
 TEST(Parts, BadPartUrlsAre404Or400) {
   PartsServer& s = partsServer();
   const Json cat = catalogue(s.port);
-  const std::string good = (*entry(cat, "room.prt"))["parts"][1]["url"].string;
+  const Json* room = entry(cat, "room.prt");
+  ASSERT_NE(room, nullptr);
+  const std::string good = room->at("parts").at(1).at("url").get<std::string>();
   std::string upper = good;
   for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   upper.replace(0, 7, "/parts/");
@@ -336,14 +337,17 @@ TEST(Parts, LimitLeavesLargerAssetsWhole) {
   const Json* small = entry(cat, "sub/small.prt");
   ASSERT_NE(room, nullptr);
   ASSERT_NE(small, nullptr);
-  EXPECT_TRUE((*room)["usable"].boolean);
-  EXPECT_FALSE(room->has("parts"));  // over the limit: the client takes the whole asset
-  EXPECT_EQ(fetch(limited->port(), (*room)["url"].string).status, 200);
-  ASSERT_TRUE(small->has("parts"));
+  EXPECT_TRUE(room->at("usable").get<bool>());
+  EXPECT_FALSE(room->contains("parts"));  // over the limit: the client takes the whole asset
+  EXPECT_EQ(fetch(limited->port(), room->at("url").get<std::string>()).status, 200);
+  ASSERT_TRUE(small->contains("parts"));
   EXPECT_TRUE(assemble(limited->port(), *small) == asString(tree.small));
   // The room's parts, served by a server without a limit, do not exist here.
   PartsServer& s = partsServer();
-  const std::string roomPart = (*entry(catalogue(s.port), "room.prt"))["parts"][1]["url"].string;
+  const Json full = catalogue(s.port);
+  const Json* fullRoom = entry(full, "room.prt");
+  ASSERT_NE(fullRoom, nullptr);
+  const std::string roomPart = fullRoom->at("parts").at(1).at("url").get<std::string>();
   EXPECT_EQ(fetch(s.port, roomPart).status, 200);
   EXPECT_EQ(fetch(limited->port(), roomPart).status, 404);
   EXPECT_EQ(limited->stop(SIGTERM, std::chrono::seconds(20)), 0);
@@ -351,8 +355,8 @@ TEST(Parts, LimitLeavesLargerAssetsWhole) {
   auto none = startServer(tree, {"--max-parts-mib", "0"}, "parts-none.log");
   ASSERT_TRUE(none);
   const Json unparted = catalogue(none->port());
-  ASSERT_FALSE(unparted["scenes"].array.empty());
-  for (const Json& e : unparted["scenes"].array) EXPECT_FALSE(e.has("parts")) << e["file"].string;
+  ASSERT_FALSE(asArray(unparted.at("scenes")).empty());
+  for (const Json& e : asArray(unparted.at("scenes"))) EXPECT_FALSE(e.contains("parts")) << e.at("file").get<std::string>();
   EXPECT_EQ(none->stop(SIGTERM, std::chrono::seconds(20)), 0);
 }
 
@@ -364,11 +368,15 @@ TEST(Parts, PartsFollowTheCatalogue) {
   ASSERT_TRUE(server);
   const int port = server->port();
   const Json before = catalogue(port);
+  const Json* roomBefore = entry(before, "room.prt");
+  const Json* twinBefore = entry(before, "twin.prt");
+  ASSERT_NE(roomBefore, nullptr);
+  ASSERT_NE(twinBefore, nullptr);
   std::set<std::string> roomUrls;
-  for (const Json& p : (*entry(before, "room.prt"))["parts"].array) roomUrls.insert(p["url"].string);
+  for (const Json& p : asArray(roomBefore->at("parts"))) roomUrls.insert(p.at("url").get<std::string>());
   std::vector<std::string> twinOnly, twinShared;
-  for (const Json& p : (*entry(before, "twin.prt"))["parts"].array) {
-    (roomUrls.count(p["url"].string) ? twinShared : twinOnly).push_back(p["url"].string);
+  for (const Json& p : asArray(twinBefore->at("parts"))) {
+    (roomUrls.count(p.at("url").get<std::string>()) ? twinShared : twinOnly).push_back(p.at("url").get<std::string>());
   }
   ASSERT_EQ(twinOnly.size(), 2u);
   ASSERT_FALSE(twinShared.empty());

@@ -84,6 +84,19 @@ std::string unbrotli(const std::string& data) {
   return r == BROTLI_DECODER_RESULT_SUCCESS ? out : std::string("<unbrotli failed>");
 }
 
+bool parseJson(std::string_view text, Json* out, std::string* error) {
+  try {
+    *out = Json::parse(text);  // strict by default: no comments, no trailing bytes
+    return true;
+  } catch (const Json::parse_error& e) {
+    *out = nullptr;
+    *error = e.what();
+    return false;
+  }
+}
+
+const Json::array_t& asArray(const Json& j) { return j.get_ref<const Json::array_t&>(); }
+
 std::string hexHash(const std::vector<std::uint8_t>& bytes) { return hashHex(xxh64(bytes)); }
 
 }  // namespace prt::serve::test

@@ -4,7 +4,10 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "http_client.h"
 #include "server_process.h"
@@ -37,6 +40,20 @@ bool healthy(int port);
 std::string gunzip(const std::string& data);
 std::string unzstd(const std::string& data);
 std::string unbrotli(const std::string& data);
+
+// The server's JSON documents, read with nlohmann_json. Tests reach members with at(),
+// which throws (failing the test) when a member is absent, rather than operator[], which
+// on a const document is undefined behaviour for a missing key.
+using Json = nlohmann::json;
+
+// Parses the whole of `text` strictly (RFC 8259: no comments, nothing but white space after
+// the value, UTF-8 checked); false with *error (the parser's message, naming the byte
+// offset) and *out null otherwise.
+bool parseJson(std::string_view text, Json* out, std::string* error);
+
+// `j` as an array; throws (failing the test) when it is anything else, so that a loop over
+// a document's list cannot pass by iterating an object's values or a lone scalar.
+const Json::array_t& asArray(const Json& j);
 
 // XXH64 of `bytes` as the server writes it (16 hex digits).
 std::string hexHash(const std::vector<std::uint8_t>& bytes);

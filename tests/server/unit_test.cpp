@@ -1,16 +1,24 @@
 // The server's pure pieces, checked directly: content hash, request-target parsing,
-// content negotiation, ranges, log escaping, media types.
+// content negotiation, ranges, log escaping, media types, options, the Status codes of
+// failed system calls.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "access_log.h"
 #include "content_hash.h"
 #include "mime_types.h"
 #include "negotiation.h"
+#include "options.h"
+#include "os_error.h"
 #include "public_error.h"
 #include "request_checks.h"
 #include "request_target.h"
+#include "root_dir.h"
+#include "temp_file.h"
 
 namespace prt::serve {
 namespace {
@@ -212,6 +220,86 @@ TEST(MimeTypes, CoverTheClientsFiles) {
   EXPECT_EQ(contentTypeFor("dir.d/noext"), "application/octet-stream");
   EXPECT_TRUE(isCompressibleType("application/wasm"));
   EXPECT_FALSE(isCompressibleType("image/png"));
+}
+
+TEST(ServeOptions, EveryFlagReachesItsField) {
+  const std::vector<std::string> args{"--root", "/r", "--web=/w", "--bind", "::1", "--port", "0", "--threads", "3",
+                                      "--max-connections", "10", "--max-connections-per-client", "5",
+                                      "--read-timeout", "0.25", "--write-timeout=7", "--max-parts-mib", "0", "--quiet"};
+  ServeOptions o;
+  ASSERT_TRUE(parseServeOptions(args, &o).isOk());
+  EXPECT_EQ(o.root, "/r");
+  EXPECT_EQ(o.web, "/w");
+  EXPECT_EQ(o.bind, "::1");
+  EXPECT_EQ(o.port, 0);
+  EXPECT_EQ(o.threads, 3);
+  EXPECT_EQ(o.maxConnections, 10);
+  EXPECT_EQ(o.perClientLimit(), 5);
+  EXPECT_DOUBLE_EQ(o.readTimeoutSeconds, 0.25);
+  EXPECT_DOUBLE_EQ(o.writeTimeoutSeconds, 7.0);
+  EXPECT_EQ(o.maxPartsMiB, 0);
+  EXPECT_TRUE(o.quiet);
+  EXPECT_FALSE(o.help);
+  EXPECT_FALSE(o.version);
+
+  ServeOptions d;
+  ASSERT_TRUE(parseServeOptions(std::vector<std::string>{"--root", "/r"}, &d).isOk());
+  EXPECT_EQ(d.bind, "127.0.0.1");
+  EXPECT_EQ(d.port, 8080);
+  EXPECT_EQ(d.perClientLimit(), 256);  // a quarter of --max-connections 1024
+  EXPECT_FALSE(d.quiet);
+}
+
+TEST(ServeOptions, CommandLineErrorsAreUsage) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {}, {"--root"}, {"--root", "/r", "--nope"}, {"--root", "/r", "x"}, {"--root", "/r", "--port", "-1"},
+           {"--root", "/r", "--read-timeout", "0.01"}, {"--root", "/r", "--bind", "localhost"},
+           {"--root", "/r", "--quiet", "--quiet"}}) {
+    ServeOptions o;
+    const Status s = parseServeOptions(args, &o);
+    EXPECT_EQ(s.code(), StatusCode::kUsage) << s.toString();
+    EXPECT_FALSE(s.message().empty());
+  }
+  ServeOptions v;
+  EXPECT_TRUE(parseServeOptions(std::vector<std::string>{"--version"}, &v).isOk());  // no --root needed
+  EXPECT_TRUE(v.version);
+}
+
+// The errno table itself is tested in tests/native/file_io_test.cpp.
+TEST(OsError, CodesFollowErrno) {
+  const Status s = errnoStatus(ENOENT, "--root '/x' is not a directory");
+  EXPECT_EQ(s.code(), StatusCode::kNotFound);
+  EXPECT_EQ(s.message(), "--root '/x' is not a directory: No such file or directory");
+}
+
+TEST(OsError, RootDirAndTempFileReportTheirCodes) {
+  RootDir dir;
+  EXPECT_EQ(RootDir::open("/nonexistent-prt-serve-test", "--root", &dir).code(), StatusCode::kNotFound);
+  EXPECT_EQ(RootDir::open("/proc/self/status", "--root", &dir).code(), StatusCode::kNotFound);  // a file
+  EXPECT_EQ(RootDir::open("", "--web", &dir).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(RootDir::open("/", "--root", &dir).isOk());
+
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old ? old : "";
+  ::setenv("TMPDIR", "/nonexistent-prt-serve-test", 1);
+  FileRef file;
+  const Status s = writeTempFile("bytes", &file);
+  if (old) ::setenv("TMPDIR", saved.c_str(), 1);
+  else ::unsetenv("TMPDIR");
+  EXPECT_EQ(s.code(), StatusCode::kNotFound) << s.toString();
+  EXPECT_NE(s.message().find("'/nonexistent-prt-serve-test'"), std::string::npos) << s.message();
+}
+
+TEST(OsError, ReadAllAtReadsTheDescriptorAndNamesShortFiles) {
+  FileRef file;
+  ASSERT_TRUE(writeTempFile("abc", &file).isOk());
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(readAllAt(file->fd(), 3, &bytes).isOk());
+  EXPECT_EQ(std::string(bytes.begin(), bytes.end()), "abc");
+  EXPECT_EQ(readAllAt(file->fd(), 5, &bytes).code(), StatusCode::kTruncated);  // shrank since its stat
+  const Status bad = readAllAt(-1, 3, &bytes);
+  EXPECT_EQ(bad.code(), StatusCode::kIoError);
+  EXPECT_NE(bad.message().find("Bad file descriptor"), std::string::npos) << bad.message();
 }
 
 }  // namespace
