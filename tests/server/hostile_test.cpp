@@ -17,6 +17,27 @@ std::string rawGet(const std::string& target, const std::string& extra = "") {
   return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n" + extra + "Connection: close\r\n\r\n";
 }
 
+// How many times `needle` occurs in the server's access log.
+int countInLog(const ServerProcess& server, const std::string& needle) {
+  const std::string log = server.log();
+  int n = 0;
+  for (std::size_t at = log.find(needle); at != std::string::npos; at = log.find(needle, at + 1)) ++n;
+  return n;
+}
+
+// Waits (up to 5 s) until the access log holds `count` lines with `needle`. A response's
+// line is written by the server's handler that ran after its last write, on the way to
+// waiting for the next request (the moment a connection becomes idle): unlike the client
+// having the bytes, it does not race that handler being scheduled on a loaded machine.
+bool waitForLogged(const ServerProcess& server, const std::string& needle, int count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (countInLog(server, needle) < count) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
 void expectNoSecret(const std::string& received, const std::string& what) {
   EXPECT_EQ(received.find("top secret"), std::string::npos) << what;
   EXPECT_EQ(received.find("root:x:0"), std::string::npos) << what;
@@ -325,8 +346,14 @@ TEST(Hostile, IdleConnectionsMakeRoomOldestFirst) {
   std::vector<std::unique_ptr<RawConnection>> silent;
   for (int i = 0; i < 4; ++i) silent.push_back(std::make_unique<RawConnection>(port));
   // A connection turns idle when the server has finished its response, which can be a
-  // moment after the client has it: the pauses keep "oldest idle" in the order below.
-  const auto settle = [] { std::this_thread::sleep_for(std::chrono::milliseconds(50)); };
+  // moment after the client has it (later still when the machine is busy): each step waits
+  // for the response's log line, then pauses, to keep "oldest idle" in the order below.
+  const std::string served = " GET /api/scenes 200 ";
+  int logged = countInLog(*server, served);
+  const auto settle = [&] {
+    EXPECT_TRUE(waitForLogged(*server, served, ++logged)) << server->log();
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  };
   std::vector<std::unique_ptr<HttpConnection>> keptAlive;
   for (int i = 0; i < 4; ++i) {
     keptAlive.push_back(std::make_unique<HttpConnection>(port, std::chrono::seconds(2)));
@@ -386,12 +413,16 @@ TEST(Hostile, PerClientCapLeavesRoomForOtherClients) {
   // one (another address, so the connections above, still closing, do not count).
   std::vector<std::unique_ptr<RawConnection>> idle;
   const std::string keepAliveGet = "GET /api/scenes HTTP/1.1\r\nHost: x\r\n\r\n";
+  const std::string served = "127.0.0.4:";  // the access log's peer field
   for (int i = 0; i < 4; ++i) {
     idle.push_back(std::make_unique<RawConnection>(port, "127.0.0.4"));
     ASSERT_TRUE(idle.back()->send(keepAliveGet));
     EXPECT_TRUE(idle.back()->awaitResponse(std::chrono::seconds(5))) << i;
     ASSERT_EQ(rawStatus(idle.back()->received()), 200) << i;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // idle once the server has finished it
+    // Idle once the server has finished it: its log line is written on the way (see
+    // waitForLogged), and the pause covers the rest of that handler.
+    EXPECT_TRUE(waitForLogged(*server, served, i + 1)) << server->log();
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   EXPECT_EQ(rawStatus(rawExchangeFrom("127.0.0.4", port, rawGet("/api/scenes"), std::chrono::seconds(5)).received), 200);
   EXPECT_TRUE(idle[0]->closedWithin(std::chrono::seconds(2)));  // the oldest made room
