@@ -28,7 +28,7 @@ const helpBox = document.getElementById('help');
 const state = {
   scene: params.get('scene') || '',
   mode: params.get('mode') || 'interreflected',
-  order: 8,
+  order: 1,  // maxOrder once the module is loaded; then each scene's baked order
   environment: params.get('env') || '',
   exposure: Number(params.get('exposure') || 0),
   envYaw: 0,
@@ -43,6 +43,7 @@ const state = {
 const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
 let app = null;
+let maxOrder = 1;  // SH bands the client renders with: Module.kMaxClientOrder (client_limits.h)
 let scenes = [];
 let environments = [];  // /api/lights: environment maps as radiance SH
 let gui = null;
@@ -162,7 +163,9 @@ const hook = {
       if (!SET_OPTIONS.includes(key)) throw new Error(`set: unknown setting '${key}' (known: ${SET_OPTIONS.join(', ')})`);
     }
     if ('mode' in options && !Object.hasOwn(MODES, options.mode)) throw new Error(`set: mode must be one of ${Object.keys(MODES).join(', ')}; got ${JSON.stringify(options.mode)}`);
-    if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= 8)) throw new Error(`set: order must be an integer 1..8, got ${JSON.stringify(options.order)}`);
+    if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= maxOrder)) {
+      throw new Error(`set: order must be an integer 1..${maxOrder}, got ${JSON.stringify(options.order)}`);
+    }
     if ('projection' in options && !Object.hasOwn(PROJECTIONS, options.projection)) throw new Error(`set: projection must be 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
     if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
       throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);
@@ -353,7 +356,7 @@ function buildGui() {
   gui.add(state, 'mode', Object.keys(MODES)).name('transfer').onChange(applyState);
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
     .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
-  gui.add(state, 'order', 1, 8, 1).name('SH order').onChange(applyState);
+  gui.add(state, 'order', 1, maxOrder, 1).name('SH order').onChange(applyState);
   const envNames = ['white furnace', ...environments.filter((l) => l.usable).map((l) => l.name)];
   gui.add(state, 'environment', envNames).name('environment').onChange((n) => {
     selectEnvironment(n);
@@ -487,6 +490,8 @@ async function main() {
     fail(`The client's WebAssembly module could not be loaded: ${e.message || e}`);
     return;
   }
+  maxOrder = Module.kMaxClientOrder;
+  state.order = maxOrder;
   app = new Module.ClientApp('#view');
   if (app.error()) {
     fail(app.error());
@@ -509,7 +514,7 @@ async function main() {
     }
     if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     try {
-      environments = (await fetchJson('/api/lights?order=8', 'environment list')).lights || [];
+      environments = (await fetchJson(`/api/lights?order=${maxOrder}`, 'environment list')).lights || [];
     } catch (e) {
       console.warn(`prt: ${e.message}; using the white furnace`);
       environments = [];

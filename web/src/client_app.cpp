@@ -91,7 +91,7 @@ void ClientApp::adoptGeometry(BakedAsset decoded) {
     boundsMin_ = {std::min(boundsMin_.x, p.x), std::min(boundsMin_.y, p.y), std::min(boundsMin_.z, p.z)};
     boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
   }
-  displayOrder_ = std::min(asset_.shOrder, 8);
+  displayOrder_ = std::min(asset_.shOrder, kMaxClientOrder);
   pendingMode_ = -1;
   frameScene();
 }
@@ -146,7 +146,7 @@ std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int ord
   }
   for (float v : flatRgb)
     if (!std::isfinite(v)) return "environment SH holds a non-finite value";
-  environmentOrder_ = std::min(order, 8);
+  environmentOrder_ = std::min(order, kMaxClientOrder);
   environment_.assign(static_cast<std::size_t>(shCoeffCount(environmentOrder_)), Rgb{});
   for (std::size_t i = 0; i < environment_.size(); ++i) environment_[i] = {flatRgb[3 * i], flatRgb[3 * i + 1], flatRgb[3 * i + 2]};
   updateLighting();
@@ -173,7 +173,7 @@ void ClientApp::setMode(int mode) {
     pendingMode_ = static_cast<int>(m);  // still streaming: switch when its first band arrives
   }
 }
-void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, 8))); }
+void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
 void ClientApp::orbit(float dx, float dy) {
@@ -215,9 +215,9 @@ Vec3 ClientApp::lightCenter() const {
 }
 
 void ClientApp::syncLightView() {
-  // The cube is projected at the baked order (the lighting holds at most 8 bands); before a
-  // scene is loaded, at 5.
-  const int order = asset_.shOrder > 0 ? std::min(asset_.shOrder, 8) : 5;
+  // The cube is projected at the baked order (the lighting holds at most kMaxClientOrder
+  // bands); before a scene is loaded, at 5.
+  const int order = asset_.shOrder > 0 ? std::min(asset_.shOrder, kMaxClientOrder) : 5;
   lights_.setView(lightCenter(), 0.5f * length(boundsMax_ - boundsMin_), order);
 }
 
@@ -255,7 +255,7 @@ void ClientApp::finishShading() const {
 
 void ClientApp::prepareLighting() {
   updateLighting();  // the shared SH rotation, every frame
-  static const float kNoEnvironment[3 * 64] = {};
+  static const float kNoEnvironment[kPackedLightingFloats] = {};
   syncLightView();
   // Re-projects the light cube only when dirty; leaves the lighting block bound.
   lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);

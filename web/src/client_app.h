@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "asset_stream.h"
+#include "client_limits.h"
 #include "dynamic_lighting.h"
 #include "gl_renderer.h"
 #include "prt/asset.h"
@@ -66,7 +67,7 @@ class ClientApp {
   std::vector<float> vertexRadiance() const;
 
   // Environment lighting: radiance SH, flat [r,g,b] per coefficient, order 1..16 (the first
-  // 8 bands are kept). Returns "" or the error.
+  // kMaxClientOrder bands are kept). Returns "" or the error.
   std::string setEnvironment(const std::vector<float>& flatRgb, int order);
   // Constant radiance `intensity` from every direction (the white furnace).
   void setWhiteFurnace(float intensity);
@@ -113,7 +114,7 @@ class ClientApp {
   int lightingModel() const { return static_cast<int>(asset_.lighting.model); }
   float lightingRadius() const { return asset_.lighting.radius; }
   // The last light-cube projection alone, flat [r,g,b] per coefficient at the baked order
-  // (at most 8); projects first if lights, size, path or order changed since.
+  // (at most kMaxClientOrder); projects first if lights, size, path or order changed since.
   std::vector<float> cubeSH();
   // Re-renders and re-projects the light cube now, without drawing (benchmarks).
   void projectLightsNow();
@@ -158,11 +159,11 @@ class ClientApp {
   float yaw_ = 0, pitch_ = 0;
   Rgb color_{1, 1, 1};
   std::vector<Rgb> lighting_;  // rotated and coloured, at environmentOrder_
-  float packed_[3 * 64] = {};
+  float packed_[kPackedLightingFloats] = {};
 
   ShadingMode mode_ = ShadingMode::kInterreflected;
   int pendingMode_ = -1;  // a mode asked for whose pass is still streaming
-  int displayOrder_ = 8;
+  int displayOrder_ = kMaxClientOrder;
   float exposure_ = 1.0f;
   bool background_ = true;
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "client_limits.h"
 #include "cpca_texture.h"
 #include "cube_faces.h"
 #include "emitters.h"
@@ -77,11 +78,13 @@ val shadeConstant(const val& bytes, const std::string& kind) {
 // CPCA rendering on the CPU (cpca_texture.h's arithmetic of the two shaders) against the
 // plain dot product with the expanded transfer, for pass `kind` of an asset whose pass is
 // CPCA-encoded: {packed, expanded} exit radiance (flat RGB per vertex) under `lighting`
-// (packLighting layout, 192 floats, cut to displayOrder), or a string naming the error.
+// (packLighting layout, kPackedLightingFloats floats, cut to displayOrder), or a string naming the error.
 val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& lighting, int displayOrder) {
   const std::vector<std::uint8_t> data = bytesFrom(bytes);
   const std::vector<float> light = emscripten::convertJSArrayToNumberVector<float>(lighting);
-  if (light.size() != 192) return val(std::string("lighting must hold 192 floats"));
+  if (light.size() != static_cast<std::size_t>(prt::web::kPackedLightingFloats)) {
+    return val("lighting must hold " + std::to_string(prt::web::kPackedLightingFloats) + " floats");
+  }
   prt::BakedAsset asset;
   if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
   for (const prt::TransferPass& p : asset.passes) {
@@ -97,7 +100,7 @@ val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& ligh
     const std::size_t n2 = static_cast<std::size_t>(asset.shOrder * asset.shOrder);
     const std::size_t active = static_cast<std::size_t>(std::clamp(displayOrder, 1, asset.shOrder));
     std::vector<prt::Rgb> rgbLight(active * active);
-    for (std::size_t i = 0; i < rgbLight.size(); ++i) rgbLight[i] = {light[i], light[64 + i], light[128 + i]};
+    for (std::size_t i = 0; i < rgbLight.size(); ++i) rgbLight[i] = {light[i], light[prt::web::kMaxClientCoeffs + i], light[2 * prt::web::kMaxClientCoeffs + i]};
     std::vector<double> reference(asset.positions.size() * 3);
     if (prt::Status s = prt::exitRadianceDouble(p.coeffs, p.channels, n2, asset.albedo, rgbLight, reference); !s.isOk()) {
       return val(s.toString());
@@ -259,6 +262,9 @@ val decodeRgbeAtlas(int size, const val& bytes) {
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_core) {
+  // The client's order limit and the packLighting layout's size (client_limits.h).
+  emscripten::constant("kMaxClientOrder", prt::web::kMaxClientOrder);
+  emscripten::constant("kPackedLightingFloats", prt::web::kPackedLightingFloats);
   emscripten::function("circularLightSH", &circularLightSH);
   emscripten::function("parseLights", &parseLights);
   emscripten::function("cubeFaceProject", &cubeFaceProject);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "client_limits.h"
 #include "gl_program.h"
 #include "lighting_block.h"
 #include "transfer_texture.h"
@@ -355,9 +356,9 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glUseProgram(background_.id);
     const Mat4 inv = inverse(p.viewProjection);
     glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, inv.data());
-    glUniform4fv(background_.lightR, 16, p.environment);
-    glUniform4fv(background_.lightG, 16, p.environment + 64);
-    glUniform4fv(background_.lightB, 16, p.environment + 128);
+    glUniform4fv(background_.lightR, kLightingTexelsPerChannel, p.environment);
+    glUniform4fv(background_.lightG, kLightingTexelsPerChannel, p.environment + kMaxClientCoeffs);
+    glUniform4fv(background_.lightB, kLightingTexelsPerChannel, p.environment + 2 * kMaxClientCoeffs);
     glUniform1f(background_.exposure, p.exposure);
     glBindVertexArray(backgroundVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -24,7 +24,7 @@ struct FrameParams {
   int displayOrder = 5;        // <= the baked order
   float exposure = 1.0f;       // linear multiplier
   bool background = true;      // draw the SH environment behind the scene
-  // The environment alone (3 x 64 floats from packLighting) for the background. The PRT and
+  // The environment alone (kPackedLightingFloats from packLighting) for the background. The PRT and
   // Lambert programs read the full lighting from the uniform block bound at
   // kLightingBlockBinding (lighting_block.h).
   const float* environment = nullptr;
