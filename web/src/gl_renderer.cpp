@@ -3,6 +3,7 @@
 #include <webgl/webgl2.h>  // glGetBufferSubData (WebGL2, not GLES3)
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "client_limits.h"
@@ -20,6 +21,17 @@ GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
   glBindBuffer(target, b);
   glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
   return b;
+}
+
+// The GL error the calls since the last check left (glGetError) as a Status: ok when none;
+// out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
+// other error its code and what was being done ("WebGL error N while <during>").
+Status glErrorStatus(const char* memoryFor, const char* during) {
+  const GLenum err = glGetError();
+  if (err == GL_NO_ERROR) return Status::ok();
+  return Status::error(StatusCode::kInvalidArgument, err == GL_OUT_OF_MEMORY
+                                                         ? std::string("the GPU is out of memory for ") + memoryFor
+                                                         : "WebGL error " + std::to_string(err) + " while " + during);
 }
 
 }  // namespace
@@ -144,12 +156,9 @@ Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
   glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene's CPCA transfer", "uploading a CPCA pass"); !s.isOk()) {
     releasePass(&p);
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's CPCA transfer"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading a CPCA pass");
+    return s;
   }
   return Status::ok();
 }
@@ -188,12 +197,9 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
 Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
   release();
   makeGeometry(asset);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
     release();
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+    return s;
   }
   return Status::ok();
 }
@@ -208,13 +214,7 @@ Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
   TransferTexture packed;
   if (Status s = packTransfer(pass, order, static_cast<std::size_t>(vertexCount_), maxSize, &packed); !s.isOk()) return s;
   setPassTexture(kind, packed, order);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's transfer"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading a transfer pass");
-  }
-  return Status::ok();
+  return glErrorStatus("this scene's transfer", "uploading a transfer pass");
 }
 
 int GlRenderer::passOrder(ShadingMode mode) const {
@@ -240,12 +240,9 @@ Status GlRenderer::upload(const BakedAsset& asset) {
     if (t.texels.empty()) continue;
     setPassTexture(k, t, asset.shOrder);
   }
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
     release();
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+    return s;
   }
   return Status::ok();
 }

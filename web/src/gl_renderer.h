@@ -84,7 +84,7 @@ class GlRenderer {
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   void release();
   void releaseGeometry();
-  void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks glGetError
+  void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
   // Replaces the texture of pass `kind` with `t` (packed at `order`), dropping a CPCA form.
   void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
   static void releasePass(PassTexture* p);
