@@ -235,7 +235,8 @@ void ClientApp::render(int width, int height) {
     nearZ = std::min(nearZ, d - b.radius);
   }
   nearZ = std::max(nearZ, farZ * 1e-4f);
-  viewProjection_ = multiply(perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ), lookAt(eye_, target_, {0, 1, 0}));
+  viewProjection_ = glm::perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ) *
+                    glm::lookAt(toGlm(eye_), toGlm(target_), glm::vec3(0.0f, 1.0f, 0.0f));
   FrameParams p;
   p.viewProjection = viewProjection_;
   p.mode = mode_;
@@ -310,28 +311,21 @@ void ClientApp::finishGpu() {
 }
 
 std::vector<float> ClientApp::rayFromScreen(float ndcX, float ndcY) const {
-  const Mat4 inv = inverse(viewProjection_);
+  const glm::mat4 inv = inverseOrIdentity(viewProjection_);
   auto unproject = [&](float z) {
-    const float x = inv[0] * ndcX + inv[4] * ndcY + inv[8] * z + inv[12];
-    const float y = inv[1] * ndcX + inv[5] * ndcY + inv[9] * z + inv[13];
-    const float zz = inv[2] * ndcX + inv[6] * ndcY + inv[10] * z + inv[14];
-    const float w = inv[3] * ndcX + inv[7] * ndcY + inv[11] * z + inv[15];
-    return Vec3{x / w, y / w, zz / w};
+    const glm::vec4 p = inv * glm::vec4(ndcX, ndcY, z, 1.0f);
+    return glm::vec3(p) / p.w;
   };
-  Vec3 d = unproject(1.0f) - unproject(-1.0f);
-  const float len = length(d);
-  d = len > 0.0f && std::isfinite(len) ? d * (1.0f / len) : Vec3{0, 0, -1};
+  glm::vec3 d = unproject(1.0f) - unproject(-1.0f);
+  const float len = glm::length(d);
+  d = len > 0.0f && std::isfinite(len) ? d * (1.0f / len) : glm::vec3(0.0f, 0.0f, -1.0f);
   return {eye_.x, eye_.y, eye_.z, d.x, d.y, d.z};
 }
 
 std::vector<float> ClientApp::project(float x, float y, float z) const {
-  const Mat4& m = viewProjection_;
-  const float cx = m[0] * x + m[4] * y + m[8] * z + m[12];
-  const float cy = m[1] * x + m[5] * y + m[9] * z + m[13];
-  const float cz = m[2] * x + m[6] * y + m[10] * z + m[14];
-  const float cw = m[3] * x + m[7] * y + m[11] * z + m[15];
-  if (!(std::fabs(cw) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
-  return {cx / cw, cy / cw, cz / cw};
+  const glm::vec4 clip = viewProjection_ * glm::vec4(x, y, z, 1.0f);
+  if (!(std::fabs(clip.w) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
+  return {clip.x / clip.w, clip.y / clip.w, clip.z / clip.w};
 }
 
 std::vector<float> ClientApp::vertexRadiance() const {

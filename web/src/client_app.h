@@ -12,6 +12,7 @@
 #include "client_limits.h"
 #include "dynamic_lighting.h"
 #include "gl_renderer.h"
+#include "glm_types.h"
 #include "prt/asset.h"
 #include "prt/vec3.h"
 
@@ -169,7 +170,7 @@ class ClientApp {
 
   Vec3 target_{};
   float radius_ = 1.0f, distance_ = 3.0f, camYaw_ = 0.0f, camPitch_ = 0.35f;
-  Mat4 viewProjection_{};
+  glm::mat4 viewProjection_{0.0f};  // all zeros until the first frame
   Vec3 eye_{};
 };
 

@@ -227,10 +227,9 @@ val cubeFaceProject(int face, const val& c, const val& p) {
   const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
   const std::vector<float> pv = emscripten::convertJSArrayToNumberVector<float>(p);
   if (cv.size() != 3 || pv.size() != 3) return val(std::string("c and p must hold 3 numbers"));
-  const prt::web::Mat4 m = prt::web::cubeFaceViewProjection(face, {cv[0], cv[1], cv[2]}, 0.01f);
-  float clip[4];
-  for (int r = 0; r < 4; ++r) clip[r] = m[r] * pv[0] + m[4 + r] * pv[1] + m[8 + r] * pv[2] + m[12 + r];
-  return val::array(std::vector<float>{clip[0] / clip[3], clip[1] / clip[3], clip[2] / clip[3]});
+  const glm::mat4 m = prt::web::cubeFaceViewProjection(face, {cv[0], cv[1], cv[2]}, 0.01f);
+  const glm::vec4 clip = m * glm::vec4(pv[0], pv[1], pv[2], 1.0f);
+  return val::array(std::vector<float>{clip.x / clip.w, clip.y / clip.w, clip.z / clip.w});
 }
 
 bool sphereTouchesCubeFace(int face, const val& c, const val& center, float radius) {

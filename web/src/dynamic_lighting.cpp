@@ -160,7 +160,7 @@ void DynamicLighting::finishGpu() {
   block_.readFirstTexel();
 }
 
-void DynamicLighting::drawEmitters(const Mat4& viewProjection, Vec3 eye, float exposure) {
+void DynamicLighting::drawEmitters(const glm::mat4& viewProjection, Vec3 eye, float exposure) {
   if (emitters_.empty()) return;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

@@ -54,7 +54,7 @@ class DynamicLighting {
   // texture (Chrome's WebGL finish does not block; a readback does).
   void finishGpu();
   // Draws the emitters into the bound framebuffer (depth-tested, tone-mapped).
-  void drawEmitters(const Mat4& viewProjection, Vec3 eye, float exposure);
+  void drawEmitters(const glm::mat4& viewProjection, Vec3 eye, float exposure);
 
   const std::vector<Emitter>& emitters() const { return emitters_; }
   const std::vector<BoundingSphere>& emitterBounds() const { return bounds_; }

@@ -351,8 +351,8 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   if (p.background) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(background_.id);
-    const Mat4 inv = inverse(p.viewProjection);
-    glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, inv.data());
+    const glm::mat4 inv = glm::inverse(p.viewProjection);
+    glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, glm::value_ptr(inv));
     glUniform4fv(background_.lightR, kLightingTexelsPerChannel, p.environment);
     glUniform4fv(background_.lightG, kLightingTexelsPerChannel, p.environment + kMaxClientCoeffs);
     glUniform4fv(background_.lightB, kLightingTexelsPerChannel, p.environment + 2 * kMaxClientCoeffs);
@@ -365,7 +365,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glEnable(GL_DEPTH_TEST);
     glBindVertexArray(vao_);
     glUseProgram(lambert_.id);
-    glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+    glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
     glUniform1f(lambert_.exposure, p.exposure);  // lighting: the bound Lighting block
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
@@ -376,7 +376,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glDepthFunc(GL_LESS);
   glBindVertexArray(vao_);
   glUseProgram(radiance_.id);
-  glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+  glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
   glUniform1f(radiance_.exposure, p.exposure);
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
 }

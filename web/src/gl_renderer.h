@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cpca_texture.h"
-#include "mat4.h"
+#include "glm_types.h"
 #include "prt/asset.h"
 #include "prt/status.h"
 #include "transfer_texture.h"
@@ -19,7 +19,7 @@ namespace prt::web {
 enum class ShadingMode { kUnshadowed = 0, kShadowed = 1, kInterreflected = 2, kLambert = 3 };
 
 struct FrameParams {
-  Mat4 viewProjection{};
+  glm::mat4 viewProjection{1.0f};
   ShadingMode mode = ShadingMode::kInterreflected;
   int displayOrder = 5;        // <= the baked order
   float exposure = 1.0f;       // linear multiplier
