@@ -176,26 +176,8 @@ void ClientApp::setMode(int mode) {
 void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
-void ClientApp::orbit(float dx, float dy) {
-  camYaw_ += dx;
-  camPitch_ = std::clamp(camPitch_ + dy, -1.5f, 1.5f);
-}
-void ClientApp::pan(float dx, float dy) {
-  const Vec3 forward{-std::sin(camYaw_) * std::cos(camPitch_), -std::sin(camPitch_), -std::cos(camYaw_) * std::cos(camPitch_)};
-  Vec3 right = cross(forward, {0, 1, 0});
-  right = right * (1.0f / std::max(1e-6f, length(right)));
-  const Vec3 up = cross(right, forward);
-  target_ = target_ + (right * dx + up * dy) * (distance_ * 0.5f);
-}
-void ClientApp::zoom(float factor) { distance_ = std::clamp(distance_ * factor, radius_ * 0.05f, radius_ * 50.0f); }
-
 void ClientApp::frameScene() {
-  target_ = (boundsMin_ + boundsMax_) * 0.5f;
-  radius_ = std::max(1e-3f, 0.5f * length(boundsMax_ - boundsMin_));
-  const float fov = 0.8f;
-  distance_ = radius_ / std::sin(0.5f * fov) * 1.05f;
-  camYaw_ = 0.0f;
-  camPitch_ = 0.35f;
+  camera_.frame(toGlm((boundsMin_ + boundsMax_) * 0.5f), 0.5f * length(boundsMax_ - boundsMin_), camera_.aspect());
 }
 
 void ClientApp::updateLighting() {
@@ -225,27 +207,26 @@ void ClientApp::render(int width, int height) {
   if (!ok() || width <= 0 || height <= 0) return;
   makeCurrent();
   prepareLighting();
-  eye_ = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
-                        std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
-  float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
-  float farZ = distance_ + 2.0f * radius_;
+  camera_.setAspect(static_cast<float>(width) / height);
+  const Vec3 eye = toVec3(camera_.eyePosition());
+  const glm::vec2 depth = camera_.sceneDepthRange();
+  float nearZ = depth.x, farZ = depth.y;
   for (const BoundingSphere& b : lights_.emitterBounds()) {  // keep the emitters inside the depth range
-    const float d = length(b.center - eye_);
+    const float d = length(b.center - eye);
     farZ = std::max(farZ, d + b.radius);
     nearZ = std::min(nearZ, d - b.radius);
   }
   nearZ = std::max(nearZ, farZ * 1e-4f);
-  viewProjection_ = glm::perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ) *
-                    glm::lookAt(toGlm(eye_), toGlm(target_), glm::vec3(0.0f, 1.0f, 0.0f));
+  camera_.update(nearZ, farZ);
   FrameParams p;
-  p.viewProjection = viewProjection_;
+  p.viewProjection = camera_.viewProjection();
   p.mode = mode_;
   p.displayOrder = displayOrder_;
   p.exposure = exposure_;
   p.background = background_ && environmentEnabled_;
   p.environment = packed_;
   renderer_.draw(width, height, p);
-  lights_.drawEmitters(viewProjection_, eye_, exposure_);
+  lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);
 }
 
 void ClientApp::finishShading() const {
@@ -311,21 +292,18 @@ void ClientApp::finishGpu() {
 }
 
 std::vector<float> ClientApp::rayFromScreen(float ndcX, float ndcY) const {
-  const glm::mat4 inv = inverseOrIdentity(viewProjection_);
-  auto unproject = [&](float z) {
-    const glm::vec4 p = inv * glm::vec4(ndcX, ndcY, z, 1.0f);
-    return glm::vec3(p) / p.w;
-  };
-  glm::vec3 d = unproject(1.0f) - unproject(-1.0f);
-  const float len = glm::length(d);
-  d = len > 0.0f && std::isfinite(len) ? d * (1.0f / len) : glm::vec3(0.0f, 0.0f, -1.0f);
-  return {eye_.x, eye_.y, eye_.z, d.x, d.y, d.z};
+  const glm::vec3 e = camera_.eye(), d = camera_.rayDirection(ndcX, ndcY);
+  return {e.x, e.y, e.z, d.x, d.y, d.z};
 }
 
 std::vector<float> ClientApp::project(float x, float y, float z) const {
-  const glm::vec4 clip = viewProjection_ * glm::vec4(x, y, z, 1.0f);
-  if (!(std::fabs(clip.w) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
-  return {clip.x / clip.w, clip.y / clip.w, clip.z / clip.w};
+  const glm::vec3 p = camera_.project({x, y, z});
+  return {p.x, p.y, p.z};
+}
+
+std::vector<float> ClientApp::viewProjection() const {
+  const float* m = glm::value_ptr(camera_.viewProjection());
+  return std::vector<float>(m, m + 16);
 }
 
 std::vector<float> ClientApp::vertexRadiance() const {

@@ -1,7 +1,8 @@
 // The client's state and per-frame work, driven from JavaScript through embind
 // (client_bindings.cpp): the decoded scene on the GPU, the lighting (an environment's SH
 // or a constant "white furnace", its live rotation by the shared SH rotation, plus dynamic
-// area lights projected through a light cube map: dynamic_lighting.h), and an orbit camera.
+// area lights projected through a light cube map: dynamic_lighting.h), and the orbit camera
+// (orbit_camera.h).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include "dynamic_lighting.h"
 #include "gl_renderer.h"
 #include "glm_types.h"
+#include "orbit_camera.h"
 #include "prt/asset.h"
 #include "prt/vec3.h"
 
@@ -79,10 +81,18 @@ class ClientApp {
   void setExposure(float ev);                      // exposure value, 2^ev
   void setBackground(bool on) { background_ = on; }
 
-  void orbit(float dxRadians, float dyRadians);
-  void pan(float dx, float dy);  // in units of the framed radius
-  void zoom(float factor);       // > 1 moves away
+  // ---- the camera (orbit_camera.h) ----
+  void orbit(float dxRadians, float dyRadians) { camera_.orbit(dxRadians, dyRadians); }
+  void pan(float dx, float dy) { camera_.pan(dx, dy); }  // in units of half the distance
+  void zoom(float factor) { camera_.zoom(factor); }      // > 1 moves away
+  // Frames the scene's bounding sphere (the centre and half diagonal of its bounds).
   void frameScene();
+  // That sphere, in world units (radius 1 about the origin before a scene is loaded).
+  float sceneRadius() const { return camera_.sceneRadius(); }
+  Vec3 sceneCenter() const { return toVec3(camera_.sceneCenter()); }
+  // The last frame's view-projection matrix, 16 floats column-major (all zero before the
+  // first frame).
+  std::vector<float> viewProjection() const;
 
   // Updates the lighting (rotation, colour, truncation) and draws one frame.
   void render(int width, int height);
@@ -168,10 +178,7 @@ class ClientApp {
   float exposure_ = 1.0f;
   bool background_ = true;
 
-  Vec3 target_{};
-  float radius_ = 1.0f, distance_ = 3.0f, camYaw_ = 0.0f, camPitch_ = 0.35f;
-  glm::mat4 viewProjection_{0.0f};  // all zeros until the first frame
-  Vec3 eye_{};
+  OrbitCamera camera_;
 };
 
 }  // namespace prt::web

@@ -69,6 +69,11 @@ val cpcaShape(const ClientApp& app, int kind) { return val::array(app.cpcaShape(
 val vertexRadiance(const ClientApp& app) { return val::array(app.vertexRadiance()); }
 
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
+val viewProjection(const ClientApp& app) { return val::array(app.viewProjection()); }
+val sceneCenter(const ClientApp& app) {
+  const prt::Vec3 c = app.sceneCenter();
+  return val::array(std::vector<float>{c.x, c.y, c.z});
+}
 
 }  // namespace
 
@@ -101,6 +106,9 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("pan", &ClientApp::pan)
       .function("zoom", &ClientApp::zoom)
       .function("frameScene", &ClientApp::frameScene)
+      .function("sceneRadius", &ClientApp::sceneRadius)
+      .function("sceneCenter", &sceneCenter)
+      .function("viewProjection", &viewProjection)
       .function("render", &ClientApp::render)
       .function("lightSH", &lightSH)
       .function("project", &project)

@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>          // value_ptr
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>                  // inverse
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
