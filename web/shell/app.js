@@ -93,6 +93,12 @@ const hook = {
     if (!lightSet) throw new Error('addMesh: no scene is loaded yet');
     return lightSet.addMesh(positions, indices);
   },
+  // The last frame's view-projection matrix: 16 numbers, column-major, OpenGL clip space.
+  viewProjection() {
+    return app && hook.ready ? Array.from(app.viewProjection()) : null;
+  },
+  // The scene's bounding sphere the camera frames (world units).
+  get sceneSphere() { return app && hook.ready ? { center: Array.from(app.sceneCenter()), radius: app.sceneRadius() } : null; },
   // Canvas pixel (CSS pixels, origin top-left) where world point p appeared in the last frame.
   project(p) {
     if (!app) return null;
@@ -267,16 +273,12 @@ function applyLightSettings() {
 }
 
 // Scene radius in world units, for default light placement and the panel's slider ranges:
-// the local lighting sphere's radius, or for distant scenes the bounds radius, recovered
-// from the framed camera (ClientApp::frameScene puts it 2.7 bounds radii from the centre).
+// the local lighting sphere's radius, or for distant scenes the radius of the bounding
+// sphere the camera frames (ClientApp::sceneRadius).
 let sceneRadius = 1;
 function measureSceneRadius() {
   const r = app.lightingRadius();
-  if (r > 0) return r;
-  const c = app.lightCenter();
-  const ray = app.rayFromScreen(0, 0);
-  const d = ray && ray.length === 6 ? Math.hypot(ray[0] - c[0], ray[1] - c[1], ray[2] - c[2]) / 2.7 : 0;
-  return d > 0 && Number.isFinite(d) ? d : 1;
+  return r > 0 ? r : app.sceneRadius();
 }
 
 // A scene baked for local lighting opens with one sphere light above the light centre c
@@ -339,7 +341,7 @@ async function loadScene(name) {
   stats.vertices = app.vertexCount();
   state.order = app.bakedOrder();
   applyState();
-  // Render once so rayFromScreen has a camera to measure the scene with.
+  // Render once so rayFromScreen has a camera to place the default light with.
   app.render(Math.max(1, canvas.width), Math.max(1, canvas.height));
   sceneRadius = measureSceneRadius();
   lightSettings.environmentOn = app.lightingModel() === 0 || params.has('env');

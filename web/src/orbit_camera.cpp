@@ -10,13 +10,23 @@ void OrbitCamera::frame(glm::vec3 center, float radius, float aspect) {
   center_ = center;
   target_ = center;
   radius_ = std::max(1e-3f, radius);
-  distance_ = radius_ / std::sin(0.5f * kFovY) * kFrameMargin;
+  distance_ = fitDistance();
   yaw_ = 0.0f;
   pitch_ = kFramedPitch;
 }
 
+float OrbitCamera::fitDistance() const {
+  // Half the narrower field of view: the vertical one unless the viewport is portrait.
+  const float halfY = 0.5f * kFovY;
+  const float half = aspect_ >= 1.0f ? halfY : std::atan(aspect_ * std::tan(halfY));
+  return radius_ / std::sin(half) * kFrameMargin;
+}
+
 void OrbitCamera::setAspect(float aspect) {
-  if (aspect > 0.0f && std::isfinite(aspect)) aspect_ = aspect;
+  if (!(aspect > 0.0f && std::isfinite(aspect)) || aspect == aspect_) return;
+  const float before = fitDistance();
+  aspect_ = aspect;
+  distance_ *= fitDistance() / before;
 }
 
 void OrbitCamera::orbit(float dx, float dy) {

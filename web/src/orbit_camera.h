@@ -17,12 +17,18 @@ class OrbitCamera {
   inline static constexpr float kMaxPitch = 1.5f;      // |pitch| limit, short of the poles
 
   // Aims at the sphere (`center`, `radius`, at least 1e-3) from yaw 0 (looking along -z),
-  // pitch kFramedPitch, at the distance where the sphere fits a viewport of `aspect`
-  // (width / height) with kFrameMargin to spare.
+  // pitch kFramedPitch, at fitDistance() for a viewport of `aspect` (width / height): the
+  // sphere fits in both width and height, kFrameMargin to spare in the narrower one.
   void frame(glm::vec3 center, float radius, float aspect);
-  // The viewport's aspect for frame() and the next frame.
+  // The viewport's aspect for the next frame. The distance is scaled by the change of
+  // fitDistance(), so a framed scene stays fitted (and a zoomed one keeps its zoom relative
+  // to the fit) when the canvas turns from landscape to portrait; between two landscape
+  // aspects nothing changes, the height being the binding side for both.
   void setAspect(float aspect);
   float aspect() const { return aspect_; }
+  // radius / sin(min(fovX, fovY) / 2) * kFrameMargin at aspect(): the sphere's tangent cone
+  // from there is as wide as the narrower field of view (fovX = 2 atan(aspect tan(fovY / 2))).
+  float fitDistance() const;
 
   void orbit(float dxRadians, float dyRadians);  // yaw and pitch (clamped to kMaxPitch)
   void pan(float dx, float dy);                  // moves the target; units of half the distance
