@@ -9,13 +9,10 @@ import { LightDrag } from './light_drag.js';
 import { LightsPanel } from './lights_panel.js';
 import { normaliseLights } from './lights.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
-import { streamAsset } from './stream_loader.js';
+import { streamAsset, PASS_NAMES } from './stream_loader.js';
 
-const MODES = { unshadowed: 0, shadowed: 1, interreflected: 2, lambert: 3 };
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
 const PROJECTIONS = { gpu: 0, cpu: 1 };
-const PASS_KINDS = { unshadowed: 0, shadowed: 1, interreflected: 2 };
-const FORMS = [null, 'expanded', 'cpca'];  // ClientApp::passForm
 const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
 const params = new URLSearchParams(location.search);
 const canvas = document.getElementById('view');
@@ -44,6 +41,12 @@ const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
 let app = null;
 let maxOrder = 1;  // SH bands the client renders with: Module.kMaxClientOrder (client_limits.h)
+// The client's embind enums (client_bindings.cpp), once the module is loaded: ShadingMode
+// (unshadowed, shadowed, interreflected: also the pass kinds; lambert) and PassForm
+// (absent, expanded, cpca). modeNames: ShadingMode's value names, the transfer choices.
+let ShadingMode = null, PassForm = null, modeNames = [];
+// The names of an embind enum's values, in value order (the enum object also holds `values`).
+const enumNames = (e) => Object.keys(e).filter((k) => k !== 'values').sort((a, b) => e[a].value - e[b].value);
 let scenes = [];
 let environments = [];  // /api/lights: environment maps as radiance SH
 let gui = null;
@@ -81,8 +84,12 @@ const hook = {
   get environment() { return lightSettings.environmentOn ? state.environment : null; },
   // How each pass is drawn: 'cpca' (straight from the clusters, Sloan 2003), 'expanded' or
   // null (absent); and for CPCA passes [clusters, weights per vertex].
-  get passForms() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, FORMS[app.passForm(k)]])) : null; },
-  get cpcaShapes() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, Array.from(app.cpcaShape(k))])) : null; },
+  get passForms() {
+    if (!app || !hook.ready) return null;
+    const name = (form) => (form === PassForm.absent ? null : enumNames(PassForm).find((n) => PassForm[n] === form));
+    return Object.fromEntries(PASS_NAMES.map((n) => [n, name(app.passForm(ShadingMode[n]))]));
+  },
+  get cpcaShapes() { return app && hook.ready ? Object.fromEntries(PASS_NAMES.map((n) => [n, Array.from(app.cpcaShape(ShadingMode[n]))])) : null; },
   // Exit radiance of every vertex in the last frame (flat RGB, before exposure): a GPU read-back.
   vertexRadiance() {
     return app && hook.ready ? Float32Array.from(app.vertexRadiance()) : null;
@@ -168,7 +175,7 @@ const hook = {
     for (const key of Object.keys(options)) {
       if (!SET_OPTIONS.includes(key)) throw new Error(`set: unknown setting '${key}' (known: ${SET_OPTIONS.join(', ')})`);
     }
-    if ('mode' in options && !Object.hasOwn(MODES, options.mode)) throw new Error(`set: mode must be one of ${Object.keys(MODES).join(', ')}; got ${JSON.stringify(options.mode)}`);
+    if ('mode' in options && !modeNames.includes(options.mode)) throw new Error(`set: mode must be one of ${modeNames.join(', ')}; got ${JSON.stringify(options.mode)}`);
     if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= maxOrder)) {
       throw new Error(`set: order must be an integer 1..${maxOrder}, got ${JSON.stringify(options.order)}`);
     }
@@ -247,7 +254,7 @@ function selectEnvironment(name) {
 
 function applyState() {
   if (!app) return;
-  app.setMode(MODES[state.mode] ?? 2);
+  app.setMode(modeNames.includes(state.mode) ? ShadingMode[state.mode] : ShadingMode.interreflected);
   app.setDisplayOrder(state.order);
   app.setExposure(state.exposure);
   app.setEnvRotation(state.envYaw, state.envPitch);
@@ -326,6 +333,7 @@ async function loadScene(name) {
     // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
     // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
     await streamAsset(app, entry, {
+      kinds: ShadingMode,
       progress: hook,
       onProgress: () => {
         stats.bytesLoaded = hook.bytesReceived;
@@ -355,7 +363,7 @@ function buildGui() {
   if (window.innerWidth < 600) gui.close();
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
-  gui.add(state, 'mode', Object.keys(MODES)).name('transfer').onChange(applyState);
+  gui.add(state, 'mode', modeNames).name('transfer').onChange(applyState);
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
     .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
   gui.add(state, 'order', 1, maxOrder, 1).name('SH order').onChange(applyState);
@@ -450,8 +458,9 @@ function setupInput() {
 
 // " (CPCA: K clusters, N weights)" when the displayed pass is drawn from its clusters.
 function formText() {
-  const kind = PASS_KINDS[state.mode];
-  if (kind === undefined || app.passForm(kind) !== 2) return '';
+  if (!PASS_NAMES.includes(state.mode)) return '';
+  const kind = ShadingMode[state.mode];
+  if (app.passForm(kind) !== PassForm.cpca) return '';
   const [clusters, weights] = app.cpcaShape(kind);
   return ` (CPCA: ${clusters} clusters, ${weights} weights)`;
 }
@@ -494,6 +503,8 @@ async function main() {
   }
   maxOrder = Module.kMaxClientOrder;
   state.order = maxOrder;
+  ({ ShadingMode, PassForm } = Module);
+  modeNames = enumNames(ShadingMode);
   app = new Module.ClientApp('#view');
   if (app.error()) {
     fail(app.error());

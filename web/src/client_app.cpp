@@ -92,7 +92,7 @@ void ClientApp::adoptGeometry(BakedAsset decoded) {
     boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
   }
   displayOrder_ = std::min(asset_.shOrder, kMaxClientOrder);
-  pendingMode_ = -1;
+  pendingMode_.reset();
   frameScene();
 }
 
@@ -113,9 +113,10 @@ std::string ClientApp::streamGeometry() {
   return "";
 }
 
-std::string ClientApp::streamPass(int kind, int bands) {
+std::string ClientApp::streamPass(ShadingMode mode, int bands) {
   if (!ok()) return error_;
-  if (kind < 0 || kind > 2) return "streamPass: kind must be 0, 1 or 2";
+  if (!isPassKind(mode)) return "streamPass: kind must be a pass kind (unshadowed, shadowed or interreflected)";
+  const int kind = static_cast<int>(mode);
   TransferPass pass;
   if (cpcaDirect_ && stream_.isCpca(kind)) {
     CpcaTransfer cpca;
@@ -128,16 +129,11 @@ std::string ClientApp::streamPass(int kind, int bands) {
     makeCurrent();
     if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
   }
-  if (kind == pendingMode_) {
-    mode_ = static_cast<ShadingMode>(kind);
-    pendingMode_ = -1;
+  if (pendingMode_ == mode) {
+    mode_ = mode;
+    pendingMode_.reset();
   }
   return "";
-}
-
-int ClientApp::loadedBands(int kind) const {
-  if (kind < 0 || kind > 2) return 0;
-  return renderer_.passOrder(static_cast<ShadingMode>(kind));
 }
 
 std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int order) {
@@ -164,13 +160,13 @@ void ClientApp::setEnvRotation(float yaw, float pitch) {
   pitch_ = std::clamp(pitch, -1.5f, 1.5f);
 }
 void ClientApp::setLightColor(float r, float g, float b) { color_ = {r, g, b}; }
-void ClientApp::setMode(int mode) {
-  const auto m = static_cast<ShadingMode>(std::clamp(mode, 0, 3));
+void ClientApp::setMode(ShadingMode m) {
+  if (!isPassKind(m) && m != ShadingMode::kLambert) return;
   if (renderer_.hasPass(m) || asset_.positions.empty()) {
     mode_ = m;
-    pendingMode_ = -1;
+    pendingMode_.reset();
   } else if (stream_.hasKind(static_cast<int>(m))) {
-    pendingMode_ = static_cast<int>(m);  // still streaming: switch when its first band arrives
+    pendingMode_ = m;  // still streaming: switch when its first band arrives
   }
 }
 void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,25 +45,26 @@ class ClientApp {
   // the geometry, uploads it without transfer, frames the camera and picks the displayed
   // pass (mode()). "" or the reader's error.
   std::string streamGeometry();
-  // Decodes pass `kind` (0..2) from its first `bands` bands (0: all; float32 passes only
-  // decode whole) and re-uploads it at that order. "" or the error; bands checked by their CRCs.
-  std::string streamPass(int kind, int bands);
+  // Decodes pass `kind` (a ShadingMode with a pass: isPassKind) from its first `bands` bands
+  // (0: all; float32 passes only decode whole) and re-uploads it at that order. "" or the
+  // error; bands checked by their CRCs.
+  std::string streamPass(ShadingMode kind, int bands);
   // Frees the stream buffer once every part has been applied (or on failure).
   void endStream() { stream_.release(); }
-  // Bands of pass `kind` on the GPU (0 when absent): the baked order once loaded whole.
-  int loadedBands(int kind) const;
+  // Bands of pass `kind` on the GPU (0 when absent, and for Lambert): the baked order once
+  // loaded whole.
+  int loadedBands(ShadingMode kind) const { return renderer_.passOrder(kind); }
 
   // ---- CPCA rendering (docs/web-client.md, "CPCA rendering") ----
   // Whether CPCA-encoded passes are rendered straight from the clusters (Sloan 2003; the
   // default) or expanded to plain transfer first. Applies to passes loaded afterwards.
   void setCpcaDirect(bool on) { cpcaDirect_ = on; }
   bool cpcaDirect() const { return cpcaDirect_; }
-  // How pass `kind` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
-  int passForm(int kind) const { return kind < 0 || kind > 2 ? 0 : renderer_.passForm(static_cast<ShadingMode>(kind)); }
+  // How pass `kind` is drawn (absent for Lambert).
+  PassForm passForm(ShadingMode kind) const { return renderer_.passForm(kind); }
   // CPCA pass `kind`: [clusters, weights per vertex]; [0, 0] otherwise.
-  std::vector<int> cpcaShape(int kind) const {
-    if (kind < 0 || kind > 2) return {0, 0};
-    const auto s = renderer_.cpcaShape(static_cast<ShadingMode>(kind));
+  std::vector<int> cpcaShape(ShadingMode kind) const {
+    const auto s = renderer_.cpcaShape(kind);
     return {s[0], s[1]};
   }
   // Exit radiance of every vertex in the last frame, flat RGB before exposure (reads the
@@ -76,7 +78,7 @@ class ClientApp {
   void setWhiteFurnace(float intensity);
   void setEnvRotation(float yawRadians, float pitchRadians);
   void setLightColor(float r, float g, float b);  // multiplies the lighting
-  void setMode(int mode);  // ShadingMode; one whose pass is still streaming takes effect when it arrives
+  void setMode(ShadingMode mode);  // one whose pass is still streaming takes effect when it arrives
   void setDisplayOrder(int order);                 // clamped to [1, baked order]
   void setExposure(float ev);                      // exposure value, 2^ev
   void setBackground(bool on) { background_ = on; }
@@ -143,8 +145,8 @@ class ClientApp {
   std::size_t triangleCount() const { return asset_.indices.size() / 3; }
   int bakedOrder() const { return asset_.shOrder; }
   int displayOrder() const { return displayOrder_; }
-  int mode() const { return static_cast<int>(mode_); }
-  bool hasPass(int mode) const { return ok() && renderer_.hasPass(static_cast<ShadingMode>(mode)); }
+  ShadingMode mode() const { return mode_; }
+  bool hasPass(ShadingMode mode) const { return ok() && renderer_.hasPass(mode); }
 
  private:
   bool ok() const { return error_.empty(); }
@@ -173,7 +175,7 @@ class ClientApp {
   float packed_[kPackedLightingFloats] = {};
 
   ShadingMode mode_ = ShadingMode::kInterreflected;
-  int pendingMode_ = -1;  // a mode asked for whose pass is still streaming
+  std::optional<ShadingMode> pendingMode_;  // a mode asked for whose pass is still streaming
   int displayOrder_ = kMaxClientOrder;
   float exposure_ = 1.0f;
   bool background_ = true;

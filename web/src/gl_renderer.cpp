@@ -218,7 +218,7 @@ Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
 }
 
 int GlRenderer::passOrder(ShadingMode mode) const {
-  if (mode == ShadingMode::kLambert) return 0;
+  if (!isPassKind(mode)) return 0;
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   return t.texture ? t.order : 0;
 }
@@ -249,16 +249,17 @@ Status GlRenderer::upload(const BakedAsset& asset) {
 
 bool GlRenderer::hasPass(ShadingMode mode) const {
   if (mode == ShadingMode::kLambert) return indexCount_ > 0;
+  if (!isPassKind(mode)) return false;
   return passes_[static_cast<std::size_t>(mode)].texture != 0;
 }
 
-int GlRenderer::passForm(ShadingMode mode) const {
-  if (mode == ShadingMode::kLambert || !hasPass(mode)) return 0;
-  return passes_[static_cast<std::size_t>(mode)].cpca ? 2 : 1;
+PassForm GlRenderer::passForm(ShadingMode mode) const {
+  if (!isPassKind(mode) || !hasPass(mode)) return PassForm::kAbsent;
+  return passes_[static_cast<std::size_t>(mode)].cpca ? PassForm::kCpca : PassForm::kExpanded;
 }
 
 std::array<int, 2> GlRenderer::cpcaShape(ShadingMode mode) const {
-  if (passForm(mode) != 2) return {0, 0};
+  if (passForm(mode) != PassForm::kCpca) return {0, 0};
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   return {t.clusters, t.weightsBefore.back()};
 }
@@ -326,7 +327,7 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
 }
 
 bool GlRenderer::shade(ShadingMode mode, int displayOrder) {
-  if (mode == ShadingMode::kLambert || indexCount_ == 0) return false;
+  if (!isPassKind(mode) || indexCount_ == 0) return false;
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   if (!t.texture) return false;
   // PRT pass: prt.vert (or cpca.vert) runs once per vertex (points, rasteriser off) and its

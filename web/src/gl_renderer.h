@@ -16,7 +16,18 @@
 
 namespace prt::web {
 
+// How the scene is shaded: one of the three transfer passes (whose values, as TransferKind's,
+// are the pass kinds the client's API takes) or plain Lambert. Bound to JS as the embind
+// enum ShadingMode (client_bindings.cpp): unshadowed, shadowed, interreflected, lambert.
 enum class ShadingMode { kUnshadowed = 0, kShadowed = 1, kInterreflected = 2, kLambert = 3 };
+// Whether `mode` names a transfer pass (not Lambert, and in range).
+inline bool isPassKind(ShadingMode mode) {
+  return mode == ShadingMode::kUnshadowed || mode == ShadingMode::kShadowed || mode == ShadingMode::kInterreflected;
+}
+
+// How a pass is drawn: absent, from expanded transfer, or straight from its CPCA clusters.
+// Bound to JS as the embind enum PassForm: absent, expanded, cpca.
+enum class PassForm { kAbsent = 0, kExpanded = 1, kCpca = 2 };
 
 struct FrameParams {
   glm::mat4 viewProjection{1.0f};
@@ -48,8 +59,8 @@ class GlRenderer {
   Status uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca);
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
   bool hasPass(ShadingMode mode) const;
-  // How pass `mode` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
-  int passForm(ShadingMode mode) const;
+  // How pass `mode` is drawn (kAbsent for Lambert).
+  PassForm passForm(ShadingMode mode) const;
   // CPCA pass `mode`: {clusters, weights per vertex at its bands}; {0, 0} otherwise.
   std::array<int, 2> cpcaShape(ShadingMode mode) const;
   void draw(int width, int height, const FrameParams& p);
