@@ -59,10 +59,10 @@ export async function launchBrowser() {
   });
 }
 
-// Opens `url` at 640x480 and (by default) waits until the page has drawn a few frames or
-// failed; collects console errors and uncaught exceptions.
-export async function openPage(browser, url, { waitReady = true } = {}) {
-  const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+// Opens `url` at 640x480 (or `viewport`) and (by default) waits until the page has drawn a
+// few frames or failed; collects console errors and uncaught exceptions.
+export async function openPage(browser, url, { waitReady = true, viewport = { width: 640, height: 480 } } = {}) {
+  const page = await browser.newPage({ viewport });
   const consoleErrors = [];
   page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
   page.on('pageerror', (e) => consoleErrors.push(`uncaught: ${e.message}`));

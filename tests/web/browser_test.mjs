@@ -5,7 +5,7 @@
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
-import { makeChecks, startServer as startServerAt, openPage, capture, windowLuminance, meanAbsDifference, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer as startServerAt, openPage, settle, capture, windowLuminance, meanAbsDifference, runCase } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
 const checks = makeChecks();
@@ -103,6 +103,64 @@ const cases = {
       const error = await page.evaluate(() => window.prtApp.error);
       check(/truncated/.test(error), `error for a truncated asset: ${error}`);
       check(await page.isVisible('#error'), 'the error message is not visible');
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // The default room framed on a landscape and a portrait (phone) screen, and kept framed
+  // when the landscape page turns portrait: the scene's bounding sphere must lie inside the
+  // view in both width and height. The sphere is inside the frustum's four side planes
+  // (rows 3 +- 0 and 3 +- 1 of the view-projection matrix) iff its silhouette is inside NDC
+  // [-1, 1]^2: the exact test, tangent planes included. The six axis-extreme points must
+  // project inside as well, and the binding side must be close (the framing margin), so a
+  // view that merely shrinks the scene does not pass.
+  async framing_portrait(browser) {
+    const checkFraming = async (page, what, viewport) => {
+      const s = await page.evaluate(() => ({ m: window.prtApp.viewProjection(), sphere: window.prtApp.sceneSphere, error: window.prtApp.error,
+        canvas: [document.getElementById('view').width, document.getElementById('view').height] }));
+      check(s.error === null, `${what}: page error: ${s.error}`);
+      check(Math.abs(s.canvas[0] / s.canvas[1] - viewport.width / viewport.height) < 0.01, `${what}: canvas is ${s.canvas.join('x')}`);
+      const { m, sphere: { center: c, radius: r } } = s;
+      if (!check(m.length === 16 && m.every(Number.isFinite) && r > 0, `${what}: matrix ${m} radius ${r}`)) return;
+      const row = (i) => [m[i], m[4 + i], m[8 + i], m[12 + i]];
+      const clip = (p) => [0, 1, 2, 3].map((i) => row(i)[0] * p[0] + row(i)[1] * p[1] + row(i)[2] * p[2] + row(i)[3]);
+      const w = row(3);
+      check(clip(c)[3] > r, `${what}: the sphere is not wholly in front of the camera (w at the centre ${clip(c)[3]}, radius ${r})`);
+      // Signed distance from the centre to each side plane, in radii: >= 1 means inside.
+      const planes = { left: [0, 1], right: [0, -1], bottom: [1, 1], top: [1, -1] };
+      const margins = Object.fromEntries(Object.entries(planes).map(([name, [axis, sign]]) => {
+        const p = row(axis).map((x, k) => w[k] + sign * x);
+        return [name, (p[0] * c[0] + p[1] * c[1] + p[2] * c[2] + p[3]) / Math.hypot(p[0], p[1], p[2]) / r];
+      }));
+      const text = Object.entries(margins).map(([n, v]) => `${n} ${v.toFixed(3)}`).join(', ');
+      console.log(`${what}: centre-to-side-plane distances in radii: ${text}`);
+      for (const [name, v] of Object.entries(margins)) check(v >= 1, `${what}: the bounding sphere crosses the ${name} edge of the view (${text})`);
+      const tightest = Math.min(...Object.values(margins));
+      check(tightest <= 1.1, `${what}: the scene is framed loosely: the nearest edge is ${tightest.toFixed(3)} radii from the centre (${text})`);
+      for (let axis = 0; axis < 3; axis++)
+        for (const sign of [-1, 1]) {
+          const p = c.map((x, k) => x + (k === axis ? sign * r : 0));
+          const [x, y, , pw] = clip(p);
+          check(pw > 0 && Math.abs(x / pw) <= 1 && Math.abs(y / pw) <= 1,
+            `${what}: extreme point ${p.map((v) => v.toFixed(2))} projects to NDC (${(x / pw).toFixed(3)}, ${(y / pw).toFixed(3)})`);
+        }
+    };
+    const server = await startServer();
+    try {
+      const landscape = { width: 1280, height: 720 }, portrait = { width: 390, height: 844 };
+      for (const viewport of [landscape, portrait]) {
+        const what = `${viewport.width}x${viewport.height}`;
+        const { page, consoleErrors } = await openPage(browser, `${server.base}/`, { viewport });
+        await checkFraming(page, what, viewport);
+        if (viewport === landscape) {  // the phone turned: the framed scene stays framed
+          await page.setViewportSize(portrait);
+          await settle(page);
+          await checkFraming(page, `${what} turned to ${portrait.width}x${portrait.height}`, portrait);
+        }
+        check(consoleErrors.length === 0, `${what}: console errors: ${consoleErrors.join(' | ')}`);
+        await page.close();
+      }
     } finally {
       server.child.kill('SIGTERM');
     }

@@ -67,11 +67,15 @@ check(!garbage.ok, 'garbage accepted');
   const cpcaAsset = path.join(workDir, 'room-cpca.prt');
   execFileSync(prtBake, ['--default', '-o', cpcaAsset, '--samples', '64', '--order', '4', '--compress', 'cpca8@0.02', '--quiet']);
   const cpcaBytes = fs.readFileSync(cpcaAsset);
+  // The packLighting layout (client_limits.h): kMaxClientOrder^2 coefficients per channel.
+  const perChannel = core.kMaxClientOrder * core.kMaxClientOrder;
+  check(core.kMaxClientOrder === 8 && core.kPackedLightingFloats === 3 * perChannel,
+    `client limits: order ${core.kMaxClientOrder}, ${core.kPackedLightingFloats} packed floats`);
   for (const kind of ['shadowed', 'interreflected']) {
     for (const order of [4, 2]) {
-      const lighting = new Array(192).fill(0);
+      const lighting = new Array(core.kPackedLightingFloats).fill(0);
       for (let c = 0; c < 3; c++)
-        for (let i = 0; i < order * order; i++) lighting[64 * c + i] = (i === 0 ? 3 : Math.sin(1.7 * i + c)) * (1 + 0.2 * c);
+        for (let i = 0; i < order * order; i++) lighting[perChannel * c + i] = (i === 0 ? 3 : Math.sin(1.7 * i + c)) * (1 + 0.2 * c);
       const r = core.cpcaRadianceCheck(cpcaBytes, kind, lighting, order);
       if (!check(r && typeof r === 'object', `CPCA ${kind} order ${order}: ${r}`)) continue;
       check(r.clusters >= 1 && r.weights > 0, `CPCA ${kind}: ${r.clusters} clusters, ${r.weights} weights`);
@@ -82,7 +86,7 @@ check(!garbage.ok, 'garbage accepted');
       check(worst <= 2e-5 * peak, `CPCA ${kind} order ${order}: clusters-first radiance differs from the expanded transfer's by ${worst} (peak ${peak})`);
     }
   }
-  const notCpca = core.cpcaRadianceCheck(bytes, 'shadowed', new Array(192).fill(1), 4);
+  const notCpca = core.cpcaRadianceCheck(bytes, 'shadowed', new Array(core.kPackedLightingFloats).fill(1), 4);
   check(typeof notCpca === 'string' && /not CPCA/.test(notCpca), `a float32 asset as CPCA: ${notCpca}`);
 }
 

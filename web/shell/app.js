@@ -1,22 +1,18 @@
 // The PRT page: fetches the catalogue and a baked scene from prt-serve (with a progress
 // bar), hands the bytes to the wasm client (shared C++ decoder + WebGL2 renderer), wires
-// the panel (lil-gui), pointer and touch input, and exposes window.prtApp for tests
-// (docs/web-client.md).
+// the panel (lil-gui), pointer and touch input, and installs window.prtApp for tests and
+// benchmarks (test_hook.js; docs/web-client.md).
 import GUI from './lil-gui.esm.min.js';
 import createPrtModule from './prt_client.mjs';
 import { LightSet } from './light_set.js';
 import { LightDrag } from './light_drag.js';
 import { LightsPanel } from './lights_panel.js';
-import { normaliseLights } from './lights.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
-import { streamAsset } from './stream_loader.js';
+import { streamAsset, PASS_NAMES } from './stream_loader.js';
+import { installTestHook } from './test_hook.js';
 
-const MODES = { unshadowed: 0, shadowed: 1, interreflected: 2, lambert: 3 };
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
 const PROJECTIONS = { gpu: 0, cpu: 1 };
-const PASS_KINDS = { unshadowed: 0, shadowed: 1, interreflected: 2 };
-const FORMS = [null, 'expanded', 'cpca'];  // ClientApp::passForm
-const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
 const params = new URLSearchParams(location.search);
 const canvas = document.getElementById('view');
 const loadingText = document.getElementById('loading-text');
@@ -28,7 +24,7 @@ const helpBox = document.getElementById('help');
 const state = {
   scene: params.get('scene') || '',
   mode: params.get('mode') || 'interreflected',
-  order: 8,
+  order: 1,  // client.maxOrder once the module is loaded; then each scene's baked order
   environment: params.get('env') || '',
   exposure: Number(params.get('exposure') || 0),
   envYaw: 0,
@@ -43,6 +39,14 @@ const state = {
 const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
 let app = null;
+// What the wasm module gives besides ClientApp, filled in once it is loaded: maxOrder, the
+// SH bands the client renders with (Module.kMaxClientOrder, client_limits.h); the embind
+// enums (client_bindings.cpp) ShadingMode (unshadowed, shadowed, interreflected: also the
+// pass kinds; lambert) and PassForm (absent, expanded, cpca); modeNames, ShadingMode's
+// value names (the transfer choices); formName(form): 'expanded', 'cpca' or null (absent).
+const client = { maxOrder: 1, ShadingMode: null, PassForm: null, modeNames: [], formName: () => null };
+// The names of an embind enum's values, in value order (the enum object also holds `values`).
+const enumNames = (e) => Object.keys(e).filter((k) => k !== 'values').sort((a, b) => e[a].value - e[b].value);
 let scenes = [];
 let environments = [];  // /api/lights: environment maps as radiance SH
 let gui = null;
@@ -50,151 +54,24 @@ let lightSet = null;
 let lightDrag = null;
 let lightsPanel = null;
 
-// ---- the test hook (docs/web-client.md) -------------------------------------------------
-const rows = (flat) => {
-  const out = [];
-  for (let i = 0; i < flat.length; i += 3) out.push([flat[i], flat[i + 1], flat[i + 2]]);
-  return out;
-};
-const hook = {
-  ready: false,
-  frames: 0,
-  error: null,
-  notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
-  paused: false,  // true stops the page's own frame loop (benchmarks with several pages open)
+// ---- the test hook, window.prtApp (test_hook.js; docs/web-client.md) --------------------
+const hook = installTestHook({
+  get app() { return app; },
+  get lightSet() { return lightSet; },
+  client,
+  canvas,
+  state,
+  lightSettings,
   stats,
-  // Radiance SH the last frame used: the light cube's projection plus the environment when on.
-  lightSH() {
-    return app ? rows(app.lightSH()) : [];
-  },
-  // The light cube's projection alone (no environment), at the baked order.
-  cubeSH() {
-    return app ? rows(app.cubeSH()) : [];
-  },
-  get lightCenter() { return app && hook.ready ? Array.from(app.lightCenter()) : null; },
-  get lightingModel() { return app && hook.ready ? LIGHTING_MODELS[app.lightingModel()] ?? 'unknown' : null; },
-  get lightingRadius() { return app && hook.ready ? app.lightingRadius() : null; },
-  get lights() { return lightSet ? lightSet.snapshot() : []; },
-  get projection() { return lightSettings.projection; },
-  get cubeSize() { return lightSettings.cubeSize; },
-  get environment() { return lightSettings.environmentOn ? state.environment : null; },
-  // How each pass is drawn: 'cpca' (straight from the clusters, Sloan 2003), 'expanded' or
-  // null (absent); and for CPCA passes [clusters, weights per vertex].
-  get passForms() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, FORMS[app.passForm(k)]])) : null; },
-  get cpcaShapes() { return app && hook.ready ? Object.fromEntries(Object.entries(PASS_KINDS).map(([n, k]) => [n, Array.from(app.cpcaShape(k))])) : null; },
-  // Exit radiance of every vertex in the last frame (flat RGB, before exposure): a GPU read-back.
-  vertexRadiance() {
-    return app && hook.ready ? Float32Array.from(app.vertexRadiance()) : null;
-  },
-  // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
-  // indices); returns the id to use as {shape: 'mesh', mesh: id}. Throws on bad input.
-  addMesh(positions, indices) {
-    if (!lightSet) throw new Error('addMesh: no scene is loaded yet');
-    return lightSet.addMesh(positions, indices);
-  },
-  // Canvas pixel (CSS pixels, origin top-left) where world point p appeared in the last frame.
-  project(p) {
-    if (!app) return null;
-    const [x, y] = app.project(p[0], p[1], p[2]);
-    return [(x * 0.5 + 0.5) * canvas.clientWidth, (0.5 - y * 0.5) * canvas.clientHeight];
-  },
-  // Benchmark: draws n frames back to back, each finished with a 1-pixel readPixels (so the
-  // GPU work is inside the measurement), and returns the mean milliseconds per frame.
-  timeFrames(n) {
-    if (!app || !hook.ready) return NaN;
-    const gl = canvas.getContext('webgl2');
-    const pixel = new Uint8Array(4);
-    const t0 = performance.now();
-    for (let i = 0; i < n; i++) {
-      app.render(canvas.width, canvas.height);
-      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-    }
-    return (performance.now() - t0) / n;
-  },
-  // Benchmark: the per-vertex PRT pass alone (no drawing), n times back to back, ended by a
-  // 1-vertex read-back of its output; mean milliseconds per pass. NaN in Lambert mode.
-  timeShading(n) {
-    if (!app || !hook.ready) return NaN;
-    const t0 = performance.now();
-    for (let i = 0; i < n; i++) if (!app.shadeVertices()) return NaN;
-    app.finishShading();
-    return (performance.now() - t0) / n;
-  },
-  // Benchmark: n samples, each the mean milliseconds of `batch` light updates back to back
-  // (light cube render + SH projection). Each update ends by reading its result back
-  // (cubeSH: 48 floats from the GPU on the GPU path), so its GPU work is inside the sample:
-  // finishGpu alone was seen not to block in headless Chromium, letting work pile up.
-  // Batches > 1 measure updates shorter than the browser's timer resolution (100 us
-  // without cross-origin isolation).
-  timeLightUpdates(n, batch = 1) {
-    if (!app || !hook.ready) return [];
-    const samples = [];
-    for (let i = 0; i < n; i++) {
-      const t0 = performance.now();
-      for (let k = 0; k < batch; k++) {
-        app.projectLightsNow();
-        app.finishGpu();
-        app.cubeSH();
-      }
-      samples.push((performance.now() - t0) / batch);
-    }
-    return samples;
-  },
-  // Reloads the current scene with CPCA passes drawn 'direct' (from their clusters) or
-  // 'expanded' (to plain transfer on load), like the panel's "CPCA rendering"; resolves once
-  // every pass has all its bands.
-  async setCpca(form) {
-    if (form !== 'direct' && form !== 'expanded') throw new Error(`setCpca: expected 'direct' or 'expanded', got ${JSON.stringify(form)}`);
-    if (!app || !hook.ready) throw new Error('setCpca: no scene is loaded yet');
-    state.cpca = form;
-    if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay());
-    await loadScene(state.scene);
-    while (!hook.error && app.streamBuffer() !== null) {  // freed once every part is applied
-      await new Promise((r) => setTimeout(r, 50));
-    }
-    if (hook.error) throw new Error(hook.error);
-  },
-  // Changes settings (docs/web-client.md); returns the current frame count. Every value is
-  // checked first: on a bad one it throws an Error naming it and changes nothing.
-  set(options) {
-    if (options === null || typeof options !== 'object') throw new Error('set: expected an object of settings');
-    for (const key of Object.keys(options)) {
-      if (!SET_OPTIONS.includes(key)) throw new Error(`set: unknown setting '${key}' (known: ${SET_OPTIONS.join(', ')})`);
-    }
-    if ('mode' in options && !Object.hasOwn(MODES, options.mode)) throw new Error(`set: mode must be one of ${Object.keys(MODES).join(', ')}; got ${JSON.stringify(options.mode)}`);
-    if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= 8)) throw new Error(`set: order must be an integer 1..8, got ${JSON.stringify(options.order)}`);
-    if ('projection' in options && !Object.hasOwn(PROJECTIONS, options.projection)) throw new Error(`set: projection must be 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
-    if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
-      throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);
-    }
-    if ('environment' in options && options.environment !== null && !environmentNames().includes(options.environment)) {
-      throw new Error(`set: environment must be null (off) or one of ${environmentNames().map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
-    }
-    if ('lights' in options) {
-      if (!lightSet) throw new Error('set: lights need a loaded scene');
-      if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
-      normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
-    }
-    for (const key of ['mode', 'order', 'exposure', 'intensity', 'background']) if (key in options) state[key] = options[key];
-    if ('envRotation' in options) {
-      const r = options.envRotation;
-      [state.envYaw, state.envPitch] = Array.isArray(r) ? r : [r, 0];
-    }
-    if ('environment' in options) {
-      lightSettings.environmentOn = options.environment !== null;
-      if (options.environment !== null) selectEnvironment(options.environment);
-    }
-    if ('projection' in options) lightSettings.projection = options.projection;
-    if ('cubeSize' in options) lightSettings.cubeSize = options.cubeSize;
-    applyState();
-    const projectionError = applyLightSettings();
-    if ('lights' in options) lightSet.set(options.lights);
-    if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay());
-    if (projectionError && 'projection' in options) throw new Error(`set: ${projectionError}`);
-    return hook.frames;
-  },
-};
-window.prtApp = hook;
+  lightingModels: LIGHTING_MODELS,
+  projections: PROJECTIONS,
+  loadScene,
+  environmentNames,
+  selectEnvironment,
+  applyState,
+  applyLightSettings,
+  refreshGui: () => { if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay()); },
+});
 
 function fail(message) {
   hook.error = message;
@@ -238,7 +115,8 @@ function selectEnvironment(name) {
 
 function applyState() {
   if (!app) return;
-  app.setMode(MODES[state.mode] ?? 2);
+  const { ShadingMode, modeNames } = client;
+  app.setMode(modeNames.includes(state.mode) ? ShadingMode[state.mode] : ShadingMode.interreflected);
   app.setDisplayOrder(state.order);
   app.setExposure(state.exposure);
   app.setEnvRotation(state.envYaw, state.envPitch);
@@ -264,16 +142,12 @@ function applyLightSettings() {
 }
 
 // Scene radius in world units, for default light placement and the panel's slider ranges:
-// the local lighting sphere's radius, or for distant scenes the bounds radius, recovered
-// from the framed camera (ClientApp::frameScene puts it 2.7 bounds radii from the centre).
+// the local lighting sphere's radius, or for distant scenes the radius of the bounding
+// sphere the camera frames (ClientApp::sceneRadius).
 let sceneRadius = 1;
 function measureSceneRadius() {
   const r = app.lightingRadius();
-  if (r > 0) return r;
-  const c = app.lightCenter();
-  const ray = app.rayFromScreen(0, 0);
-  const d = ray && ray.length === 6 ? Math.hypot(ray[0] - c[0], ray[1] - c[1], ray[2] - c[2]) / 2.7 : 0;
-  return d > 0 && Number.isFinite(d) ? d : 1;
+  return r > 0 ? r : app.sceneRadius();
 }
 
 // A scene baked for local lighting opens with one sphere light above the light centre c
@@ -321,6 +195,7 @@ async function loadScene(name) {
     // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
     // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
     await streamAsset(app, entry, {
+      kinds: client.ShadingMode,
       progress: hook,
       onProgress: () => {
         stats.bytesLoaded = hook.bytesReceived;
@@ -336,7 +211,7 @@ async function loadScene(name) {
   stats.vertices = app.vertexCount();
   state.order = app.bakedOrder();
   applyState();
-  // Render once so rayFromScreen has a camera to measure the scene with.
+  // Render once so rayFromScreen has a camera to place the default light with.
   app.render(Math.max(1, canvas.width), Math.max(1, canvas.height));
   sceneRadius = measureSceneRadius();
   lightSettings.environmentOn = app.lightingModel() === 0 || params.has('env');
@@ -350,10 +225,10 @@ function buildGui() {
   if (window.innerWidth < 600) gui.close();
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
-  gui.add(state, 'mode', Object.keys(MODES)).name('transfer').onChange(applyState);
+  gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
     .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
-  gui.add(state, 'order', 1, 8, 1).name('SH order').onChange(applyState);
+  gui.add(state, 'order', 1, client.maxOrder, 1).name('SH order').onChange(applyState);
   const envNames = ['white furnace', ...environments.filter((l) => l.usable).map((l) => l.name)];
   gui.add(state, 'environment', envNames).name('environment').onChange((n) => {
     selectEnvironment(n);
@@ -445,8 +320,9 @@ function setupInput() {
 
 // " (CPCA: K clusters, N weights)" when the displayed pass is drawn from its clusters.
 function formText() {
-  const kind = PASS_KINDS[state.mode];
-  if (kind === undefined || app.passForm(kind) !== 2) return '';
+  if (!PASS_NAMES.includes(state.mode)) return '';
+  const kind = client.ShadingMode[state.mode];
+  if (app.passForm(kind) !== client.PassForm.cpca) return '';
   const [clusters, weights] = app.cpcaShape(kind);
   return ` (CPCA: ${clusters} clusters, ${weights} weights)`;
 }
@@ -487,6 +363,15 @@ async function main() {
     fail(`The client's WebAssembly module could not be loaded: ${e.message || e}`);
     return;
   }
+  const { ShadingMode, PassForm } = Module;
+  Object.assign(client, {
+    maxOrder: Module.kMaxClientOrder,
+    ShadingMode,
+    PassForm,
+    modeNames: enumNames(ShadingMode),
+    formName: (form) => (form === PassForm.absent ? null : enumNames(PassForm).find((n) => PassForm[n] === form)),
+  });
+  state.order = client.maxOrder;
   app = new Module.ClientApp('#view');
   if (app.error()) {
     fail(app.error());
@@ -509,7 +394,7 @@ async function main() {
     }
     if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     try {
-      environments = (await fetchJson('/api/lights?order=8', 'environment list')).lights || [];
+      environments = (await fetchJson(`/api/lights?order=${client.maxOrder}`, 'environment list')).lights || [];
     } catch (e) {
       console.warn(`prt: ${e.message}; using the white furnace`);
       environments = [];

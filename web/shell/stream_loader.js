@@ -5,7 +5,8 @@
 // The wasm client checks every byte (header, table, section and band checksums); this file
 // only checks that the parts tile the file and arrive at their declared sizes.
 
-const KINDS = { unshadowed: 0, shadowed: 1, interreflected: 2 };
+// The catalogue's names of the transfer passes, in the asset's kind order.
+export const PASS_NAMES = ['unshadowed', 'shadowed', 'interreflected'];
 const MAX_PARALLEL = 4;  // fetches in flight; bands are still applied strictly in order
 let currentStream = 0;  // a newer streamAsset call abandons the older one (another scene picked)
 
@@ -24,20 +25,23 @@ export function checkParts(parts, bytes) {
     if (p.offset !== end) throw new Error(`part ${i} starts at ${p.offset}, not where part ${i - 1} ends (${end})`);
     end = p.offset + p.size;
     if (p.kind === 'transfer-band' && !(Number.isInteger(p.band) && p.band >= 0)) throw new Error(`part ${i} has no valid band`);
-    if (p.pass !== undefined && !Object.hasOwn(KINDS, p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
+    if (p.pass !== undefined && !PASS_NAMES.includes(p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
   });
   if (end !== bytes) throw new Error(`the parts cover ${end} bytes, the file has ${bytes}`);
   if (parts[0].kind !== 'head') throw new Error('the first part is not the head');
 }
 
-// Streams catalogue entry `entry` ({name, bytes, parts}) into `app` (ClientApp). Resolves
+// Streams catalogue entry `entry` ({name, bytes, parts}) into `app` (ClientApp); `kinds`
+// maps each of PASS_NAMES to the client's pass kind (the embind enum Module.ShadingMode,
+// whose values app.mode() returns and app.streamPass / loadedBands take). Resolves
 // once the first picture can be drawn (geometry and band 0 of the displayed pass, or the
 // whole displayed pass when it is float32), and keeps loading the rest in the background.
 // `progress` (an object) gets bytesReceived, bytesTotal, transferBytesReceived,
 // transferBytesTotal, updated per part; onProgress() is called after each. A failure before
 // the first picture rejects; one after it goes to onError(Error). Either way the message
 // names the scene and the problem (network, HTTP status, size, the decoder's own words).
-export function streamAsset(app, entry, { progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
+export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
+  if (!kinds || PASS_NAMES.some((n) => !kinds[n])) throw new Error('streamAsset: kinds must give the client\'s pass kind for every pass name');
   const fail = (message) => new Error(`Scene '${entry.name}' could not be loaded: ${message}`);
   try {
     checkParts(entry.parts, entry.bytes);
@@ -52,7 +56,7 @@ export function streamAsset(app, entry, { progress = {}, onProgress = () => {}, 
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
   // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there.
-  Object.defineProperty(progress, 'loadedBands', { get: () => [0, 1, 2].map((k) => app.loadedBands(k)), configurable: true, enumerable: true });
+  Object.defineProperty(progress, 'loadedBands', { get: () => PASS_NAMES.map((n) => app.loadedBands(kinds[n])), configurable: true, enumerable: true });
   const generation = ++currentStream;
   const superseded = () => generation !== currentStream;
   if (!app.reserveStream(entry.bytes)) throw new Error(`Out of memory: cannot hold scene '${entry.name}' (${(entry.bytes / 1e6).toFixed(1)} MB).`);
@@ -109,17 +113,17 @@ export function streamAsset(app, entry, { progress = {}, onProgress = () => {}, 
     if (geometryError) throw fail(geometryError);
     // The displayed pass first, then the others in file order.
     const displayed = app.mode();
-    const kinds = [...new Set(transferParts.map((p) => KINDS[p.pass]))];
-    kinds.sort((a, b) => (b === displayed) - (a === displayed));
-    const queue = kinds.flatMap((k) => transferParts.filter((p) => KINDS[p.pass] === k));
+    const passKinds = [...new Set(transferParts.map((p) => kinds[p.pass]))];
+    passKinds.sort((a, b) => (b === displayed) - (a === displayed));
+    const queue = passKinds.flatMap((k) => transferParts.filter((p) => kinds[p.pass] === k));
     const arrived = new Array(queue.length).fill(false);
     const applied = new Map();  // kind -> bands uploaded
     let shown = false;
     // Applies, per pass, the longest run of arrived parts from its start: a pass's bands go
     // up strictly in order whatever order the fetches finish in.
     const apply = () => {
-      for (const k of kinds) {
-        const parts = queue.map((p, i) => [p, i]).filter(([p]) => KINDS[p.pass] === k);
+      for (const k of passKinds) {
+        const parts = queue.map((p, i) => [p, i]).filter(([p]) => kinds[p.pass] === k);
         let bands = 0, whole = false;
         for (const [p, i] of parts) {
           if (!arrived[i]) break;

@@ -91,8 +91,8 @@ void ClientApp::adoptGeometry(BakedAsset decoded) {
     boundsMin_ = {std::min(boundsMin_.x, p.x), std::min(boundsMin_.y, p.y), std::min(boundsMin_.z, p.z)};
     boundsMax_ = {std::max(boundsMax_.x, p.x), std::max(boundsMax_.y, p.y), std::max(boundsMax_.z, p.z)};
   }
-  displayOrder_ = std::min(asset_.shOrder, 8);
-  pendingMode_ = -1;
+  displayOrder_ = std::min(asset_.shOrder, kMaxClientOrder);
+  pendingMode_.reset();
   frameScene();
 }
 
@@ -113,9 +113,10 @@ std::string ClientApp::streamGeometry() {
   return "";
 }
 
-std::string ClientApp::streamPass(int kind, int bands) {
+std::string ClientApp::streamPass(ShadingMode mode, int bands) {
   if (!ok()) return error_;
-  if (kind < 0 || kind > 2) return "streamPass: kind must be 0, 1 or 2";
+  if (!isPassKind(mode)) return "streamPass: kind must be a pass kind (unshadowed, shadowed or interreflected)";
+  const int kind = static_cast<int>(mode);
   TransferPass pass;
   if (cpcaDirect_ && stream_.isCpca(kind)) {
     CpcaTransfer cpca;
@@ -128,16 +129,11 @@ std::string ClientApp::streamPass(int kind, int bands) {
     makeCurrent();
     if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
   }
-  if (kind == pendingMode_) {
-    mode_ = static_cast<ShadingMode>(kind);
-    pendingMode_ = -1;
+  if (pendingMode_ == mode) {
+    mode_ = mode;
+    pendingMode_.reset();
   }
   return "";
-}
-
-int ClientApp::loadedBands(int kind) const {
-  if (kind < 0 || kind > 2) return 0;
-  return renderer_.passOrder(static_cast<ShadingMode>(kind));
 }
 
 std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int order) {
@@ -146,7 +142,7 @@ std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int ord
   }
   for (float v : flatRgb)
     if (!std::isfinite(v)) return "environment SH holds a non-finite value";
-  environmentOrder_ = std::min(order, 8);
+  environmentOrder_ = std::min(order, kMaxClientOrder);
   environment_.assign(static_cast<std::size_t>(shCoeffCount(environmentOrder_)), Rgb{});
   for (std::size_t i = 0; i < environment_.size(); ++i) environment_[i] = {flatRgb[3 * i], flatRgb[3 * i + 1], flatRgb[3 * i + 2]};
   updateLighting();
@@ -164,38 +160,20 @@ void ClientApp::setEnvRotation(float yaw, float pitch) {
   pitch_ = std::clamp(pitch, -1.5f, 1.5f);
 }
 void ClientApp::setLightColor(float r, float g, float b) { color_ = {r, g, b}; }
-void ClientApp::setMode(int mode) {
-  const auto m = static_cast<ShadingMode>(std::clamp(mode, 0, 3));
+void ClientApp::setMode(ShadingMode m) {
+  if (!isPassKind(m) && m != ShadingMode::kLambert) return;
   if (renderer_.hasPass(m) || asset_.positions.empty()) {
     mode_ = m;
-    pendingMode_ = -1;
+    pendingMode_.reset();
   } else if (stream_.hasKind(static_cast<int>(m))) {
-    pendingMode_ = static_cast<int>(m);  // still streaming: switch when its first band arrives
+    pendingMode_ = m;  // still streaming: switch when its first band arrives
   }
 }
-void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, 8))); }
+void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
-void ClientApp::orbit(float dx, float dy) {
-  camYaw_ += dx;
-  camPitch_ = std::clamp(camPitch_ + dy, -1.5f, 1.5f);
-}
-void ClientApp::pan(float dx, float dy) {
-  const Vec3 forward{-std::sin(camYaw_) * std::cos(camPitch_), -std::sin(camPitch_), -std::cos(camYaw_) * std::cos(camPitch_)};
-  Vec3 right = cross(forward, {0, 1, 0});
-  right = right * (1.0f / std::max(1e-6f, length(right)));
-  const Vec3 up = cross(right, forward);
-  target_ = target_ + (right * dx + up * dy) * (distance_ * 0.5f);
-}
-void ClientApp::zoom(float factor) { distance_ = std::clamp(distance_ * factor, radius_ * 0.05f, radius_ * 50.0f); }
-
 void ClientApp::frameScene() {
-  target_ = (boundsMin_ + boundsMax_) * 0.5f;
-  radius_ = std::max(1e-3f, 0.5f * length(boundsMax_ - boundsMin_));
-  const float fov = 0.8f;
-  distance_ = radius_ / std::sin(0.5f * fov) * 1.05f;
-  camYaw_ = 0.0f;
-  camPitch_ = 0.35f;
+  camera_.frame(toGlm((boundsMin_ + boundsMax_) * 0.5f), 0.5f * length(boundsMax_ - boundsMin_), camera_.aspect());
 }
 
 void ClientApp::updateLighting() {
@@ -215,9 +193,9 @@ Vec3 ClientApp::lightCenter() const {
 }
 
 void ClientApp::syncLightView() {
-  // The cube is projected at the baked order (the lighting holds at most 8 bands); before a
-  // scene is loaded, at 5.
-  const int order = asset_.shOrder > 0 ? std::min(asset_.shOrder, 8) : 5;
+  // The cube is projected at the baked order (the lighting holds at most kMaxClientOrder
+  // bands); before a scene is loaded, at 5.
+  const int order = asset_.shOrder > 0 ? std::min(asset_.shOrder, kMaxClientOrder) : 5;
   lights_.setView(lightCenter(), 0.5f * length(boundsMax_ - boundsMin_), order);
 }
 
@@ -225,26 +203,26 @@ void ClientApp::render(int width, int height) {
   if (!ok() || width <= 0 || height <= 0) return;
   makeCurrent();
   prepareLighting();
-  eye_ = target_ + Vec3{std::sin(camYaw_) * std::cos(camPitch_), std::sin(camPitch_),
-                        std::cos(camYaw_) * std::cos(camPitch_)} * distance_;
-  float nearZ = std::max(distance_ - 2.0f * radius_, distance_ * 0.01f);
-  float farZ = distance_ + 2.0f * radius_;
+  camera_.setAspect(static_cast<float>(width) / height);
+  const Vec3 eye = toVec3(camera_.eyePosition());
+  const glm::vec2 depth = camera_.sceneDepthRange();
+  float nearZ = depth.x, farZ = depth.y;
   for (const BoundingSphere& b : lights_.emitterBounds()) {  // keep the emitters inside the depth range
-    const float d = length(b.center - eye_);
+    const float d = length(b.center - eye);
     farZ = std::max(farZ, d + b.radius);
     nearZ = std::min(nearZ, d - b.radius);
   }
   nearZ = std::max(nearZ, farZ * 1e-4f);
-  viewProjection_ = multiply(perspective(0.8f, static_cast<float>(width) / height, nearZ, farZ), lookAt(eye_, target_, {0, 1, 0}));
+  camera_.update(nearZ, farZ);
   FrameParams p;
-  p.viewProjection = viewProjection_;
+  p.viewProjection = camera_.viewProjection();
   p.mode = mode_;
   p.displayOrder = displayOrder_;
   p.exposure = exposure_;
   p.background = background_ && environmentEnabled_;
   p.environment = packed_;
   renderer_.draw(width, height, p);
-  lights_.drawEmitters(viewProjection_, eye_, exposure_);
+  lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);
 }
 
 void ClientApp::finishShading() const {
@@ -255,7 +233,7 @@ void ClientApp::finishShading() const {
 
 void ClientApp::prepareLighting() {
   updateLighting();  // the shared SH rotation, every frame
-  static const float kNoEnvironment[3 * 64] = {};
+  static const float kNoEnvironment[kPackedLightingFloats] = {};
   syncLightView();
   // Re-projects the light cube only when dirty; leaves the lighting block bound.
   lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);
@@ -310,28 +288,18 @@ void ClientApp::finishGpu() {
 }
 
 std::vector<float> ClientApp::rayFromScreen(float ndcX, float ndcY) const {
-  const Mat4 inv = inverse(viewProjection_);
-  auto unproject = [&](float z) {
-    const float x = inv[0] * ndcX + inv[4] * ndcY + inv[8] * z + inv[12];
-    const float y = inv[1] * ndcX + inv[5] * ndcY + inv[9] * z + inv[13];
-    const float zz = inv[2] * ndcX + inv[6] * ndcY + inv[10] * z + inv[14];
-    const float w = inv[3] * ndcX + inv[7] * ndcY + inv[11] * z + inv[15];
-    return Vec3{x / w, y / w, zz / w};
-  };
-  Vec3 d = unproject(1.0f) - unproject(-1.0f);
-  const float len = length(d);
-  d = len > 0.0f && std::isfinite(len) ? d * (1.0f / len) : Vec3{0, 0, -1};
-  return {eye_.x, eye_.y, eye_.z, d.x, d.y, d.z};
+  const glm::vec3 e = camera_.eye(), d = camera_.rayDirection(ndcX, ndcY);
+  return {e.x, e.y, e.z, d.x, d.y, d.z};
 }
 
 std::vector<float> ClientApp::project(float x, float y, float z) const {
-  const Mat4& m = viewProjection_;
-  const float cx = m[0] * x + m[4] * y + m[8] * z + m[12];
-  const float cy = m[1] * x + m[5] * y + m[9] * z + m[13];
-  const float cz = m[2] * x + m[6] * y + m[10] * z + m[14];
-  const float cw = m[3] * x + m[7] * y + m[11] * z + m[15];
-  if (!(std::fabs(cw) > 1e-12f)) return {0.0f, 0.0f, 2.0f};
-  return {cx / cw, cy / cw, cz / cw};
+  const glm::vec3 p = camera_.project({x, y, z});
+  return {p.x, p.y, p.z};
+}
+
+std::vector<float> ClientApp::viewProjection() const {
+  const float* m = glm::value_ptr(camera_.viewProjection());
+  return std::vector<float>(m, m + 16);
 }
 
 std::vector<float> ClientApp::vertexRadiance() const {

@@ -1,16 +1,21 @@
 // The client's state and per-frame work, driven from JavaScript through embind
 // (client_bindings.cpp): the decoded scene on the GPU, the lighting (an environment's SH
 // or a constant "white furnace", its live rotation by the shared SH rotation, plus dynamic
-// area lights projected through a light cube map: dynamic_lighting.h), and an orbit camera.
+// area lights projected through a light cube map: dynamic_lighting.h), and the orbit camera
+// (orbit_camera.h).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "asset_stream.h"
+#include "client_limits.h"
 #include "dynamic_lighting.h"
 #include "gl_renderer.h"
+#include "glm_types.h"
+#include "orbit_camera.h"
 #include "prt/asset.h"
 #include "prt/vec3.h"
 
@@ -40,25 +45,26 @@ class ClientApp {
   // the geometry, uploads it without transfer, frames the camera and picks the displayed
   // pass (mode()). "" or the reader's error.
   std::string streamGeometry();
-  // Decodes pass `kind` (0..2) from its first `bands` bands (0: all; float32 passes only
-  // decode whole) and re-uploads it at that order. "" or the error; bands checked by their CRCs.
-  std::string streamPass(int kind, int bands);
+  // Decodes pass `kind` (a ShadingMode with a pass: isPassKind) from its first `bands` bands
+  // (0: all; float32 passes only decode whole) and re-uploads it at that order. "" or the
+  // error; bands checked by their CRCs.
+  std::string streamPass(ShadingMode kind, int bands);
   // Frees the stream buffer once every part has been applied (or on failure).
   void endStream() { stream_.release(); }
-  // Bands of pass `kind` on the GPU (0 when absent): the baked order once loaded whole.
-  int loadedBands(int kind) const;
+  // Bands of pass `kind` on the GPU (0 when absent, and for Lambert): the baked order once
+  // loaded whole.
+  int loadedBands(ShadingMode kind) const { return renderer_.passOrder(kind); }
 
   // ---- CPCA rendering (docs/web-client.md, "CPCA rendering") ----
   // Whether CPCA-encoded passes are rendered straight from the clusters (Sloan 2003; the
   // default) or expanded to plain transfer first. Applies to passes loaded afterwards.
   void setCpcaDirect(bool on) { cpcaDirect_ = on; }
   bool cpcaDirect() const { return cpcaDirect_; }
-  // How pass `kind` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
-  int passForm(int kind) const { return kind < 0 || kind > 2 ? 0 : renderer_.passForm(static_cast<ShadingMode>(kind)); }
+  // How pass `kind` is drawn (absent for Lambert).
+  PassForm passForm(ShadingMode kind) const { return renderer_.passForm(kind); }
   // CPCA pass `kind`: [clusters, weights per vertex]; [0, 0] otherwise.
-  std::vector<int> cpcaShape(int kind) const {
-    if (kind < 0 || kind > 2) return {0, 0};
-    const auto s = renderer_.cpcaShape(static_cast<ShadingMode>(kind));
+  std::vector<int> cpcaShape(ShadingMode kind) const {
+    const auto s = renderer_.cpcaShape(kind);
     return {s[0], s[1]};
   }
   // Exit radiance of every vertex in the last frame, flat RGB before exposure (reads the
@@ -66,21 +72,29 @@ class ClientApp {
   std::vector<float> vertexRadiance() const;
 
   // Environment lighting: radiance SH, flat [r,g,b] per coefficient, order 1..16 (the first
-  // 8 bands are kept). Returns "" or the error.
+  // kMaxClientOrder bands are kept). Returns "" or the error.
   std::string setEnvironment(const std::vector<float>& flatRgb, int order);
   // Constant radiance `intensity` from every direction (the white furnace).
   void setWhiteFurnace(float intensity);
   void setEnvRotation(float yawRadians, float pitchRadians);
   void setLightColor(float r, float g, float b);  // multiplies the lighting
-  void setMode(int mode);  // ShadingMode; one whose pass is still streaming takes effect when it arrives
+  void setMode(ShadingMode mode);  // one whose pass is still streaming takes effect when it arrives
   void setDisplayOrder(int order);                 // clamped to [1, baked order]
   void setExposure(float ev);                      // exposure value, 2^ev
   void setBackground(bool on) { background_ = on; }
 
-  void orbit(float dxRadians, float dyRadians);
-  void pan(float dx, float dy);  // in units of the framed radius
-  void zoom(float factor);       // > 1 moves away
+  // ---- the camera (orbit_camera.h) ----
+  void orbit(float dxRadians, float dyRadians) { camera_.orbit(dxRadians, dyRadians); }
+  void pan(float dx, float dy) { camera_.pan(dx, dy); }  // in units of half the distance
+  void zoom(float factor) { camera_.zoom(factor); }      // > 1 moves away
+  // Frames the scene's bounding sphere (the centre and half diagonal of its bounds).
   void frameScene();
+  // That sphere, in world units (radius 1 about the origin before a scene is loaded).
+  float sceneRadius() const { return camera_.sceneRadius(); }
+  Vec3 sceneCenter() const { return toVec3(camera_.sceneCenter()); }
+  // The last frame's view-projection matrix, 16 floats column-major (all zero before the
+  // first frame).
+  std::vector<float> viewProjection() const;
 
   // Updates the lighting (rotation, colour, truncation) and draws one frame.
   void render(int width, int height);
@@ -113,7 +127,7 @@ class ClientApp {
   int lightingModel() const { return static_cast<int>(asset_.lighting.model); }
   float lightingRadius() const { return asset_.lighting.radius; }
   // The last light-cube projection alone, flat [r,g,b] per coefficient at the baked order
-  // (at most 8); projects first if lights, size, path or order changed since.
+  // (at most kMaxClientOrder); projects first if lights, size, path or order changed since.
   std::vector<float> cubeSH();
   // Re-renders and re-projects the light cube now, without drawing (benchmarks).
   void projectLightsNow();
@@ -131,8 +145,8 @@ class ClientApp {
   std::size_t triangleCount() const { return asset_.indices.size() / 3; }
   int bakedOrder() const { return asset_.shOrder; }
   int displayOrder() const { return displayOrder_; }
-  int mode() const { return static_cast<int>(mode_); }
-  bool hasPass(int mode) const { return ok() && renderer_.hasPass(static_cast<ShadingMode>(mode)); }
+  ShadingMode mode() const { return mode_; }
+  bool hasPass(ShadingMode mode) const { return ok() && renderer_.hasPass(mode); }
 
  private:
   bool ok() const { return error_.empty(); }
@@ -158,18 +172,15 @@ class ClientApp {
   float yaw_ = 0, pitch_ = 0;
   Rgb color_{1, 1, 1};
   std::vector<Rgb> lighting_;  // rotated and coloured, at environmentOrder_
-  float packed_[3 * 64] = {};
+  float packed_[kPackedLightingFloats] = {};
 
   ShadingMode mode_ = ShadingMode::kInterreflected;
-  int pendingMode_ = -1;  // a mode asked for whose pass is still streaming
-  int displayOrder_ = 8;
+  std::optional<ShadingMode> pendingMode_;  // a mode asked for whose pass is still streaming
+  int displayOrder_ = kMaxClientOrder;
   float exposure_ = 1.0f;
   bool background_ = true;
 
-  Vec3 target_{};
-  float radius_ = 1.0f, distance_ = 3.0f, camYaw_ = 0.0f, camPitch_ = 0.35f;
-  Mat4 viewProjection_{};
-  Vec3 eye_{};
+  OrbitCamera camera_;
 };
 
 }  // namespace prt::web

@@ -65,14 +65,31 @@ val lightCenter(const ClientApp& app) {
 val rayFromScreen(const ClientApp& app, float x, float y) { return val::array(app.rayFromScreen(x, y)); }
 double weightTableBytes(const ClientApp& app) { return static_cast<double>(app.weightTableBytes()); }
 
-val cpcaShape(const ClientApp& app, int kind) { return val::array(app.cpcaShape(kind)); }
+val cpcaShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.cpcaShape(kind)); }
 val vertexRadiance(const ClientApp& app) { return val::array(app.vertexRadiance()); }
 
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
+val viewProjection(const ClientApp& app) { return val::array(app.viewProjection()); }
+val sceneCenter(const ClientApp& app) {
+  const prt::Vec3 c = app.sceneCenter();
+  return val::array(std::vector<float>{c.x, c.y, c.z});
+}
 
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_client) {
+  // Module.ShadingMode.interreflected etc.: what setMode / mode() take and give, and the pass
+  // kinds (its first three values) of streamPass, loadedBands, passForm and cpcaShape.
+  emscripten::enum_<prt::web::ShadingMode>("ShadingMode")
+      .value("unshadowed", prt::web::ShadingMode::kUnshadowed)
+      .value("shadowed", prt::web::ShadingMode::kShadowed)
+      .value("interreflected", prt::web::ShadingMode::kInterreflected)
+      .value("lambert", prt::web::ShadingMode::kLambert);
+  // Module.PassForm.absent / expanded / cpca: what passForm gives.
+  emscripten::enum_<prt::web::PassForm>("PassForm")
+      .value("absent", prt::web::PassForm::kAbsent)
+      .value("expanded", prt::web::PassForm::kExpanded)
+      .value("cpca", prt::web::PassForm::kCpca);
   emscripten::class_<ClientApp>("ClientApp")
       .constructor<std::string>()
       .function("error", &ClientApp::error)
@@ -101,6 +118,9 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("pan", &ClientApp::pan)
       .function("zoom", &ClientApp::zoom)
       .function("frameScene", &ClientApp::frameScene)
+      .function("sceneRadius", &ClientApp::sceneRadius)
+      .function("sceneCenter", &sceneCenter)
+      .function("viewProjection", &viewProjection)
       .function("render", &ClientApp::render)
       .function("lightSH", &lightSH)
       .function("project", &project)

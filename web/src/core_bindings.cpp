@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "client_limits.h"
 #include "cpca_texture.h"
 #include "cube_faces.h"
 #include "emitters.h"
@@ -77,11 +78,13 @@ val shadeConstant(const val& bytes, const std::string& kind) {
 // CPCA rendering on the CPU (cpca_texture.h's arithmetic of the two shaders) against the
 // plain dot product with the expanded transfer, for pass `kind` of an asset whose pass is
 // CPCA-encoded: {packed, expanded} exit radiance (flat RGB per vertex) under `lighting`
-// (packLighting layout, 192 floats, cut to displayOrder), or a string naming the error.
+// (packLighting layout, kPackedLightingFloats floats, cut to displayOrder), or a string naming the error.
 val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& lighting, int displayOrder) {
   const std::vector<std::uint8_t> data = bytesFrom(bytes);
   const std::vector<float> light = emscripten::convertJSArrayToNumberVector<float>(lighting);
-  if (light.size() != 192) return val(std::string("lighting must hold 192 floats"));
+  if (light.size() != static_cast<std::size_t>(prt::web::kPackedLightingFloats)) {
+    return val("lighting must hold " + std::to_string(prt::web::kPackedLightingFloats) + " floats");
+  }
   prt::BakedAsset asset;
   if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
   for (const prt::TransferPass& p : asset.passes) {
@@ -97,7 +100,7 @@ val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& ligh
     const std::size_t n2 = static_cast<std::size_t>(asset.shOrder * asset.shOrder);
     const std::size_t active = static_cast<std::size_t>(std::clamp(displayOrder, 1, asset.shOrder));
     std::vector<prt::Rgb> rgbLight(active * active);
-    for (std::size_t i = 0; i < rgbLight.size(); ++i) rgbLight[i] = {light[i], light[64 + i], light[128 + i]};
+    for (std::size_t i = 0; i < rgbLight.size(); ++i) rgbLight[i] = {light[i], light[prt::web::kMaxClientCoeffs + i], light[2 * prt::web::kMaxClientCoeffs + i]};
     std::vector<double> reference(asset.positions.size() * 3);
     if (prt::Status s = prt::exitRadianceDouble(p.coeffs, p.channels, n2, asset.albedo, rgbLight, reference); !s.isOk()) {
       return val(s.toString());
@@ -224,10 +227,9 @@ val cubeFaceProject(int face, const val& c, const val& p) {
   const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
   const std::vector<float> pv = emscripten::convertJSArrayToNumberVector<float>(p);
   if (cv.size() != 3 || pv.size() != 3) return val(std::string("c and p must hold 3 numbers"));
-  const prt::web::Mat4 m = prt::web::cubeFaceViewProjection(face, {cv[0], cv[1], cv[2]}, 0.01f);
-  float clip[4];
-  for (int r = 0; r < 4; ++r) clip[r] = m[r] * pv[0] + m[4 + r] * pv[1] + m[8 + r] * pv[2] + m[12 + r];
-  return val::array(std::vector<float>{clip[0] / clip[3], clip[1] / clip[3], clip[2] / clip[3]});
+  const glm::mat4 m = prt::web::cubeFaceViewProjection(face, {cv[0], cv[1], cv[2]}, 0.01f);
+  const glm::vec4 clip = m * glm::vec4(pv[0], pv[1], pv[2], 1.0f);
+  return val::array(std::vector<float>{clip.x / clip.w, clip.y / clip.w, clip.z / clip.w});
 }
 
 bool sphereTouchesCubeFace(int face, const val& c, const val& center, float radius) {
@@ -259,6 +261,9 @@ val decodeRgbeAtlas(int size, const val& bytes) {
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_core) {
+  // The client's order limit and the packLighting layout's size (client_limits.h).
+  emscripten::constant("kMaxClientOrder", prt::web::kMaxClientOrder);
+  emscripten::constant("kPackedLightingFloats", prt::web::kPackedLightingFloats);
   emscripten::function("circularLightSH", &circularLightSH);
   emscripten::function("parseLights", &parseLights);
   emscripten::function("cubeFaceProject", &cubeFaceProject);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "client_limits.h"
 #include "prt/exit_radiance.h"
 #include "prt/sh_basis.h"
 
@@ -120,7 +121,7 @@ std::vector<float> cpcaRadiance(const CpcaTextures& p, const float* lighting, in
   // The table pass (prt.vert on the entries, albedo 1): the entries are transfer vectors
   // with a padded stride, so this is the shared exit radiance.
   std::vector<Rgb> rgbLight(activeCoeffs);
-  for (std::size_t i = 0; i < activeCoeffs; ++i) rgbLight[i] = {lighting[i], lighting[64 + i], lighting[128 + i]};
+  for (std::size_t i = 0; i < activeCoeffs; ++i) rgbLight[i] = {lighting[i], lighting[kMaxClientCoeffs + i], lighting[2 * kMaxClientCoeffs + i]};
   const std::size_t entries = static_cast<std::size_t>(p.clusters) * E;
   std::vector<float> table(entries * 3, 0.0f);
   const std::span<const float> entryTexels(p.entries.texels.data(), entries * static_cast<std::size_t>(p.channels) * perChannel);

@@ -50,7 +50,7 @@ struct CpcaTextures {
 Status packCpca(const CpcaTransfer& cpca, int maxHeight, CpcaTextures* out);
 
 // The renderer's arithmetic on the CPU, for tests: exit radiance (RGB per vertex) of the
-// packed pass under `lighting` (packLighting layout, 3 x 64 floats, cut to displayOrder) at
+// packed pass under `lighting` (packLighting layout, kPackedLightingFloats floats, cut to displayOrder) at
 // display order `displayOrder`; scalar passes are multiplied by `albedo` (3 floats per vertex).
 std::vector<float> cpcaRadiance(const CpcaTextures& packed, const float* lighting, int displayOrder,
                                 const std::vector<float>& albedo);

@@ -19,9 +19,9 @@ FaceAxes faceAxes(int face) {
 
 }  // namespace
 
-Mat4 cubeFaceViewProjection(int face, Vec3 c, float nearZ) {
+glm::mat4 cubeFaceViewProjection(int face, Vec3 c, float nearZ) {
   const FaceAxes a = faceAxes(face);
-  // Column-major: m[col * 4 + row]; rows are sc, tc, ma - 2 near, ma.
+  // One column per argument line (m[col][row]); rows are sc, tc, ma - 2 near, ma.
   return {a.s.x, a.t.x, a.m.x, a.m.x,
           a.s.y, a.t.y, a.m.y, a.m.y,
           a.s.z, a.t.z, a.m.z, a.m.z,

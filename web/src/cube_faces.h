@@ -8,7 +8,7 @@
 #include <span>
 
 #include "emitters.h"
-#include "mat4.h"
+#include "glm_types.h"
 #include "prt/cubemap.h"
 #include "prt/status.h"
 
@@ -27,7 +27,7 @@ inline AtlasOrigin cubeAtlasOrigin(int face, int size) { return {(face % 3) * si
 // tc/ma) points along d. So NDC (x, y) is the face coordinate (s, t), window pixel (i, j)
 // is texel (i, j), and the far plane is at infinity. A 90-degree frustum, a proper
 // rotation (front faces stay front faces).
-Mat4 cubeFaceViewProjection(int face, Vec3 center, float nearZ);
+glm::mat4 cubeFaceViewProjection(int face, Vec3 center, float nearZ);
 
 // False only when `sphere` lies entirely outside the face's frustum (conservative).
 bool sphereTouchesCubeFace(int face, Vec3 center, const BoundingSphere& sphere);

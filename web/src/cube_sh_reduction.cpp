@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "client_limits.h"
 #include "cube_faces.h"
 #include "gl_program.h"
 #include "prt/cube_sh_weights.h"
@@ -133,7 +134,7 @@ void CubeShReduction::run(GLuint cubeTexture, GLuint cubeShFramebuffer, const Fa
   glDrawArrays(GL_TRIANGLES, 0, 3);
   // Pass 2: one fragment per (group, channel) of the cube-SH texture.
   glBindFramebuffer(GL_FRAMEBUFFER, cubeShFramebuffer);
-  glViewport(0, 0, 16, 3);
+  glViewport(0, 0, kLightingTexelsPerChannel, 3);
   glUseProgram(sumBlocksProgram_);
   glBindTexture(GL_TEXTURE_2D_ARRAY, partial_);
   glUniform1i(blocksPartial_, 1);

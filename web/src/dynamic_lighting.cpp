@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "client_limits.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_project.h"
 #include "transfer_texture.h"
@@ -72,7 +73,7 @@ void DynamicLighting::simulateNoFloatTargets(bool on) {
 
 void DynamicLighting::setView(Vec3 center, float sceneRadius, int order) {
   const float nearZ = std::max(1e-6f, sceneRadius * 1e-4f);
-  order = std::clamp(order, 1, 8);
+  order = std::clamp(order, 1, kMaxClientOrder);
   if (center.x != center_.x || center.y != center_.y || center.z != center_.z || nearZ != nearZ_ || order != order_) dirty_ = true;
   center_ = center;
   nearZ_ = nearZ;
@@ -137,7 +138,7 @@ Status DynamicLighting::projectOnCpu() {
 
 void DynamicLighting::update(const float* environment, int displayOrder) {
   if (dirty_) project();
-  displayOrder = std::clamp(displayOrder, 1, 8);
+  displayOrder = std::clamp(displayOrder, 1, kMaxClientOrder);
   if (combinedVersion_ != cubeVersion_ || combinedOrder_ != displayOrder ||
       std::memcmp(combinedEnvironment_, environment, sizeof combinedEnvironment_) != 0) {
     block_.combine(environment, displayOrder);
@@ -159,7 +160,7 @@ void DynamicLighting::finishGpu() {
   block_.readFirstTexel();
 }
 
-void DynamicLighting::drawEmitters(const Mat4& viewProjection, Vec3 eye, float exposure) {
+void DynamicLighting::drawEmitters(const glm::mat4& viewProjection, Vec3 eye, float exposure) {
   if (emitters_.empty()) return;
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -178,7 +179,7 @@ namespace {
 std::vector<float> unpack(const float* packed, int count) {
   std::vector<float> out(static_cast<std::size_t>(3 * count));
   for (int i = 0; i < count; ++i)
-    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(3 * i + c)] = packed[64 * c + i];
+    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(3 * i + c)] = packed[kMaxClientCoeffs * c + i];
   return out;
 }
 }  // namespace

@@ -39,13 +39,13 @@ class DynamicLighting {
   // Test aid: behave as if EXT_color_buffer_float were missing (RGBE8 cube, CPU path).
   void simulateNoFloatTargets(bool on);
 
-  // Where the cube is rendered from and the SH order it is projected to (1..8); the near
+  // Where the cube is rendered from and the SH order it is projected to (1..kMaxClientOrder); the near
   // plane is `sceneRadius` * 1e-4. Changes mark the cube dirty.
   void setView(Vec3 center, float sceneRadius, int order);
   Vec3 center() const { return center_; }
 
   // Makes the lighting block current for a frame: re-projects the cube if dirty, then
-  // rebuilds the block if the cube, `environment` (packLighting layout, 192 floats, zero
+  // rebuilds the block if the cube, `environment` (packLighting layout, kPackedLightingFloats, zero
   // when off) or the display order changed. Leaves the block bound.
   void update(const float* environment, int displayOrder);
   // Re-renders and re-projects the cube now, whatever the dirty flag says (benchmarks).
@@ -54,7 +54,7 @@ class DynamicLighting {
   // texture (Chrome's WebGL finish does not block; a readback does).
   void finishGpu();
   // Draws the emitters into the bound framebuffer (depth-tested, tone-mapped).
-  void drawEmitters(const Mat4& viewProjection, Vec3 eye, float exposure);
+  void drawEmitters(const glm::mat4& viewProjection, Vec3 eye, float exposure);
 
   const std::vector<Emitter>& emitters() const { return emitters_; }
   const std::vector<BoundingSphere>& emitterBounds() const { return bounds_; }

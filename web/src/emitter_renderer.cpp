@@ -64,7 +64,7 @@ int EmitterRenderer::addMesh(const LightMesh& mesh) {
 
 void EmitterRenderer::begin(const EmitterView& view) {
   glUseProgram(program_);
-  glUniformMatrix4fv(viewProjection_, 1, GL_FALSE, view.viewProjection.data());
+  glUniformMatrix4fv(viewProjection_, 1, GL_FALSE, glm::value_ptr(view.viewProjection));
   glUniform3f(eye_, view.eye.x, view.eye.y, view.eye.z);
   glUniform1i(output_, static_cast<int>(view.output));
   glUniform1f(exposure_, view.exposure);
@@ -78,8 +78,8 @@ void EmitterRenderer::draw(const Emitter& e) {
     if (e.meshId < 0 || e.meshId >= meshCount()) return;
     g = &meshes_[static_cast<std::size_t>(e.meshId)];
   }
-  const Mat4 model = emitterModel(e);
-  glUniformMatrix4fv(model_, 1, GL_FALSE, model.data());
+  const glm::mat4 model = emitterModel(e);
+  glUniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(model));
   glUniform1i(shape_, static_cast<int>(e.shape));
   glUniform4f(sphere_, e.position.x, e.position.y, e.position.z, e.sizeX);
   glUniform3f(radiance_, e.radiance.r, e.radiance.g, e.radiance.b);

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "emitters.h"
-#include "mat4.h"
+#include "glm_types.h"
 #include "prt/status.h"
 
 namespace prt::web {
@@ -16,7 +16,7 @@ namespace prt::web {
 enum class EmitterOutput : int { kLinear = 0, kRgbe = 1, kDisplay = 2 };
 
 struct EmitterView {
-  Mat4 viewProjection{};
+  glm::mat4 viewProjection{1.0f};
   Vec3 eye{};  // viewpoint the sphere impostors cast rays from
   EmitterOutput output = EmitterOutput::kLinear;
   float exposure = 1.0f;  // kDisplay only

@@ -89,13 +89,13 @@ EmitterFrame emitterFrame(Vec3 n) {
 }
 
 namespace {
-// Columns a, b, c (scaled axes) and translation t, column-major.
-Mat4 affine(Vec3 a, Vec3 b, Vec3 c, Vec3 t) {
-  return {a.x, a.y, a.z, 0, b.x, b.y, b.z, 0, c.x, c.y, c.z, 0, t.x, t.y, t.z, 1};
+// Columns a, b, c (scaled axes) and translation t.
+glm::mat4 affine(Vec3 a, Vec3 b, Vec3 c, Vec3 t) {
+  return {glm::vec4(toGlm(a), 0.0f), glm::vec4(toGlm(b), 0.0f), glm::vec4(toGlm(c), 0.0f), glm::vec4(toGlm(t), 1.0f)};
 }
 }  // namespace
 
-Mat4 emitterModel(const Emitter& e) {
+glm::mat4 emitterModel(const Emitter& e) {
   switch (e.shape) {
     case EmitterShape::kSphere:
       return affine({e.sizeX, 0, 0}, {0, e.sizeX, 0}, {0, 0, e.sizeX}, e.position);

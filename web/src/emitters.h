@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mat4.h"
+#include "glm_types.h"
 #include "prt/vec3.h"
 
 namespace prt::web {
@@ -59,7 +59,7 @@ EmitterFrame emitterFrame(Vec3 unitNormal);
 // around its centre scaled by the radius (an impostor box; the sphere itself is ray-cast);
 // disc and rect: the unit square [-1,1]^2 in the (u, v) plane, front face toward n; mesh:
 // its local vertices scaled by sizeX and moved by p.
-Mat4 emitterModel(const Emitter& e);
+glm::mat4 emitterModel(const Emitter& e);
 
 struct BoundingSphere {
   Vec3 center{};

@@ -3,8 +3,10 @@
 #include <webgl/webgl2.h>  // glGetBufferSubData (WebGL2, not GLES3)
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
+#include "client_limits.h"
 #include "gl_program.h"
 #include "lighting_block.h"
 #include "transfer_texture.h"
@@ -19,6 +21,17 @@ GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
   glBindBuffer(target, b);
   glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
   return b;
+}
+
+// The GL error the calls since the last check left (glGetError) as a Status: ok when none;
+// out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
+// other error its code and what was being done ("WebGL error N while <during>").
+Status glErrorStatus(const char* memoryFor, const char* during) {
+  const GLenum err = glGetError();
+  if (err == GL_NO_ERROR) return Status::ok();
+  return Status::error(StatusCode::kInvalidArgument, err == GL_OUT_OF_MEMORY
+                                                         ? std::string("the GPU is out of memory for ") + memoryFor
+                                                         : "WebGL error " + std::to_string(err) + " while " + during);
 }
 
 }  // namespace
@@ -143,12 +156,9 @@ Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
   glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene's CPCA transfer", "uploading a CPCA pass"); !s.isOk()) {
     releasePass(&p);
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's CPCA transfer"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading a CPCA pass");
+    return s;
   }
   return Status::ok();
 }
@@ -187,12 +197,9 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
 Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
   release();
   makeGeometry(asset);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
     release();
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+    return s;
   }
   return Status::ok();
 }
@@ -207,17 +214,11 @@ Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
   TransferTexture packed;
   if (Status s = packTransfer(pass, order, static_cast<std::size_t>(vertexCount_), maxSize, &packed); !s.isOk()) return s;
   setPassTexture(kind, packed, order);
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene's transfer"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading a transfer pass");
-  }
-  return Status::ok();
+  return glErrorStatus("this scene's transfer", "uploading a transfer pass");
 }
 
 int GlRenderer::passOrder(ShadingMode mode) const {
-  if (mode == ShadingMode::kLambert) return 0;
+  if (!isPassKind(mode)) return 0;
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   return t.texture ? t.order : 0;
 }
@@ -239,28 +240,26 @@ Status GlRenderer::upload(const BakedAsset& asset) {
     if (t.texels.empty()) continue;
     setPassTexture(k, t, asset.shOrder);
   }
-  const GLenum err = glGetError();
-  if (err != GL_NO_ERROR) {
+  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
     release();
-    return Status::error(StatusCode::kInvalidArgument,
-                         err == GL_OUT_OF_MEMORY ? "the GPU is out of memory for this scene"
-                                                 : "WebGL error " + std::to_string(err) + " while uploading the scene");
+    return s;
   }
   return Status::ok();
 }
 
 bool GlRenderer::hasPass(ShadingMode mode) const {
   if (mode == ShadingMode::kLambert) return indexCount_ > 0;
+  if (!isPassKind(mode)) return false;
   return passes_[static_cast<std::size_t>(mode)].texture != 0;
 }
 
-int GlRenderer::passForm(ShadingMode mode) const {
-  if (mode == ShadingMode::kLambert || !hasPass(mode)) return 0;
-  return passes_[static_cast<std::size_t>(mode)].cpca ? 2 : 1;
+PassForm GlRenderer::passForm(ShadingMode mode) const {
+  if (!isPassKind(mode) || !hasPass(mode)) return PassForm::kAbsent;
+  return passes_[static_cast<std::size_t>(mode)].cpca ? PassForm::kCpca : PassForm::kExpanded;
 }
 
 std::array<int, 2> GlRenderer::cpcaShape(ShadingMode mode) const {
-  if (passForm(mode) != 2) return {0, 0};
+  if (passForm(mode) != PassForm::kCpca) return {0, 0};
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   return {t.clusters, t.weightsBefore.back()};
 }
@@ -328,7 +327,7 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
 }
 
 bool GlRenderer::shade(ShadingMode mode, int displayOrder) {
-  if (mode == ShadingMode::kLambert || indexCount_ == 0) return false;
+  if (!isPassKind(mode) || indexCount_ == 0) return false;
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
   if (!t.texture) return false;
   // PRT pass: prt.vert (or cpca.vert) runs once per vertex (points, rasteriser off) and its
@@ -353,11 +352,11 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   if (p.background) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(background_.id);
-    const Mat4 inv = inverse(p.viewProjection);
-    glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, inv.data());
-    glUniform4fv(background_.lightR, 16, p.environment);
-    glUniform4fv(background_.lightG, 16, p.environment + 64);
-    glUniform4fv(background_.lightB, 16, p.environment + 128);
+    const glm::mat4 inv = glm::inverse(p.viewProjection);
+    glUniformMatrix4fv(background_.inverseViewProjection, 1, GL_FALSE, glm::value_ptr(inv));
+    glUniform4fv(background_.lightR, kLightingTexelsPerChannel, p.environment);
+    glUniform4fv(background_.lightG, kLightingTexelsPerChannel, p.environment + kMaxClientCoeffs);
+    glUniform4fv(background_.lightB, kLightingTexelsPerChannel, p.environment + 2 * kMaxClientCoeffs);
     glUniform1f(background_.exposure, p.exposure);
     glBindVertexArray(backgroundVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -367,7 +366,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glEnable(GL_DEPTH_TEST);
     glBindVertexArray(vao_);
     glUseProgram(lambert_.id);
-    glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+    glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
     glUniform1f(lambert_.exposure, p.exposure);  // lighting: the bound Lighting block
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
@@ -378,7 +377,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glDepthFunc(GL_LESS);
   glBindVertexArray(vao_);
   glUseProgram(radiance_.id);
-  glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, p.viewProjection.data());
+  glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
   glUniform1f(radiance_.exposure, p.exposure);
   glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
 }

@@ -9,22 +9,33 @@
 #include <vector>
 
 #include "cpca_texture.h"
-#include "mat4.h"
+#include "glm_types.h"
 #include "prt/asset.h"
 #include "prt/status.h"
 #include "transfer_texture.h"
 
 namespace prt::web {
 
+// How the scene is shaded: one of the three transfer passes (whose values, as TransferKind's,
+// are the pass kinds the client's API takes) or plain Lambert. Bound to JS as the embind
+// enum ShadingMode (client_bindings.cpp): unshadowed, shadowed, interreflected, lambert.
 enum class ShadingMode { kUnshadowed = 0, kShadowed = 1, kInterreflected = 2, kLambert = 3 };
+// Whether `mode` names a transfer pass (not Lambert, and in range).
+inline bool isPassKind(ShadingMode mode) {
+  return mode == ShadingMode::kUnshadowed || mode == ShadingMode::kShadowed || mode == ShadingMode::kInterreflected;
+}
+
+// How a pass is drawn: absent, from expanded transfer, or straight from its CPCA clusters.
+// Bound to JS as the embind enum PassForm: absent, expanded, cpca.
+enum class PassForm { kAbsent = 0, kExpanded = 1, kCpca = 2 };
 
 struct FrameParams {
-  Mat4 viewProjection{};
+  glm::mat4 viewProjection{1.0f};
   ShadingMode mode = ShadingMode::kInterreflected;
   int displayOrder = 5;        // <= the baked order
   float exposure = 1.0f;       // linear multiplier
   bool background = true;      // draw the SH environment behind the scene
-  // The environment alone (3 x 64 floats from packLighting) for the background. The PRT and
+  // The environment alone (kPackedLightingFloats from packLighting) for the background. The PRT and
   // Lambert programs read the full lighting from the uniform block bound at
   // kLightingBlockBinding (lighting_block.h).
   const float* environment = nullptr;
@@ -48,8 +59,8 @@ class GlRenderer {
   Status uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca);
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
   bool hasPass(ShadingMode mode) const;
-  // How pass `mode` is drawn: 0 absent, 1 expanded transfer, 2 straight from CPCA.
-  int passForm(ShadingMode mode) const;
+  // How pass `mode` is drawn (kAbsent for Lambert).
+  PassForm passForm(ShadingMode mode) const;
   // CPCA pass `mode`: {clusters, weights per vertex at its bands}; {0, 0} otherwise.
   std::array<int, 2> cpcaShape(ShadingMode mode) const;
   void draw(int width, int height, const FrameParams& p);
@@ -84,7 +95,7 @@ class GlRenderer {
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   void release();
   void releaseGeometry();
-  void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks glGetError
+  void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
   // Replaces the texture of pass `kind` with `t` (packed at `order`), dropping a CPCA form.
   void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
   static void releasePass(PassTexture* p);

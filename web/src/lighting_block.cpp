@@ -21,7 +21,7 @@ Status LightingBlock::init(bool floatTargets) {
   setNearestClamp(GL_TEXTURE_2D);
   const float zeros[kPackedLightingFloats] = {};
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 16, 3, 0, GL_RGBA, GL_FLOAT, zeros);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kLightingTexelsPerChannel, 3, 0, GL_RGBA, GL_FLOAT, zeros);
   glBindTexture(GL_TEXTURE_2D, 0);
   if (floatTargets) {
     glGenFramebuffers(1, &cubeShFramebuffer_);
@@ -45,7 +45,7 @@ Status LightingBlock::init(bool floatTargets) {
 void LightingBlock::uploadCubeSh(const float* packed) {
   glBindTexture(GL_TEXTURE_2D, cubeSh_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 16, 3, GL_RGBA, GL_FLOAT, packed);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kLightingTexelsPerChannel, 3, GL_RGBA, GL_FLOAT, packed);
   glBindTexture(GL_TEXTURE_2D, 0);
 }
 
@@ -53,7 +53,7 @@ Status LightingBlock::readCubeSh(float* packed) {
   if (!cubeShFramebuffer_) return Status::error(StatusCode::kInvalidArgument, "the cube-SH texture cannot be read without float render targets");
   glBindFramebuffer(GL_FRAMEBUFFER, cubeShFramebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, 16, 3, GL_RGBA, GL_FLOAT, packed);
+  glReadPixels(0, 0, kLightingTexelsPerChannel, 3, GL_RGBA, GL_FLOAT, packed);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return Status::ok();
 }
@@ -79,14 +79,14 @@ void LightingBlock::combine(const float* environment, int displayOrder) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, cubeSh_);
   glUniform1i(cubeShLocation_, 0);
-  glUniform4fv(environmentLocation_, 48, environment);
+  glUniform4fv(environmentLocation_, 3 * kLightingTexelsPerChannel, environment);
   glUniform1i(coeffCountLocation_, displayOrder * displayOrder);
   glBindVertexArray(vao_);
   glEnable(GL_RASTERIZER_DISCARD);
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer_);
   glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_POINTS, 0, 48);
+  glDrawArrays(GL_POINTS, 0, 3 * kLightingTexelsPerChannel);  // one vec4 each
   glEndTransformFeedback();
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);

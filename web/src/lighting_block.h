@@ -1,17 +1,18 @@
 // The lighting every shading program reads: a uniform buffer of 3 x 16 vec4 (the
-// packLighting layout, std140 `Lighting` block at binding 0), built on the GPU each time its
-// inputs change by lighting_combine.vert from the cube-SH texture (16 x 3 RGBA32F, written
+// packLighting layout, kPackedLightingFloats floats: client_limits.h; std140 `Lighting`
+// block at binding 0), built on the GPU each time its inputs change by
+// lighting_combine.vert from the cube-SH texture (16 x 3 RGBA32F, written
 // by the GPU projection or uploaded by the CPU one) and the environment's packed SH.
 #pragma once
 
 #include <GLES3/gl3.h>
 
+#include "client_limits.h"
 #include "prt/status.h"
 
 namespace prt::web {
 
 inline constexpr GLuint kLightingBlockBinding = 0;
-inline constexpr int kPackedLightingFloats = 3 * 64;
 
 class LightingBlock {
  public:

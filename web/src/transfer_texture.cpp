@@ -40,12 +40,12 @@ Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount
 }
 
 void packLighting(const std::vector<Rgb>& coeffs, int displayOrder, float* out) {
-  std::fill(out, out + 3 * 64, 0.0f);
-  const std::size_t n = std::min(coeffs.size(), static_cast<std::size_t>(shCoeffCount(std::min(displayOrder, 8))));
+  std::fill(out, out + kPackedLightingFloats, 0.0f);
+  const std::size_t n = std::min(coeffs.size(), static_cast<std::size_t>(shCoeffCount(std::min(displayOrder, kMaxClientOrder))));
   for (std::size_t i = 0; i < n; ++i) {
     out[i] = coeffs[i].r;
-    out[64 + i] = coeffs[i].g;
-    out[128 + i] = coeffs[i].b;
+    out[kMaxClientCoeffs + i] = coeffs[i].g;
+    out[2 * kMaxClientCoeffs + i] = coeffs[i].b;
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "client_limits.h"
 #include "prt/asset.h"
 #include "prt/status.h"
 #include "prt/vec3.h"
@@ -29,9 +30,10 @@ inline int texelsForOrder(int order) { return (order * order + 3) / 4; }
 // Errors, naming both numbers, when the scene does not fit in one texture.
 Status packTransfer(const TransferPass& pass, int order, std::size_t vertexCount, int maxHeight, TransferTexture* out);
 
-// Packs lighting (order^2 RGB coefficients) into 16 vec4 per channel in the same layout,
-// keeping only the first `displayOrder`^2 coefficients (the rest zero): the uniforms
-// uLightR/G/B. out must hold 3 * 64 floats.
+// Packs lighting (order^2 RGB coefficients) into kLightingTexelsPerChannel vec4 per channel
+// in the same layout, keeping only the first `displayOrder`^2 coefficients (at most
+// kMaxClientOrder bands; the rest zero): the uniforms uLightR/G/B. out must hold
+// kPackedLightingFloats floats.
 void packLighting(const std::vector<Rgb>& coeffs, int displayOrder, float* out);
 
 }  // namespace prt::web

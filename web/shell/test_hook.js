@@ -1,0 +1,184 @@
+// The page's test and benchmark hook, window.prtApp (docs/web-client.md, "Test hook"): the
+// state tests wait on (ready, frames, error, notice), read-outs of the client (lighting,
+// camera, passes, per-vertex radiance), set() to change settings with every value checked
+// first, and the benchmarks' timing loops. app.js owns the page and hands installTestHook
+// what the hook reads and calls; app.js and stream_loader.js write the state fields.
+import { normaliseLights } from './lights.js';
+import { PASS_NAMES } from './stream_loader.js';
+
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
+
+const rows = (flat) => {
+  const out = [];
+  for (let i = 0; i < flat.length; i += 3) out.push([flat[i], flat[i + 1], flat[i + 2]]);
+  return out;
+};
+
+// Builds the hook, sets window.prtApp to it and returns it. `page` gives:
+//   app, lightSet           getters: the ClientApp and the LightSet (null until made)
+//   client                  the module's limits and enums (maxOrder, ShadingMode, PassForm,
+//                           modeNames, formName(form)): app.js's `client`
+//   canvas, state, lightSettings, stats, lightingModels, projections
+//   loadScene(name), environmentNames(), selectEnvironment(name), applyState(),
+//   applyLightSettings() (returns "" or why the GPU projection is unavailable), refreshGui()
+export function installTestHook(page) {
+  const { canvas, state, lightSettings, client } = page;
+  const ready = () => page.app && hook.ready;
+  const hook = {
+    ready: false,
+    frames: 0,
+    error: null,
+    notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
+    paused: false,  // true stops the page's own frame loop (benchmarks with several pages open)
+    stats: page.stats,
+    // Radiance SH the last frame used: the light cube's projection plus the environment when on.
+    lightSH() {
+      return page.app ? rows(page.app.lightSH()) : [];
+    },
+    // The light cube's projection alone (no environment), at the baked order.
+    cubeSH() {
+      return page.app ? rows(page.app.cubeSH()) : [];
+    },
+    get lightCenter() { return ready() ? Array.from(page.app.lightCenter()) : null; },
+    get lightingModel() { return ready() ? page.lightingModels[page.app.lightingModel()] ?? 'unknown' : null; },
+    get lightingRadius() { return ready() ? page.app.lightingRadius() : null; },
+    get lights() { return page.lightSet ? page.lightSet.snapshot() : []; },
+    get projection() { return lightSettings.projection; },
+    get cubeSize() { return lightSettings.cubeSize; },
+    get environment() { return lightSettings.environmentOn ? state.environment : null; },
+    // How each pass is drawn: 'cpca' (straight from the clusters, Sloan 2003), 'expanded' or
+    // null (absent); and for CPCA passes [clusters, weights per vertex].
+    get passForms() {
+      return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, client.formName(page.app.passForm(client.ShadingMode[n]))])) : null;
+    },
+    get cpcaShapes() {
+      return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, Array.from(page.app.cpcaShape(client.ShadingMode[n]))])) : null;
+    },
+    // Exit radiance of every vertex in the last frame (flat RGB, before exposure): a GPU read-back.
+    vertexRadiance() {
+      return ready() ? Float32Array.from(page.app.vertexRadiance()) : null;
+    },
+    // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
+    // indices); returns the id to use as {shape: 'mesh', mesh: id}. Throws on bad input.
+    addMesh(positions, indices) {
+      if (!page.lightSet) throw new Error('addMesh: no scene is loaded yet');
+      return page.lightSet.addMesh(positions, indices);
+    },
+    // The last frame's view-projection matrix: 16 numbers, column-major, OpenGL clip space.
+    viewProjection() {
+      return ready() ? Array.from(page.app.viewProjection()) : null;
+    },
+    // The scene's bounding sphere the camera frames (world units).
+    get sceneSphere() { return ready() ? { center: Array.from(page.app.sceneCenter()), radius: page.app.sceneRadius() } : null; },
+    // Canvas pixel (CSS pixels, origin top-left) where world point p appeared in the last frame.
+    project(p) {
+      if (!page.app) return null;
+      const [x, y] = page.app.project(p[0], p[1], p[2]);
+      return [(x * 0.5 + 0.5) * canvas.clientWidth, (0.5 - y * 0.5) * canvas.clientHeight];
+    },
+    // Benchmark: draws n frames back to back, each finished with a 1-pixel readPixels (so the
+    // GPU work is inside the measurement), and returns the mean milliseconds per frame.
+    timeFrames(n) {
+      if (!ready()) return NaN;
+      const gl = canvas.getContext('webgl2');
+      const pixel = new Uint8Array(4);
+      const t0 = performance.now();
+      for (let i = 0; i < n; i++) {
+        page.app.render(canvas.width, canvas.height);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+      }
+      return (performance.now() - t0) / n;
+    },
+    // Benchmark: the per-vertex PRT pass alone (no drawing), n times back to back, ended by a
+    // 1-vertex read-back of its output; mean milliseconds per pass. NaN in Lambert mode.
+    timeShading(n) {
+      if (!ready()) return NaN;
+      const t0 = performance.now();
+      for (let i = 0; i < n; i++) if (!page.app.shadeVertices()) return NaN;
+      page.app.finishShading();
+      return (performance.now() - t0) / n;
+    },
+    // Benchmark: n samples, each the mean milliseconds of `batch` light updates back to back
+    // (light cube render + SH projection). Each update ends by reading its result back
+    // (cubeSH: 48 floats from the GPU on the GPU path), so its GPU work is inside the sample:
+    // finishGpu alone was seen not to block in headless Chromium, letting work pile up.
+    // Batches > 1 measure updates shorter than the browser's timer resolution (100 us
+    // without cross-origin isolation).
+    timeLightUpdates(n, batch = 1) {
+      if (!ready()) return [];
+      const samples = [];
+      for (let i = 0; i < n; i++) {
+        const t0 = performance.now();
+        for (let k = 0; k < batch; k++) {
+          page.app.projectLightsNow();
+          page.app.finishGpu();
+          page.app.cubeSH();
+        }
+        samples.push((performance.now() - t0) / batch);
+      }
+      return samples;
+    },
+    // Reloads the current scene with CPCA passes drawn 'direct' (from their clusters) or
+    // 'expanded' (to plain transfer on load), like the panel's "CPCA rendering"; resolves once
+    // every pass has all its bands.
+    async setCpca(form) {
+      if (form !== 'direct' && form !== 'expanded') throw new Error(`setCpca: expected 'direct' or 'expanded', got ${JSON.stringify(form)}`);
+      if (!ready()) throw new Error('setCpca: no scene is loaded yet');
+      state.cpca = form;
+      page.refreshGui();
+      await page.loadScene(state.scene);
+      while (!hook.error && page.app.streamBuffer() !== null) {  // freed once every part is applied
+        await new Promise((r) => setTimeout(r, 50));
+      }
+      if (hook.error) throw new Error(hook.error);
+    },
+    // Changes settings (docs/web-client.md); returns the current frame count. Every value is
+    // checked first: on a bad one it throws an Error naming it and changes nothing.
+    set(options) {
+      if (options === null || typeof options !== 'object') throw new Error('set: expected an object of settings');
+      for (const key of Object.keys(options)) {
+        if (!SET_OPTIONS.includes(key)) throw new Error(`set: unknown setting '${key}' (known: ${SET_OPTIONS.join(', ')})`);
+      }
+      const { modeNames, maxOrder } = client;
+      if ('mode' in options && !modeNames.includes(options.mode)) throw new Error(`set: mode must be one of ${modeNames.join(', ')}; got ${JSON.stringify(options.mode)}`);
+      if ('order' in options && !(Number.isInteger(options.order) && options.order >= 1 && options.order <= maxOrder)) {
+        throw new Error(`set: order must be an integer 1..${maxOrder}, got ${JSON.stringify(options.order)}`);
+      }
+      if ('projection' in options && !Object.hasOwn(page.projections, options.projection)) {
+        throw new Error(`set: projection must be 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
+      }
+      if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
+        throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);
+      }
+      const environments = page.environmentNames();
+      if ('environment' in options && options.environment !== null && !environments.includes(options.environment)) {
+        throw new Error(`set: environment must be null (off) or one of ${environments.map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
+      }
+      const { lightSet } = page;
+      if ('lights' in options) {
+        if (!lightSet) throw new Error('set: lights need a loaded scene');
+        if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
+        normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
+      }
+      for (const key of ['mode', 'order', 'exposure', 'intensity', 'background']) if (key in options) state[key] = options[key];
+      if ('envRotation' in options) {
+        const r = options.envRotation;
+        [state.envYaw, state.envPitch] = Array.isArray(r) ? r : [r, 0];
+      }
+      if ('environment' in options) {
+        lightSettings.environmentOn = options.environment !== null;
+        if (options.environment !== null) page.selectEnvironment(options.environment);
+      }
+      if ('projection' in options) lightSettings.projection = options.projection;
+      if ('cubeSize' in options) lightSettings.cubeSize = options.cubeSize;
+      page.applyState();
+      const projectionError = page.applyLightSettings();
+      if ('lights' in options) lightSet.set(options.lights);
+      page.refreshGui();
+      if (projectionError && 'projection' in options) throw new Error(`set: ${projectionError}`);
+      return hook.frames;
+    },
+  };
+  window.prtApp = hook;
+  return hook;
+}
