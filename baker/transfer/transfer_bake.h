@@ -50,6 +50,11 @@ struct BakeOptions {
   double bounceThreshold = 1e-3;  // stop once a bounce adds less than this fraction of bounce 0's energy
   unsigned threads = 0;           // 0: all hardware threads; results do not depend on it
   LightingInfo lighting;          // distant (default) or a local sphere (checkLightingInfo rules)
+  // Glossy transfer matrices (docs/glossy.md): the shadowed matrix of every vertex and, when
+  // glossyBounces > 0, the interreflected one gathering that many bounces from diffuse and
+  // glossy senders (at most the diffuse bounces gathered; needs interreflection).
+  bool glossy = false;
+  int glossyBounces = 1;          // 0..maxBounces
   std::function<void(const BakeProgress&)> progress;  // called from worker threads, serialised
 };
 
@@ -67,6 +72,14 @@ struct BakeResult {
   int bounces = 0;                    // bounces actually gathered
   std::vector<double> bounceEnergy;   // per bounce: sum over vertices of area x DC term, all channels
   std::vector<PassStats> passes;
+  // Glossy (options.glossy): transferred incident radiance matrices, no albedo.
+  // glossyShadowed: [vertex][packed entry], packing matrixPackingFor(kShadowed, lighting model):
+  //   (M_x)_ij = sum_k (4pi/N) V(x, w_k) [n.w_k > 0] y_i(w_k) y_j(w'_k)   (w' = w for distant)
+  // glossyInterreflected: [vertex][channel][packed entry], full packing: the shadowed matrix
+  //   plus glossyBounces bounces; empty when glossyBounces is 0.
+  std::vector<float> glossyShadowed;
+  std::vector<float> glossyInterreflected;
+  int glossyBounces = 0;              // bounces actually gathered into glossyInterreflected
   // Local lighting: vertices outside the sphere S, whose rays that miss S carry no light.
   std::size_t verticesOutsideLight = 0;
 };

@@ -12,8 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "prt/glossy_lobe.h"
 #include "prt/status.h"
 #include "prt/transfer_codec.h"
+#include "prt/transfer_matrix.h"
 #include "prt/vec3.h"
 
 namespace prt {
@@ -28,19 +30,33 @@ enum class TransferKind : std::uint32_t {
 // "unshadowed" | "shadowed" | "interreflected", or "unknown" for other values.
 const char* transferKindName(TransferKind kind);
 
+// Diffuse passes are SH vectors; glossy passes are SH matrices (docs/glossy.md).
+enum class TransferForm : std::uint32_t {
+  kVector = 0,  // exit radiance = (albedo *) sum_i T_i L_i
+  kMatrix = 1,  // transferred incident radiance M L, convolved with the glossy lobe at R
+};
+
+// "vector" | "matrix", or "unknown".
+const char* transferFormName(TransferForm form);
+
 struct TransferPass {
   TransferKind kind = TransferKind::kUnshadowed;
   // 1: scalar transfer, exit radiance = albedo * sum_i T_i L_i (unshadowed, shadowed);
   // 3: RGB transfer with albedo folded in, exit radiance_c = sum_i T_ci L_ci (interreflected).
   int channels = 1;
   int bounces = 0;  // interreflection bounces actually gathered; 0 for the other kinds
-  // vertexCount * channels * order*order floats, layout [vertex][channel][coefficient].
+  // Vectors: vertexCount * channels * order*order floats, [vertex][channel][coefficient].
+  // Matrices: vertexCount * channels * matrixEntryCount(order, packing) floats,
+  // [vertex][channel][packed entry] (prt/transfer_matrix.h), packing = matrixPackingFor(kind,
+  // lighting model). A matrix maps lighting to transferred incident radiance: no albedo, and
+  // 1 channel (shadowed: visibility has no colour) or 3 (interreflected: senders' colours).
   std::vector<float> coeffs;
   // When non-empty: the pass as a transfer-codec blob (prt/transfer_codec.h), which the
   // writer stores as a kEncodedTransfer section instead of the floats (coeffs are then
   // ignored by checkAsset/encodeAsset). decodeAsset fills both: coeffs with the blob's
   // full decode, encoded with the blob's bytes.
   std::vector<std::uint8_t> encoded;
+  TransferForm form = TransferForm::kVector;  // last, so that {kind, channels, bounces, coeffs} still reads
 };
 
 // How the transfer is parameterised by the lighting it is multiplied with
@@ -65,6 +81,11 @@ struct LightingInfo {
 // True for the local models (kLocalSphere, kLocalSpherePaper).
 bool isLocalLighting(LightingModel model);
 
+// How a matrix pass of `kind` is packed under `model`: symmetric for distant unshadowed and
+// shadowed matrices (integral V y_i y_j), full otherwise (bounces, and local lighting, whose
+// columns are basis functions of the remapped direction).
+MatrixPacking matrixPackingFor(TransferKind kind, LightingModel model);
+
 // Ok when `lighting` is valid in an asset: a known model; for the local models a finite
 // centre and a finite radius > 0; for distant, centre and radius +0.0 (they mean nothing
 // there, and one encoding per meaning keeps files comparable). Errors:
@@ -77,7 +98,9 @@ struct BakedAsset {
   std::vector<Vec3> normals;         // one per position
   std::vector<Rgb> albedo;           // one per position, linear
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
-  std::vector<TransferPass> passes;  // 1..3, at most one per kind; order is kept
+  std::vector<TransferPass> passes;  // 1..6, at most one per (kind, form); order is kept
+  // One per position when the asset has a matrix pass (the glossy material), else empty.
+  std::vector<SpecularMaterial> specular;
   // Bake metadata. samples and seed are 64-bit because the baker's options are
   // (BakeOptions::samples is a size_t, ::seed a uint64_t); narrowing would lose the seed.
   std::uint64_t samples = 0;
@@ -87,14 +110,16 @@ struct BakedAsset {
   LightingInfo lighting;  // files without a lighting section decode as distant
 };
 
-// Returns the pass of `kind`, or nullptr if the asset has none.
+// Returns the vector pass of `kind`, or nullptr if the asset has none.
 const TransferPass* findPass(const BakedAsset& asset, TransferKind kind);
+// Returns the pass of `kind` and `form`, or nullptr.
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form);
 
 // ---- Format constants (docs/asset-format.md) -------------------------------------------
 
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
-inline constexpr std::uint16_t kAssetVersionMinor = 2;  // new section types bump this (1: lighting, 2: encoded transfer)
+inline constexpr std::uint16_t kAssetVersionMinor = 3;  // new section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular)
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -122,6 +147,10 @@ enum class AssetSectionType : std::uint32_t {
   kLighting = 7,   // bytes: lighting model, centre, radius (since 1.1; absent = distant)
   kEncodedTransfer = 8,  // bytes: a transfer codec blob (prt/transfer_codec.h, docs/transfer-codec.md);
                          // arg0 kind, arg1 channels, arg2 bounces, as kTransfer (since 1.2)
+  kMatrixTransfer = 9,   // float32 packed matrices (prt/transfer_matrix.h), [vertex][channel][entry];
+                         // arg0 kind, arg1 channels, arg2 bounces; packing by matrixPackingFor (since 1.3)
+  kEncodedMatrixTransfer = 10,  // bytes: a transfer codec blob of matrix layout; args as kMatrixTransfer (since 1.3)
+  kSpecular = 11,        // float32 f0 r, g, b, exponent per vertex; required with a matrix pass (since 1.3)
 };
 
 // Size and field offsets of the lighting section's payload (docs/asset-format.md).
@@ -176,9 +205,10 @@ bool isValidAssetSamplingName(std::string_view sampling);
 
 // Ok when `asset` can be encoded: order in range, 1..kMaxAssetVertices vertices with as
 // many normals and albedos, 1..kMaxAssetTriangles triangles with every index in range,
-// every float finite, 1..3 passes of distinct valid kinds with channels 1 or 3, bounces 0
+// every float finite, 1..6 passes of distinct valid (kind, form) with channels 1 or 3, bounces 0
 // except for interreflection, coefficient counts matching, valid name and sampling, and
-// valid lighting (checkLightingInfo).
+// valid lighting (checkLightingInfo). With a matrix pass: one specular material per vertex,
+// f0 in [0, 1] and exponent finite and >= 0; without one, no specular materials.
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.
@@ -191,6 +221,7 @@ struct AssetPassInfo {
   bool encoded = false;       // a kEncodedTransfer section (codec blob) rather than float32
   std::uint64_t bytes = 0;    // the section's payload size
   std::uint32_t section = 0;  // its index in the section table
+  TransferForm form = TransferForm::kVector;
 };
 
 // One entry of the section table, as validated by the reader (offsets from the file start).
@@ -258,6 +289,16 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out);
 // caller knows have arrived; 0 = all of them), and decodes as an order-`bands` pass (out->coeffs has
 // channels * bands^2 floats per vertex; *bandsDecoded says how many). out->encoded is left empty.
 Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded);
+
+// Like decodeAssetPassCpca for an encoded CPCA matrix pass (kEncodedMatrixTransfer): *out gets
+// the cluster ids, the per-vertex weights and the first `bands` bands' shells of every
+// cluster's mean and basis matrices. Safe on untrusted input.
+Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, int bands, CpcaMatrixTransfer* out,
+                                 TransferPass* info);
+
+// Decodes the specular section (it must have arrived) into *out, one per vertex; empty when
+// the file has none. Safe on untrusted input.
+Status decodeAssetSpecular(std::span<const std::uint8_t> file, std::vector<SpecularMaterial>* out);
 
 // Like decodeAssetPass for an encoded CPCA pass, but unexpanded (for rendering straight from
 // the compressed form): *out gets the cluster ids and the first `bands` bands (0 = every band

@@ -28,6 +28,11 @@ const char* lightingModelName(LightingModel model) {
   return "unknown";
 }
 
+MatrixPacking matrixPackingFor(TransferKind kind, LightingModel model) {
+  const bool symmetricKind = kind == TransferKind::kUnshadowed || kind == TransferKind::kShadowed;
+  return symmetricKind && model == LightingModel::kDistant ? MatrixPacking::kSymmetric : MatrixPacking::kFull;
+}
+
 bool isLocalLighting(LightingModel model) {
   return model == LightingModel::kLocalSphere || model == LightingModel::kLocalSpherePaper;
 }

@@ -574,9 +574,21 @@ const char* transferKindName(TransferKind kind) {
   return "unknown";
 }
 
+const char* transferFormName(TransferForm form) {
+  switch (form) {
+    case TransferForm::kVector: return "vector";
+    case TransferForm::kMatrix: return "matrix";
+  }
+  return "unknown";
+}
+
 const TransferPass* findPass(const BakedAsset& asset, TransferKind kind) {
+  return findPass(asset, kind, TransferForm::kVector);
+}
+
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form) {
   for (const TransferPass& p : asset.passes)
-    if (p.kind == kind) return &p;
+    if (p.kind == kind && p.form == form) return &p;
   return nullptr;
 }
 

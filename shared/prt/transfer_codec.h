@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "prt/status.h"
+#include "prt/transfer_matrix.h"
 
 namespace prt {
 
@@ -118,6 +119,11 @@ struct TransferBlobInfo {
   int channels = 0;
   std::uint32_t vertexCount = 0;
   std::uint32_t clusterCount = 0;  // CPCA: >= 1; 0 otherwise
+  // 0 for vector transfer; for matrix transfer its packing (prt/transfer_matrix.h), and
+  // `vectors` the CPCA basis matrices per cluster (0 otherwise).
+  MatrixPacking packing{};
+  bool matrix = false;
+  int vectors = 0;
   std::uint64_t blobSize = 0;      // as the header declares it
   std::vector<TransferPartInfo> parts;  // in blob order: [clusters,] band 0, band 1, ...
   // How many leading bands have all their parts (and the cluster part) inside the bytes
@@ -185,5 +191,67 @@ Status decodeCpcaTransfer(std::span<const std::uint8_t> bytes, int bands, CpcaTr
 // cpca.bands.size() transfer; out.size() must be vertexCount * channels * bands^2.
 // x = mean + sum_j w_j basis_j, summed in j order in float (the decoder's exact arithmetic).
 Status cpcaReconstruct(const CpcaTransfer& cpca, std::span<float> out);
+
+}  // namespace prt
+
+namespace prt {
+
+// ---- Matrix transfer (glossy PRT; docs/transfer-codec.md "Matrices") ----------------------
+//
+// Per-vertex packed matrices (prt/transfer_matrix.h), [vertex][channel][packed entry]. Band
+// b's part holds "shell" b: the entries of the order-(b+1) prefix beyond the order-b prefix,
+// so the first b bands decode as the order-b leading block, exactly the truncation.
+//   f32, f16, q16, q8: every shell stored like a vector band (planar, byte-split).
+//   CPCA (Sloan et al. 2003 §4.1, over the whole matrix): vertices clustered, per cluster a
+//   mean matrix and N' basis matrices spanning every channel and entry, per vertex a cluster
+//   id and N' quantised weights; parts [clusters] [weights] [shell 0] [shell 1] ..., shell b
+//   holding every cluster's mean and basis entries of that shell. The weights are shared by
+//   all shells, so a band prefix reconstructs the leading block exactly.
+
+// Encodes `packed` (vertexCount * channels * matrixEntryCount(order, packing) floats) into
+// *out. order 1..kMaxMatrixOrder, channels 1 or 3, values finite and |x| <= kMaxTransferMagnitude.
+// CPCA settings as for vectors (target relative RMS error over the whole matrix transfer).
+// Bounded memory: temporary allocations stay within a small multiple of the input.
+inline constexpr int kMaxMatrixOrder = 8;
+Status encodeTransferMatrix(std::span<const float> packed, int order, MatrixPacking packing, int channels,
+                            const TransferCodecSettings& settings, std::vector<std::uint8_t>* out,
+                            TransferEncodeReport* report = nullptr);
+
+// Decodes the first `bands` bands of a matrix blob into `out`, which must hold exactly
+// vertexCount * channels * matrixEntryCount(bands, packing) floats. Same checks, errors and
+// prefix rule as decodeTransfer; kInvalidArgument for a vector blob (and decodeTransfer
+// returns kInvalidArgument for a matrix blob). Safe on untrusted input.
+Status decodeTransferMatrix(std::span<const std::uint8_t> bytes, int bands, std::span<float> out);
+Status decodeTransferMatrix(std::span<const std::uint8_t> bytes, int bands, std::vector<float>* out);
+
+// A CPCA matrix blob unexpanded, for rendering from the compressed form (web client):
+// exit radiance needs, per frame, every cluster's (1 + vectors) matrices times the lighting,
+// then per vertex mean_k L + sum_j w_vj (B_kj L).
+struct CpcaMatrixTransfer {
+  int order = 0;     // the blob's order
+  int bands = 0;     // leading bands decoded: matrices below are order-`bands` blocks
+  int channels = 0;
+  MatrixPacking packing = MatrixPacking::kFull;
+  std::uint32_t vertexCount = 0;
+  std::uint32_t clusterCount = 0;
+  int weightBits = 8;
+  int vectors = 0;                        // N', basis matrices per cluster
+  std::vector<std::uint32_t> clusterOf;   // per vertex, < clusterCount
+  std::vector<float> steps;               // per cluster: weight (v, j) = levels[v * vectors + j] * steps[cluster of v]
+  std::vector<std::int16_t> levels;       // vertexCount * vectors
+  std::vector<float> weights;             // vertexCount * vectors, dequantised
+  // [cluster][matrix 0..vectors][channel][packed entry], entry < matrixEntryCount(bands,
+  // packing); matrix 0 is the cluster mean, 1..vectors the basis matrices.
+  std::vector<float> matrices;
+};
+
+// Decodes the cluster and weight parts and the first `bands` shells (0 = every shell that
+// has arrived). Same checks as decodeTransferMatrix; decodeTransferMatrix equals
+// cpcaMatrixReconstruct of this.
+Status decodeCpcaMatrixTransfer(std::span<const std::uint8_t> bytes, int bands, CpcaMatrixTransfer* out);
+
+// Expands to [vertex][channel][packed entry] of order cpca.bands: x = mean + sum_j w_j B_j,
+// summed in j order in float. out.size() = vertexCount * channels * matrixEntryCount(bands, packing).
+Status cpcaMatrixReconstruct(const CpcaMatrixTransfer& cpca, std::span<float> out);
 
 }  // namespace prt
