@@ -25,9 +25,9 @@ constexpr Rgb kTallBox{0.30f, 0.45f, 0.75f};
 constexpr Rgb kTorus{0.55f, 0.25f, 0.65f};
 
 // The glossy part, read only by a glossy bake (docs/glossy.md): the room and the boxes are
-// matte paint (no specular reflection at all, f0 = 0, so their shading does not depend on
-// the view); the sphere is a polished white dielectric and the torus a purple metal.
-constexpr PbrVertex kMatte{0.0f, 1.0f, {0.0f, 0.0f, 0.0f}};
+// matte paint (no specular reflection at all, f0 = f90 = 0, so their shading does not depend
+// on the view); the sphere is a polished white dielectric and the torus a purple metal.
+constexpr PbrVertex kMatte{0.0f, 1.0f, {0.0f, 0.0f, 0.0f}, 0.0f};
 constexpr PbrVertex kPolishedDielectric{0.0f, 0.3f, {0.04f, 0.04f, 0.04f}};
 constexpr PbrVertex kBrushedMetal{1.0f, 0.4f, {0.04f, 0.04f, 0.04f}};
 

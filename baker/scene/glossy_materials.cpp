@@ -27,7 +27,7 @@ Status applyGlossyMaterials(const GlossyMaterialOptions& o, Scene* scene) {
   for (std::size_t v = 0; v < n; ++v) {
     const PbrVertex m = scene->pbr.empty() ? PbrVertex{} : scene->pbr[v];
     if (!unit(m.metallic) || !unit(m.roughness) || !unit(m.dielectricF0.r) || !unit(m.dielectricF0.g) ||
-        !unit(m.dielectricF0.b)) {
+        !unit(m.dielectricF0.b) || !unit(m.dielectricF90)) {
       return Status::error(StatusCode::kInvalidArgument,
                            "vertex " + std::to_string(v) + ": metallic, roughness or specular outside [0, 1]");
     }
@@ -37,6 +37,7 @@ Status applyGlossyMaterials(const GlossyMaterialOptions& o, Scene* scene) {
     SpecularMaterial& s = scene->specular[v];
     s.f0 = {d * m.dielectricF0.r + m.metallic * base.r, d * m.dielectricF0.g + m.metallic * base.g,
             d * m.dielectricF0.b + m.metallic * base.b};
+    s.f90 = d * m.dielectricF90 + m.metallic;
     double exponent = 0.0;
     if (o.exponent) {
       exponent = *o.exponent;

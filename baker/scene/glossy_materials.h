@@ -2,6 +2,7 @@
 // the base colour splits into a Lambertian part and a Phong lobe about the mirror direction.
 //   diffuse albedo  = (1 - metallic) x base colour
 //   specular f0     = (1 - metallic) x dielectricF0 + metallic x base colour
+//   specular f90    = (1 - metallic) x dielectricF90 + metallic
 //   lobe exponent s = specularExponentFromRoughness(roughness), or one fixed s for all
 // A diffuse-only bake never calls this: there every surface is Lambertian with its base
 // colour (metals included), as before glossy transfer existed.

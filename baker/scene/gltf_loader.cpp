@@ -426,6 +426,7 @@ void SceneBuilder::readMetallicRoughness(const tinygltf::Material& material, con
   }
   auto f0 = [&](double k) { return static_cast<float>(std::min(0.04 * k, 1.0)) * factor; };
   out->dielectricF0 = {f0(color[0]), f0(color[1]), f0(color[2])};
+  out->dielectricF90 = factor;
   if (ext.Has("specularTexture") || ext.Has("specularColorTexture")) {
     notes_.insert(label + ": KHR_materials_specular textures not sampled; its factors are used");
   }

@@ -20,6 +20,9 @@ struct PbrVertex {
   // by KHR_materials_specular (specularFactor x specularColorFactor, capped at 1 per the
   // extension); 0 makes the dielectric part purely Lambertian.
   Rgb dielectricF0{0.04f, 0.04f, 0.04f};
+  // Grazing reflectance of the dielectric part: KHR_materials_specular's specularFactor
+  // (1 without it), which scales F90 as well as F0.
+  float dielectricF90 = 1.0f;
 };
 
 struct Scene {

@@ -170,7 +170,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             if (sender < 0) continue;
             const Vec3 nu = scene.normals[u];
             const Vec3 R = reflectView(toReceiver, nu);
-            const Rgb F = schlickFresnel(scene.specular[u].f0, dot(nu, toReceiver));
+            const Rgb F = schlickFresnel(scene.specular[u].f0, scene.specular[u].f90, dot(nu, toReceiver));
             const float Fc[3] = {F.r, F.g, F.b};
             evalShBasisUnchecked(order, R, s.yR.data());
             const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];

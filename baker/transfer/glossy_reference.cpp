@@ -151,7 +151,7 @@ Status glossyReferenceRadiance(const Scene& scene, std::span<const std::uint32_t
         sum[2] += L.b;
       }
     }
-    const Rgb ks = o.includeFresnel ? schlickFresnel(mat.f0, dot(n, v)) : mat.f0;
+    const Rgb ks = o.includeFresnel ? schlickFresnel(mat.f0, mat.f90, dot(n, v)) : mat.f0;
     const double inv = 1.0 / static_cast<double>(o.samples);
     (*out)[index] = Rgb{static_cast<float>(ks.r * sum[0] * inv), static_cast<float>(ks.g * sum[1] * inv),
                         static_cast<float>(ks.b * sum[2] * inv)};

@@ -150,8 +150,11 @@ enum class AssetSectionType : std::uint32_t {
   kMatrixTransfer = 9,   // float32 packed matrices (prt/transfer_matrix.h), [vertex][channel][entry];
                          // arg0 kind, arg1 channels, arg2 bounces; packing by matrixPackingFor (since 1.3)
   kEncodedMatrixTransfer = 10,  // bytes: a transfer codec blob of matrix layout; args as kMatrixTransfer (since 1.3)
-  kSpecular = 11,        // float32 f0 r, g, b, exponent per vertex; required with a matrix pass (since 1.3)
+  kSpecular = 11,        // float32 f0 r, g, b, f90, exponent per vertex; required with a matrix pass (since 1.3)
 };
+
+// Bytes per vertex of the specular section: float32 f0 r, g, b, f90, exponent.
+inline constexpr std::size_t kAssetSpecularBytesPerVertex = 20;
 
 // Size and field offsets of the lighting section's payload (docs/asset-format.md).
 inline constexpr std::size_t kAssetLightingBytes = 20;
@@ -208,7 +211,7 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // every float finite, 1..6 passes of distinct valid (kind, form) with channels 1 or 3, bounces 0
 // except for interreflection, coefficient counts matching, valid name and sampling, and
 // valid lighting (checkLightingInfo). With a matrix pass: one specular material per vertex,
-// f0 in [0, 1] and exponent finite and >= 0; without one, no specular materials.
+// f0 and f90 in [0, 1] and exponent finite and >= 0; without one, no specular materials.
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.

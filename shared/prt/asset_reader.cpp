@@ -235,7 +235,7 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       return once(&p->lighting);
     case kTypeSpecular:
       if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
-          !(s = expectSize(v * 16, "f0 r, g, b and exponent per vertex")).isOk()) {
+          !(s = expectSize(v * kAssetSpecularBytesPerVertex, "f0 r, g, b, f90 and exponent per vertex")).isOk()) {
         return s;
       }
       return once(&p->specular);
@@ -481,15 +481,17 @@ Status checkTransferFloats(std::span<const std::uint8_t> payload, const Entry& e
   return Status::ok();
 }
 
-// Specular materials: f0 r, g, b in [0, 1] and the exponent finite and >= 0, per vertex.
+// Specular materials: f0 r, g, b and f90 in [0, 1] and the exponent finite and >= 0, per vertex.
 Status checkSpecularPayload(std::span<const std::uint8_t> payload, const Entry& e) {
-  const std::size_t count = payload.size() / 16;
+  constexpr std::size_t kStride = kAssetSpecularBytesPerVertex;
+  const std::size_t count = payload.size() / kStride;
   for (std::size_t v = 0; v < count; ++v) {
-    for (std::size_t k = 0; k < 4; ++k) {
-      const float x = floatFromBits(readLe32(payload.data() + 16 * v + 4 * k));
-      const bool ok = k < 3 ? (x >= 0.0f && x <= 1.0f) : (std::isfinite(x) && x >= 0.0f);  // NaN fails both
+    for (std::size_t k = 0; k < 5; ++k) {
+      const float x = floatFromBits(readLe32(payload.data() + kStride * v + 4 * k));
+      const bool ok = k < 4 ? (x >= 0.0f && x <= 1.0f) : (std::isfinite(x) && x >= 0.0f);  // NaN fails both
       if (!ok) {
-        return corrupt(sectionLabel(e) + ": vertex " + num(v) + (k < 3 ? " f0 " + num(k) + " is " + std::to_string(x) + ", outside [0, 1]"
+        const std::string what = k < 3 ? " f0 " + num(k) : " f90";
+        return corrupt(sectionLabel(e) + ": vertex " + num(v) + (k < 4 ? what + " is " + std::to_string(x) + ", outside [0, 1]"
                                                                         : " exponent is " + std::to_string(x) + ", not finite and >= 0"));
       }
     }
@@ -671,12 +673,14 @@ void readTriples(std::span<const std::uint8_t> payload, std::vector<T>* out) {
 }
 
 void readSpecular(std::span<const std::uint8_t> payload, std::vector<SpecularMaterial>* out) {
-  out->resize(payload.size() / 16);
+  constexpr std::size_t kStride = kAssetSpecularBytesPerVertex;
+  out->resize(payload.size() / kStride);
   for (std::size_t v = 0; v < out->size(); ++v) {
-    float f[4];
-    readFloats(payload.subspan(16 * v, 16), f);
+    float f[5];
+    readFloats(payload.subspan(kStride * v, kStride), f);
     (*out)[v].f0 = {f[0], f[1], f[2]};
-    (*out)[v].exponent = f[3];
+    (*out)[v].f90 = f[3];
+    (*out)[v].exponent = f[4];
   }
 }
 

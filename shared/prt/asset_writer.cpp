@@ -72,14 +72,15 @@ Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyMatr
   }
   for (std::size_t i = 0; i < specular.size(); ++i) {
     const SpecularMaterial& m = specular[i];
-    const float f0[3] = {m.f0.r, m.f0.g, m.f0.b};
-    for (float f : f0) {
-      if (!std::isfinite(f)) {
-        return Status::error(StatusCode::kNotFinite, "specular material " + std::to_string(i) + " has a non-finite f0");
+    const float f0[4] = {m.f0.r, m.f0.g, m.f0.b, m.f90};
+    for (int k = 0; k < 4; ++k) {
+      const char* what = k < 3 ? "f0" : "f90";
+      if (!std::isfinite(f0[k])) {
+        return Status::error(StatusCode::kNotFinite, "specular material " + std::to_string(i) + " has a non-finite " + what);
       }
-      if (f < 0.0f || f > 1.0f) {
-        return Status::error(StatusCode::kInvalidArgument, "specular material " + std::to_string(i) + " has f0 " +
-                                                               std::to_string(f) + ", outside [0, 1]");
+      if (f0[k] < 0.0f || f0[k] > 1.0f) {
+        return Status::error(StatusCode::kInvalidArgument, "specular material " + std::to_string(i) + " has " + what + " " +
+                                                               std::to_string(f0[k]) + ", outside [0, 1]");
       }
     }
     if (!std::isfinite(m.exponent)) {
@@ -266,7 +267,8 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
   // The specular materials before the passes: a progressive client needs them with the
   // first glossy shell. Only glossy assets have them, so other files keep their layout.
   if (!asset.specular.empty()) {
-    sections.push_back({AssetSectionType::kSpecular, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 16, 0, nullptr});
+    sections.push_back({AssetSectionType::kSpecular, AssetElementFormat::kFloat32, 0, 0, 0,
+                        vertexCount * kAssetSpecularBytesPerVertex, 0, nullptr});
   }
   for (const TransferPass& pass : asset.passes) {
     const bool matrix = pass.form == TransferForm::kMatrix;
@@ -339,8 +341,8 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
       case AssetSectionType::kSpecular:
         for (std::size_t v = 0; v < asset.specular.size(); ++v) {
           const SpecularMaterial& m = asset.specular[v];
-          const float f[4] = {m.f0.r, m.f0.g, m.f0.b, m.exponent};
-          putFloats(p + 16 * v, f, 4);
+          const float f[5] = {m.f0.r, m.f0.g, m.f0.b, m.f90, m.exponent};
+          putFloats(p + kAssetSpecularBytesPerVertex * v, f, 5);
         }
         break;
     }

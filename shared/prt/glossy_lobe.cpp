@@ -61,10 +61,10 @@ Status specularExponentFromRoughness(double roughness, double maxExponent, doubl
   return Status::ok();
 }
 
-Rgb schlickFresnel(Rgb f0, float cosNormalView) noexcept {
+Rgb schlickFresnel(Rgb f0, float f90, float cosNormalView) noexcept {
   const float c = std::clamp(cosNormalView, 0.0f, 1.0f);
   const float k = 1.0f - c, k2 = k * k, k5 = k2 * k2 * k;
-  return {f0.r + (1.0f - f0.r) * k5, f0.g + (1.0f - f0.g) * k5, f0.b + (1.0f - f0.b) * k5};
+  return {f0.r + (f90 - f0.r) * k5, f0.g + (f90 - f0.g) * k5, f0.b + (f90 - f0.b) * k5};
 }
 
 Vec3 reflectView(Vec3 toEye, Vec3 normal) noexcept { return normal * (2.0f * dot(normal, toEye)) - toEye; }

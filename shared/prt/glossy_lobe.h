@@ -21,12 +21,15 @@ namespace prt {
 // becomes this lobe, whose g_l differ from 1 by about l(l+1)/(2s) < 1.2% for l <= 15.
 inline constexpr double kDefaultMaxSpecularExponent = 10000.0;
 
-// A vertex's specular reflectance: k_s = schlickFresnel(f0, n.v) times the lobe of exponent
-// s. f0 in [0, 1] per channel (0.04 for glTF dielectrics, the base colour for metals; 0 for
-// a purely diffuse surface), exponent finite and >= 0.
+// A vertex's specular reflectance: k_s = schlickFresnel(f0, f90, n.v) times the lobe of
+// exponent s. f0 in [0, 1] per channel (0.04 for glTF dielectrics, the base colour for
+// metals), f90 in [0, 1] the grazing reflectance (1, or KHR_materials_specular's
+// specularFactor for the dielectric part: 0 for a surface with no specular part at all, whose
+// Fresnel term is then 0 at every angle), exponent finite and >= 0.
 struct SpecularMaterial {
   Rgb f0;
   float exponent = 0.0f;
+  float f90 = 1.0f;
 };
 
 // g_l(s) for l = 0..order-1 into out[0..order) (out.size() >= order). s finite, >= 0.
@@ -43,9 +46,10 @@ void phongLobeBandScalesUnchecked(int order, float s, float* out) noexcept;
 // (roughness 0 would be a perfect mirror, s = infinity). r outside [0,1] is an error.
 Status specularExponentFromRoughness(double roughness, double maxExponent, double* exponent);
 
-// Schlick: F = F0 + (1 - F0)(1 - cos)^5 with cos = n.v clamped to [0, 1] (a vertex seen
-// from behind its tangent plane takes the grazing value 1).
-Rgb schlickFresnel(Rgb f0, float cosNormalView) noexcept;
+// Schlick: F = F0 + (F90 - F0)(1 - cos)^5 with cos = n.v clamped to [0, 1] (a vertex seen
+// from behind its tangent plane takes the grazing value F90). F90 = 1 is Schlick's original;
+// glTF's KHR_materials_specular scales it by the specular factor.
+Rgb schlickFresnel(Rgb f0, float f90, float cosNormalView) noexcept;
 
 // Mirror direction of the unit view vector v (surface to eye) about unit normal n:
 // R = 2 (n.v) n - v.

@@ -75,7 +75,7 @@ Status glossyImpl(std::span<const float> matrices, int order, MatrixPacking pack
     r = rl > 0.0f ? r * (1.0f / rl) : n;
     evalShBasisUnchecked(bands, r, basis.data());
     phongLobeBandScalesUnchecked(bands, m.exponent, scales.data());
-    const Rgb ks = view.includeFresnel ? schlickFresnel(m.f0, dot(n, toEye)) : m.f0;
+    const Rgb ks = view.includeFresnel ? schlickFresnel(m.f0, m.f90, dot(n, toEye)) : m.f0;
     const float k[3] = {ks.r, ks.g, ks.b};
     for (int c = 0; c < 3; ++c) {
       const int matrixChannel = channels == 3 ? c : 0;

@@ -3,7 +3,7 @@
 // emulation of the glossy shaders, the tests). docs/glossy.md has the derivation.
 //
 // For vertex x (position p, unit normal n, material f0, s), eye e and channel c:
-//   v = (e - p)/|e - p|,  R = 2(n.v)n - v,  k_s = f0 + (1 - f0)(1 - max(0, n.v))^5
+//   v = (e - p)/|e - p|,  R = 2(n.v)n - v,  k_s = f0 + (f90 - f0)(1 - max(0, n.v))^5
 //   L_c = k_s,c * sum_i g_l(i)(s) (M_c L_c)_i y_i(R)
 // with M_c the channel's transfer matrix (one shared matrix for 1-channel passes), L_c the
 // lighting's channel c, g_l the Phong lobe's band scales (prt/glossy_lobe.h) and i over

@@ -62,9 +62,11 @@ TEST(GlossyMaterials, KhrMaterialsSpecularScalesDielectricF0) {
   EXPECT_FLOAT_EQ(s.pbr[0].dielectricF0.r, 0.02f);  // 0.04 x 1 x 0.5
   EXPECT_FLOAT_EQ(s.pbr[0].dielectricF0.g, 0.04f);  // 0.04 x 2 x 0.5
   EXPECT_FLOAT_EQ(s.pbr[0].dielectricF0.b, 0.5f);   // min(0.04 x 40, 1) x 0.5
+  EXPECT_FLOAT_EQ(s.pbr[0].dielectricF90, 0.5f);
   const Scene none = loadTriangleWithMaterial(
       "{\"pbrMetallicRoughness\":{\"metallicFactor\":0},\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0}}}");
   EXPECT_FLOAT_EQ(none.pbr[0].dielectricF0.r, 0.0f);
+  EXPECT_FLOAT_EQ(none.pbr[0].dielectricF90, 0.0f);
 }
 
 TEST(GlossyMaterials, OutOfRangeFactorsAreBroughtInWithAWarning) {
@@ -83,7 +85,7 @@ TEST(GlossyMaterials, SplitsBaseColourIntoDiffuseAndSpecular) {
   s.normals.assign(3, Vec3{0, 0, 1});
   s.albedo = {{0.8f, 0.4f, 0.2f}, {0.8f, 0.4f, 0.2f}, {0.5f, 0.5f, 0.5f}};
   s.pbr = {PbrVertex{0.0f, 1.0f, {0.04f, 0.04f, 0.04f}}, PbrVertex{1.0f, 0.5f, {0.04f, 0.04f, 0.04f}},
-           PbrVertex{0.5f, 0.0f, {0.0f, 0.0f, 0.0f}}};
+           PbrVertex{0.5f, 0.0f, {0.0f, 0.0f, 0.0f}, 0.0f}};
   ASSERT_TRUE(applyGlossyMaterials({}, &s).isOk());
   // Dielectric: the base colour stays diffuse, f0 = 0.04, roughness 1 -> s = 0.
   EXPECT_FLOAT_EQ(s.albedo[0].r, 0.8f);
@@ -96,6 +98,8 @@ TEST(GlossyMaterials, SplitsBaseColourIntoDiffuseAndSpecular) {
   // Half metal, no dielectric specular, a mirror: half the colour each way, s at the cap.
   EXPECT_FLOAT_EQ(s.albedo[2].b, 0.25f);
   EXPECT_FLOAT_EQ(s.specular[2].f0.b, 0.25f);
+  EXPECT_FLOAT_EQ(s.specular[2].f90, 0.5f);  // (1 - 0.5) x 0 + 0.5
+  EXPECT_FLOAT_EQ(s.specular[1].f90, 1.0f);
   EXPECT_FLOAT_EQ(s.specular[2].exponent, static_cast<float>(kDefaultMaxSpecularExponent));
 }
 
@@ -124,7 +128,7 @@ TEST(GlossyMaterials, DefaultSceneHasMatteRoomAndGlossyObjects) {
   std::size_t matte = 0, glossy = 0, metal = 0;
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
     const SpecularMaterial& m = s.specular[v];
-    if (m.f0.r == 0.0f && m.f0.g == 0.0f && m.f0.b == 0.0f) ++matte;
+    if (m.f0.r == 0.0f && m.f0.g == 0.0f && m.f0.b == 0.0f && m.f90 == 0.0f) ++matte;
     else if (s.albedo[v].r == 0.0f) ++metal;
     else ++glossy;
   }

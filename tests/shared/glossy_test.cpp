@@ -92,12 +92,17 @@ TEST(PhongLobe, RoughnessMapping) {
 
 TEST(PhongLobe, SchlickEndpoints) {
   const Rgb f0{0.04f, 0.5f, 1.0f};
-  const Rgb normal = schlickFresnel(f0, 1.0f), grazing = schlickFresnel(f0, 0.0f), behind = schlickFresnel(f0, -0.5f);
+  const Rgb normal = schlickFresnel(f0, 1.0f, 1.0f), grazing = schlickFresnel(f0, 1.0f, 0.0f),
+            behind = schlickFresnel(f0, 1.0f, -0.5f);
   EXPECT_FLOAT_EQ(normal.r, 0.04f);
   EXPECT_FLOAT_EQ(normal.g, 0.5f);
   EXPECT_FLOAT_EQ(grazing.r, 1.0f);
   EXPECT_FLOAT_EQ(behind.g, 1.0f);
-  EXPECT_FLOAT_EQ(schlickFresnel(f0, 0.5f).r, 0.04f + 0.96f * 0.03125f);
+  EXPECT_FLOAT_EQ(schlickFresnel(f0, 1.0f, 0.5f).r, 0.04f + 0.96f * 0.03125f);
+  // KHR_materials_specular scales F90 too: no specular part means none at grazing angles.
+  const Rgb none = schlickFresnel({0, 0, 0}, 0.0f, 0.0f);
+  EXPECT_EQ(none.r + none.g + none.b, 0.0f);
+  EXPECT_FLOAT_EQ(schlickFresnel(f0, 0.5f, 0.0f).r, 0.5f);
 }
 
 TEST(TransferMatrix, PackingsArePrefixClosedBijections) {
@@ -210,7 +215,7 @@ TEST(GlossyRadiance, DoubleAgreesAndSizesChecked) {
   std::vector<float> f1(3);
   ASSERT_TRUE(glossyExitRadiance(m, order, MatrixPacking::kSymmetric, 1, std::span(&p, 1), std::span(&n, 1),
                                  std::span(&material, 1), view, std::span<const Rgb>(lighting).first(1), f1).isOk());
-  EXPECT_NEAR(f1[0], schlickFresnel(material.f0, dot(n, view.eye * (1.0f / length(view.eye)))).r * m[0] * 1.0f * 0.2820948f, 1e-6);
+  EXPECT_NEAR(f1[0], schlickFresnel(material.f0, material.f90, dot(n, view.eye * (1.0f / length(view.eye)))).r * m[0] * 1.0f * 0.2820948f, 1e-6);
   std::vector<Rgb> bad(5);
   EXPECT_FALSE(glossyExitRadiance(m, order, MatrixPacking::kSymmetric, 1, std::span(&p, 1), std::span(&n, 1),
                                   std::span(&material, 1), view, bad, f).isOk());
