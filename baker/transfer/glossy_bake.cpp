@@ -39,6 +39,37 @@ std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
   return t;
 }
 
+// tmp = t^T M (tmp_j = sum_q t_q M_qj) straight from the packed layout, contiguous runs only:
+//   kSymmetric row q: (q, 0..q), so tmp[0..q) += t_q M(q, .) and tmp_q += t[0..q) . M(q, .) + t_q M_qq;
+//   kFull shell k: (k, 0..k) left of the diagonal, (0..k, k) above it, then (k, k).
+void vectorTimesPacked(const float* __restrict t, const float* __restrict m, MatrixPacking packing, std::size_t n2,
+                       float* __restrict tmp) {
+  std::fill(tmp, tmp + n2, 0.0f);
+  if (packing == MatrixPacking::kSymmetric) {
+    for (std::size_t q = 0; q < n2; ++q) {
+      const float* row = m + q * (q + 1) / 2;
+      const float tq = t[q];
+      float acc = 0.0f;
+      for (std::size_t j = 0; j < q; ++j) {
+        tmp[j] += tq * row[j];
+        acc += t[j] * row[j];
+      }
+      tmp[q] += acc + tq * row[q];
+    }
+    return;
+  }
+  for (std::size_t k = 0; k < n2; ++k) {
+    const float* shell = m + k * k;
+    const float tk = t[k];
+    float acc = 0.0f;
+    for (std::size_t j = 0; j < k; ++j) {
+      tmp[j] += tk * shell[j];       // (k, j)
+      acc += t[j] * shell[k + j];    // (j, k)
+    }
+    tmp[k] += acc + tk * shell[2 * k];
+  }
+}
+
 }  // namespace
 
 void useSingleThreadedBlas() { openblas_set_num_threads(1); }
@@ -105,7 +136,6 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   const bool firstBounce = job.bounce == 1;
   const MatrixPacking prevPacking = firstBounce ? job.previousPacking : MatrixPacking::kFull;
   const std::size_t prevStride = firstBounce ? matrixEntryCount(order, prevPacking) : 3 * full;
-  const std::vector<std::uint32_t> prevIndex = packedIndexTable(static_cast<int>(n2), prevPacking);
   const std::vector<std::uint32_t> fullIndex = packedIndexTable(static_cast<int>(n2), MatrixPacking::kFull);
 
   // Band scale of each coefficient for each sender (its own exponent).
@@ -180,12 +210,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             for (int pc = 0; pc < channels; ++pc) {
               const float* Mc = M + static_cast<std::size_t>(pc) * full;
               // tmp_j = sum_q t_q M_qj: the sender's outgoing radiance per lighting coefficient.
-              std::fill(s.tmp.begin(), s.tmp.end(), 0.0f);
-              for (std::size_t q = 0; q < n2; ++q) {
-                const float tq = s.t[q];
-                const std::uint32_t* idx = &prevIndex[q * n2];
-                for (std::size_t j = 0; j < n2; ++j) s.tmp[j] += tq * Mc[idx[j]];
-              }
+              vectorTimesPacked(s.t.data(), Mc, prevPacking, n2, s.tmp.data());
               for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
                 const float f = bc * Fc[c];
                 for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];

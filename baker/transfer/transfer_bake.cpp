@@ -405,9 +405,6 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   }
 
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string name = "bounce " + std::to_string(bounce);
-    ProgressReporter progress(o, name, vertexCount);
     if (glossyBounce && bounce <= o.glossyBounces) {
       GlossyBounceJob job;
       job.scene = &scene;
@@ -438,6 +435,9 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
         glossyCurrent.shrink_to_fit();
       }
     }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string name = "bounce " + std::to_string(bounce);
+    ProgressReporter progress(o, name, vertexCount);
     std::vector<double> blockEnergy(blockCount, 0.0);
     parallelFor(blockCount, threads, [&](std::size_t block, unsigned) {
       const Block& rec = blocks[block];

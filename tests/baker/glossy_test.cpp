@@ -150,7 +150,7 @@ TEST(GlossyBake, UnoccludedPlaneUnderWhiteLightIsTheLobeAboveTheHorizon) {
     // h_lm = 2pi a_l y_lm(n). 16384 Hammersley samples: the step's edge crosses about
     // 2 sqrt(N) = 256 of the ~N/2 visible cells, each off by at most one sample of weight
     // 4pi/N times |y| <= 1.33 (order 8): 256 * 4pi/16384 * 1.33 ~ 0.26 in the worst case, but the
-    // signed errors cancel; we allow 5e-3 (a measured maximum of 1.1e-3, times 4).
+    // signed errors cancel; we allow 5e-3 (measured maximum 1.4e-3 for seed 0, on l = 7 entries).
     std::vector<float> y(n2);
     ASSERT_TRUE(evalShBasis(order, scene.normals[v], y).isOk());
     const std::vector<double> a = hemisphereStepBands(order);
@@ -191,7 +191,9 @@ TEST(GlossyBake, UnoccludedPlaneUnderWhiteLightIsTheLobeAboveTheHorizon) {
       // sum_i g_l y_i(R) (at most 5e-3 * sumAbsG), is the only difference.
       const double series = 0.6 * lobeAboveHorizonSeries(order, s, theta);
       EXPECT_NEAR(sh, series, 0.6 * 5e-3 * sumAbsG) << "s=" << s << " theta=" << thetaDeg;
-      EXPECT_NEAR(sh, series, 2e-3) << "s=" << s << " theta=" << thetaDeg << " (the measured error is below 1e-3)";
+      // Measured |sh - series| <= 5e-5 over these views: the column errors cancel in the sum;
+      // 5e-4 still fails for a wrong basis index, band scale or packing.
+      EXPECT_NEAR(sh, series, 5e-4) << "s=" << s << " theta=" << thetaDeg;
       // Against the untruncated closed form: plus the dropped bands' bound.
       const double exact = 0.6 * lobeAboveHorizonExact(s, theta);
       const double tail = 0.6 * truncationTail(order, s);
@@ -297,6 +299,10 @@ TEST(GlossyBake, PlaneUnderCircularLightMatchesBruteForce) {
     // lighting and the lobe: at most 5e-3 * sum_ij |g_l y_i(R)| |L_j|, we allow 2e-3 (measured below 5e-4).
     const double bakeError = 2e-3;
     EXPECT_NEAR(sh, refTrunc[0].r, lobeBound + noise + bakeError) << "alpha=" << alpha;
+    // The bounds are loose (Cauchy-Schwarz): measured |sh - truncated brute force| <= 1.0e-4
+    // and |sh - cap| <= 1.3e-3 over these eyes; 1e-3 and 5e-3 still catch a lobe error.
+    EXPECT_NEAR(sh, refTrunc[0].r, 1e-3) << "alpha=" << alpha;
+    EXPECT_NEAR(sh, refCap[0].r, 5e-3) << "alpha=" << alpha;
     EXPECT_NEAR(sh, refCap[0].r, lobeBound + lightBound + noise + bakeError) << "alpha=" << alpha;
     shValues.push_back(sh);
     refValues.push_back(refCap[0].r);
@@ -365,7 +371,8 @@ TEST(GlossyBake, UnoccludedShadowedMatrixIsTheHemisphereProjection) {
   double worst = 0;
   for (int i = 0; i < n2; ++i)
     for (int j = 0; j <= i; ++j) worst = std::max(worst, std::fabs(m[matrixEntryIndex(i, j, MatrixPacking::kSymmetric)] - exact[i * n2 + j]));
-  // Same MC bound as the step's projection (products y_i y_j have |.| <= 1.8 at order 6): 5e-3.
+  // Same MC bound as the step's projection (products y_i y_j have |.| <= 1.8 at order 6): 5e-3
+  // (measured 5.5e-4 for seed 3).
   EXPECT_LT(worst, 5e-3);
 }
 
@@ -610,6 +617,7 @@ TEST(GlossyBake, HugeLocalSphereMatchesDistant) {
                                             distant.glossyInterreflected[v * 3 * fe + k]));
     }
   }
+  // Measured 2.2e-5 for both.
   EXPECT_LT(worst, 1e-3);
   EXPECT_LT(worstIr, 1e-3);
   EXPECT_GT(worst, 0.0);  // the local path really ran (w' differs from w in the last bits)
