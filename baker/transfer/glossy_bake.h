@@ -19,11 +19,15 @@
 // (B^0 = albedo x shadowed; albedo folded in) and M^0 the shadowed matrix. Evaluating each
 // corner's outgoing radiance with its own normal and material, then interpolating, is how
 // the diffuse bounces interpolate B.
-// What is NOT gathered: the diffuse transfer's own bounces (BakeResult::interreflected) do
-// not gather glossy senders (a diffuse receiver sees only diffuse interreflection); glossy
-// bounces gather light that reached the sender directly or by earlier bounces of the two
-// series above, but the diffuse series it reads never contains glossy-to-diffuse paths.
-// Caustic-like paths diffuse <- glossy <- light are thus missing from the diffuse transfer.
+// What is gathered, by path (receiver <- sender <- ... <- light): bounce b reads B^{b-1},
+// the diffuse series, whose paths are all diffuse (the diffuse transfer's own bounces,
+// BakeResult::interreflected, do NOT gather glossy senders), and M^{b-1} at glossy senders,
+// which gathered both kinds one level down. So every path receiver <- G...G <- D...D <- light
+// is gathered, and any path with a glossy reflection before a diffuse one
+// (... <- D <- ... <- G <- light: light focused by a glossy surface onto a diffuse one) is
+// not, neither in the glossy nor in the diffuse transfer. Senders' radiance is evaluated at
+// the hit triangle's corners (own normal, f0, exponent) and interpolated, not at the hit
+// point; hits on back faces carry nothing (as for the diffuse bounces).
 #pragma once
 
 #include <cstddef>

@@ -537,6 +537,77 @@ TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
   }
 }
 
+// The glossy-sender path: a floor of albedo 0 and f0 = 1 (Schlick F = 1 at every angle),
+// s = 1, under uniform white light. Its glossy radiance toward a point seen at angle psi from
+// its normal is the lobe's mass above its horizon, (1 + cos psi)/2, exactly in SH for s = 1
+// (test 1). The receiver facing down (normal n) sees L_in(w) = (1 + n.w)/2, so for the eye on
+// its normal (R = n) bounce 1 is integral_{n.w>0} (1/pi)(n.w)(1 + n.w)/2 dw = 5/6, and for
+// other eyes a double quadrature of the same integrand with max(0, R.w).
+TEST(GlossyBake, FirstBounceOffAGlossyFloorGathersItsLobe) {
+  const int order = 8, s = 1;
+  const float h = 0.1f;
+  Scene scene;
+  test::addPlane(&scene, 10.0f, 40, 0.0f, {0, 0, 0});
+  const auto base = static_cast<std::uint32_t>(scene.positions.size());
+  test::addPlane(&scene, 0.01f, 1, h, {0, 0, 0});
+  for (std::size_t v = base; v < scene.positions.size(); ++v) scene.normals[v] = {0, -1, 0};
+  for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
+    if (scene.indices[i] >= base) std::swap(scene.indices[i + 1], scene.indices[i + 2]);
+  }
+  scene.specular.assign(scene.positions.size(), SpecularMaterial{{1, 1, 1}, static_cast<float>(s)});
+  BakeOptions o;
+  o.order = order;
+  o.samples = 16384;
+  o.glossy = true;
+  o.glossyBounces = 1;
+  o.maxBounces = 1;
+  o.threads = 2;
+  BakeResult r;
+  ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
+  // The receiver's own lobe truncation (Cauchy-Schwarz, as in the circular-light test):
+  // ||f - P_n f|| ||H L_in|| with ||H L_in|| <= sqrt(2pi) (L_in <= 1 on a hemisphere).
+  double tail2 = 0;
+  {
+    std::vector<double> I(2001);
+    I[0] = 1.0 / (s + 1.0);
+    I[1] = 1.0 / (s + 2.0);
+    for (int l = 2; l <= 2000; ++l) I[l] = (s - l + 2.0) / (s + l + 1.0) * I[l - 2];
+    for (int l = order; l <= 2000; ++l) tail2 += std::pow((s + 1.0) * I[l], 2) * (2.0 * l + 1.0) / (4.0 * kPiD);
+  }
+  const double lobeBound = std::sqrt(tail2) * std::sqrt(2.0 * kPiD);
+  const std::vector<Rgb> light = whiteLight(order);
+  for (double thetaDeg : {0.0, 40.0}) {
+    const double theta = thetaDeg * kPiD / 180.0;
+    // Reference integral by a midpoint rule in (t = n.w, phi) about n = -y, R in the x-y plane.
+    double expected = 0;
+    const int nt = 800, np = 1600;
+    for (int a = 0; a < nt; ++a) {
+      const double t = (a + 0.5) / nt, st = std::sqrt(1 - t * t);
+      for (int b = 0; b < np; ++b) {
+        const double phi = 2 * kPiD * (b + 0.5) / np;
+        // w = (st cos phi, -t, st sin phi); R = (-sin theta, -cos theta, 0) (eye at +sin theta).
+        const double rw = -std::sin(theta) * st * std::cos(phi) + std::cos(theta) * t;
+        if (rw > 0) expected += rw / kPiD * 0.5 * (1 + t) * (1.0 / nt) * (2 * kPiD / np);
+      }
+    }
+    if (thetaDeg == 0.0) {
+      EXPECT_NEAR(expected, 5.0 / 6.0, 1e-5);  // the quadrature against the closed form
+    }
+    for (std::size_t v = base; v < scene.positions.size(); ++v) {
+      const Vec3 eye = scene.positions[v] +
+                       Vec3{static_cast<float>(std::sin(theta)), -static_cast<float>(std::cos(theta)), 0} * 0.05f;
+      const float total = exitRadiance(r, scene, v, MatrixPacking::kFull, 3, r.glossyInterreflected, eye, light, false);
+      const float direct = exitRadiance(r, scene, v, MatrixPacking::kSymmetric, 1, r.glossyShadowed, eye, light, false);
+      // Allowed: the grazing band the floor misses (<= 0.02), the patch's shadow on the floor
+      // (< 1e-3), MC projections of both surfaces (2e-3 each), the receiver's lobe truncation.
+      EXPECT_NEAR(total - direct, expected, 0.02 + 1e-3 + 4e-3 + lobeBound) << "theta=" << thetaDeg;
+      // Measured 0.9% (theta 0) and 1.0% (40 degrees) below: the grazing band the finite floor
+      // misses. A diffuse reading of the floor (0) or a cosine-weighted gather would be far off.
+      EXPECT_NEAR(total - direct, expected, 0.02 * expected) << "theta=" << thetaDeg;
+    }
+  }
+}
+
 Scene twoSpheresOnFloor() {
   Scene s;
   test::addPlane(&s, 2.0f, 8, 0.0f, {0.6f, 0.5f, 0.4f});
