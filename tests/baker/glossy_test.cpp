@@ -694,6 +694,96 @@ TEST(GlossyBake, HugeLocalSphereMatchesDistant) {
   EXPECT_GT(worst, 0.0);  // the local path really ran (w' differs from w in the last bits)
 }
 
+// Local lighting on a sphere S close to the vertex (w' far from w): the SH result of the
+// local matrix (rows: incident direction w at x; columns: basis at the remapped w' on S)
+// against the brute force lit by the same truncated SH radiance on S, L_n(w'). As for distant
+// lighting, the SH result is the MC estimate of integral P_n[f] H L_n(w'(w)) dw, so the two
+// differ by the lobe truncation, at most ||f - P_n f|| sqrt(2pi) max|L_n| (Cauchy-Schwarz),
+// plus the bake's and the reference's sampling errors. Swapping rows and columns, or looking
+// the lighting up at w, would miss by far more (checked below).
+TEST(GlossyBake, LocalMatrixMatchesBruteForceOnTheSphere) {
+  const int order = 8, s = 1, n2 = order * order;
+  Scene scene;
+  test::addPlane(&scene, 0.5f, 2, 0.0f, {0.5f, 0.5f, 0.5f});
+  scene.specular.assign(scene.positions.size(), SpecularMaterial{{1, 1, 1}, static_cast<float>(s)});
+  LightingInfo sphere;
+  sphere.model = LightingModel::kLocalSphere;
+  sphere.center = {0.0f, 0.3f, 0.0f};
+  sphere.radius = 1.0f;
+  BakeOptions o;
+  o.order = order;
+  o.samples = 16384;
+  o.glossy = true;
+  o.glossyBounces = 0;
+  o.interreflection = false;
+  o.lighting = sphere;
+  o.threads = 2;
+  BakeResult r;
+  ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
+  std::uint32_t v = 0;
+  for (std::uint32_t i = 0; i < scene.positions.size(); ++i) {
+    if (length(scene.positions[i] - Vec3{0.5f, 0, 0}) < length(scene.positions[v] - Vec3{0.5f, 0, 0})) v = i;
+  }
+  ASSERT_LT(length(scene.positions[v] - Vec3{0.5f, 0, 0}), 1e-6f);
+  // A broad cap on S, 60 degrees from +y toward -x, truncated to order 8.
+  const double axisAngle = 60.0 * kPiD / 180.0;
+  const Vec3 axis{-static_cast<float>(std::sin(axisAngle)), static_cast<float>(std::cos(axisAngle)), 0.0f};
+  std::vector<float> zonal(order), lightSh(n2);
+  ASSERT_TRUE(zonalCircularLight(order, 0.8f, 1.0f, zonal).isOk());
+  ASSERT_TRUE(placeZonal(order, zonal, axis, lightSh).isOk());
+  std::vector<Rgb> light(n2);
+  for (int i = 0; i < n2; ++i) light[i] = {lightSh[i], lightSh[i], lightSh[i]};
+  const RadianceFunction truncated = [&](Vec3 w) {
+    float yw[64];
+    evalShBasisUnchecked(order, w, yw);
+    float sum = 0;
+    for (int i = 0; i < n2; ++i) sum += lightSh[i] * yw[i];
+    return Rgb{sum, sum, sum};
+  };
+  double maxL = 0;
+  for (const auto& q : ref::sphereQuadrature(40)) maxL = std::max(maxL, std::fabs(static_cast<double>(truncated(q.dir).r)));
+  double tail2 = 0;
+  {
+    std::vector<double> I(2001);
+    I[0] = 1.0 / (s + 1.0);
+    I[1] = 1.0 / (s + 2.0);
+    for (int l = 2; l <= 2000; ++l) I[l] = (s - l + 2.0) / (s + l + 1.0) * I[l - 2];
+    for (int l = order; l <= 2000; ++l) tail2 += std::pow((s + 1.0) * I[l], 2) * (2.0 * l + 1.0) / (4.0 * kPiD);
+  }
+  const double lobeBound = std::sqrt(tail2) * std::sqrt(2.0 * kPiD) * maxL * 1.1;  // 1.1: maxL from a grid
+  GlossyReferenceOptions ro;
+  ro.samples = 1 << 16;
+  ro.includeFresnel = false;
+  ro.threads = 1;
+  for (double alphaDeg : {-40.0, 0.0, 30.0, 60.0}) {
+    const Vec3 eye = eyeAt(scene.positions[v], alphaDeg * kPiD / 180.0);
+    const float sh = exitRadiance(r, scene, v, MatrixPacking::kFull, 1, r.glossyShadowed, eye, light, false);
+    std::vector<Rgb> ref, refDistant;
+    ASSERT_TRUE(glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, sphere, truncated, ro, &ref).isOk());
+    ASSERT_TRUE(glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, LightingInfo{}, truncated, ro,
+                                        &refDistant)
+                    .isOk());
+    EXPECT_NEAR(sh, ref[0].r, lobeBound + 2e-3 + 1e-3) << "alpha=" << alphaDeg;
+    // The transposed matrix (columns at w, rows at w') gives another value.
+    {
+      const Vec3 toEye = (eye - scene.positions[v]) * (1.0f / length(eye - scene.positions[v]));
+      const Vec3 R = reflectView(toEye, scene.normals[v]);
+      std::vector<float> yR(n2);
+      ASSERT_TRUE(evalShBasis(order, R, yR).isOk());
+      const std::vector<double> g = lobeBands(order, s);
+      const float* m = &r.glossyShadowed[v * matrixEntryCount(order, MatrixPacking::kFull)];
+      double transposed = 0;
+      for (int i = 0; i < n2; ++i)
+        for (int j = 0; j < n2; ++j) transposed += g[shBandOf(i)] * yR[i] * m[matrixEntryIndex(j, i, MatrixPacking::kFull)] * lightSh[j];
+      // Measured over these eyes: |transposed - ref| >= 0.09, |refDistant - ref| >= 0.048.
+      EXPECT_GT(std::fabs(transposed - ref[0].r), 0.04) << "alpha=" << alphaDeg;
+    }
+    EXPECT_GT(std::fabs(refDistant[0].r - ref[0].r), 0.04) << "alpha=" << alphaDeg;
+    // The bound is loose: measured |sh - ref| <= 1.9e-4 over these eyes.
+    EXPECT_NEAR(sh, ref[0].r, 2e-3) << "alpha=" << alphaDeg;
+  }
+}
+
 TEST(GlossyBake, RejectsBadOptions) {
   Scene s = glossyPlane(2, 1.0f);
   BakeOptions o;
