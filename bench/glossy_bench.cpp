@@ -122,16 +122,26 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
-    if (a == "--default") useDefault = true;
-    else if (a == "--local") local = true;
-    else if (a == "--order" && (v = next())) o.order = std::atoi(v);
-    else if (a == "--samples" && (v = next())) o.samples = static_cast<std::size_t>(std::atoll(v));
-    else if (a == "--bounces" && (v = next())) o.glossyBounces = o.maxBounces = std::atoi(v);
-    else if (a == "--threads" && (v = next())) o.threads = static_cast<unsigned>(std::atoi(v));
-    else if (a == "--f0" && (v = next())) f0 = static_cast<float>(std::atof(v));
-    else if (a == "--exponent" && (v = next())) exponent = static_cast<float>(std::atof(v));
-    else if (!a.empty() && a[0] != '-' && scenePath.empty()) scenePath = a;
-    else return usage();
+    if (a == "--default")
+      useDefault = true;
+    else if (a == "--local")
+      local = true;
+    else if (a == "--order" && (v = next()))
+      o.order = std::atoi(v);
+    else if (a == "--samples" && (v = next()))
+      o.samples = static_cast<std::size_t>(std::atoll(v));
+    else if (a == "--bounces" && (v = next()))
+      o.glossyBounces = o.maxBounces = std::atoi(v);
+    else if (a == "--threads" && (v = next()))
+      o.threads = static_cast<unsigned>(std::atoi(v));
+    else if (a == "--f0" && (v = next()))
+      f0 = static_cast<float>(std::atof(v));
+    else if (a == "--exponent" && (v = next()))
+      exponent = static_cast<float>(std::atof(v));
+    else if (!a.empty() && a[0] != '-' && scenePath.empty())
+      scenePath = a;
+    else
+      return usage();
   }
   if (scenePath.empty() && !useDefault) return usage();
   bake::Scene scene;
@@ -171,24 +181,31 @@ int main(int argc, char** argv) {
     return 1;
   }
   const double total = seconds(t0);
-  const double rate = r.glossyRankUpdate.threadSeconds > 0 ? r.glossyRankUpdate.flops / r.glossyRankUpdate.threadSeconds * 1e-9 : 0.0;
+  const double rate =
+      r.glossyRankUpdate.threadSeconds > 0 ? r.glossyRankUpdate.flops / r.glossyRankUpdate.threadSeconds * 1e-9 : 0.0;
 
   std::ostringstream j;
   j.precision(6);
   j << "{\n  \"scene\": " << jsonString(useDefault ? "built-in default" : scenePath) << ",\n";
   j << "  \"vertices\": " << scene.positions.size() << ",\n  \"triangles\": " << scene.indices.size() / 3 << ",\n";
-  j << "  \"materials\": " << jsonString(assigned ? "assigned by the benchmark (f0 " + std::to_string(f0) + ", exponent " + std::to_string(exponent) + ")" : "from the scene") << ",\n";
-  j << "  \"order\": " << o.order << ",\n  \"samples\": " << o.samples << ",\n  \"lighting\": "
-    << jsonString(lightingModelName(o.lighting.model)) << ",\n  \"threads\": " << threads << ",\n";
+  j << "  \"materials\": "
+    << jsonString(assigned ? "assigned by the benchmark (f0 " + std::to_string(f0) + ", exponent " +
+                                 std::to_string(exponent) + ")"
+                           : "from the scene")
+    << ",\n";
+  j << "  \"order\": " << o.order << ",\n  \"samples\": " << o.samples
+    << ",\n  \"lighting\": " << jsonString(lightingModelName(o.lighting.model)) << ",\n  \"threads\": " << threads
+    << ",\n";
   j << "  \"glossy_bounces\": " << r.glossyBounces << ",\n  \"diffuse_bounces\": " << r.bounces << ",\n";
   j << "  \"bake_seconds\": " << total << ",\n  \"peak_rss_mib\": " << peakMiB() << ",\n  \"passes\": [";
   for (std::size_t i = 0; i < r.passes.size(); ++i) {
     j << (i ? ", " : "") << "{\"name\": " << jsonString(r.passes[i].name) << ", \"seconds\": " << r.passes[i].seconds
       << ", \"rays\": " << r.passes[i].rays << "}";
   }
-  j << "],\n  \"rank_update\": {\"kernel\": " << jsonString(local ? "sgemm" : "ssyrk") << ", \"gflop\": "
-    << r.glossyRankUpdate.flops * 1e-9 << ", \"thread_seconds\": " << r.glossyRankUpdate.threadSeconds
-    << ", \"gflops_per_core\": " << rate << ", \"fraction_of_measured_peak\": " << (sgemmPeak > 0 ? rate / sgemmPeak : 0.0)
+  j << "],\n  \"rank_update\": {\"kernel\": " << jsonString(local ? "sgemm" : "ssyrk")
+    << ", \"gflop\": " << r.glossyRankUpdate.flops * 1e-9
+    << ", \"thread_seconds\": " << r.glossyRankUpdate.threadSeconds << ", \"gflops_per_core\": " << rate
+    << ", \"fraction_of_measured_peak\": " << (sgemmPeak > 0 ? rate / sgemmPeak : 0.0)
     << ", \"fraction_of_nominal_peak\": " << (nominalPeak > 0 ? rate / nominalPeak : 0.0) << "},\n";
   j << "  \"peak\": {\"cpu\": " << jsonString(cpu.model) << ", \"simd\": " << jsonString(cpu.simd)
     << ", \"cpu_mhz\": " << cpu.mhz << ", \"flops_per_cycle\": " << cpu.flopsPerCycle

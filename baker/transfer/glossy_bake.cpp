@@ -79,8 +79,7 @@ void vectorTimesPacked(const float* __restrict t, const float* __restrict m, Mat
 
 void useSingleThreadedBlas() { openblas_set_num_threads(1); }
 
-GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays)
-    : order_(order), n2_(shCoeffCount(order)) {
+GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays) : order_(order), n2_(shCoeffCount(order)) {
   a_.resize(std::min(maxRays, kChunkRows) * static_cast<std::size_t>(n2_) + 1);
   dense_.resize(static_cast<std::size_t>(n2_) * n2_);
 }
@@ -210,7 +209,9 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             evalShBasisUnchecked(order, R, s.yR.data());
             const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];
             for (std::size_t q = 0; q < n2; ++q) s.t[q] = g[q] * s.yR[q];
-            const float* M = job.glossyPrevious + (firstBounce ? static_cast<std::size_t>(u) : static_cast<std::size_t>(sender)) * prevStride;
+            const float* M =
+                job.glossyPrevious +
+                (firstBounce ? static_cast<std::size_t>(u) : static_cast<std::size_t>(sender)) * prevStride;
             const int channels = firstBounce ? 1 : 3;
             for (int pc = 0; pc < channels; ++pc) {
               const float* Mc = M + static_cast<std::size_t>(pc) * full;

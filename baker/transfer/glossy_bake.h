@@ -73,21 +73,21 @@ class GlossyShadowedKernel {
 struct GlossyBounceJob {
   const Scene* scene = nullptr;
   int order = 0;
-  int bounce = 0;                                  // b >= 1
+  int bounce = 0;                                 // b >= 1
   const std::vector<HitBlock>* blocks = nullptr;  // the direct pass's hits, kBlockVertices per block
-  const DirectionSet* dirs = nullptr;              // the sample directions w_k
-  const float* sampleMajor = nullptr;              // [sample][coefficient]
-  float sampleWeight = 0.0f;                       // 4pi/N
-  const float* diffusePrevious = nullptr;          // B^{b-1}: [vertex][channel][coefficient]
+  const DirectionSet* dirs = nullptr;             // the sample directions w_k
+  const float* sampleMajor = nullptr;             // [sample][coefficient]
+  float sampleWeight = 0.0f;                      // 4pi/N
+  const float* diffusePrevious = nullptr;         // B^{b-1}: [vertex][channel][coefficient]
   // Glossy senders: senderIndex[v] >= 0 for vertices with f0 > 0 in some channel.
   const std::vector<std::int32_t>* senderIndex = nullptr;
   const float* glossyPrevious = nullptr;  // M^{b-1}: b = 1: [vertex][packed] (previousPacking,
                                           // 1 channel, all vertices); b >= 2: [sender][channel][full]
   MatrixPacking previousPacking = MatrixPacking::kFull;
-  float* glossyCurrent = nullptr;          // M^b at senders, [sender][channel][full]; null: not kept
-  float* interreflected = nullptr;         // += M^b, [vertex][channel][full]
+  float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][full]; null: not kept
+  float* interreflected = nullptr;  // += M^b, [vertex][channel][full]
   unsigned threads = 1;
-  const BakeOptions* options = nullptr;    // for progress
+  const BakeOptions* options = nullptr;  // for progress
 };
 
 // Gathers bounce `job.bounce` for every vertex (deterministic whatever job.threads).

@@ -57,7 +57,8 @@ std::vector<double> lobeBands(int L, int s) {
 // Truncated SH of k_s * integral_{n.w>0} f(w) dw for an angle theta between n and R:
 // sum_{l<order} g_l a_l (2l+1)/2 P_l(cos theta) (addition theorem with h_lm = 2pi a_l y_lm(n)).
 double lobeAboveHorizonSeries(int order, int s, double theta) {
-  const std::vector<double> g = lobeBands(order, s), a = hemisphereStepBands(order), p = legendre(order, std::cos(theta));
+  const std::vector<double> g = lobeBands(order, s), a = hemisphereStepBands(order),
+                            p = legendre(order, std::cos(theta));
   double sum = 0.0;
   for (int l = 0; l < order; ++l) sum += g[l] * a[l] * (2.0 * l + 1.0) / 2.0 * p[l];
   return sum;
@@ -370,7 +371,8 @@ TEST(GlossyBake, UnoccludedShadowedMatrixIsTheHemisphereProjection) {
   EXPECT_NEAR(m[0], 0.5, 1e-3);
   double worst = 0;
   for (int i = 0; i < n2; ++i)
-    for (int j = 0; j <= i; ++j) worst = std::max(worst, std::fabs(m[matrixEntryIndex(i, j, MatrixPacking::kSymmetric)] - exact[i * n2 + j]));
+    for (int j = 0; j <= i; ++j)
+      worst = std::max(worst, std::fabs(m[matrixEntryIndex(i, j, MatrixPacking::kSymmetric)] - exact[i * n2 + j]));
   // Same MC bound as the step's projection (products y_i y_j have |.| <= 1.8 at order 6): 5e-3
   // (measured 5.5e-4 for seed 3).
   EXPECT_LT(worst, 5e-3);
@@ -520,7 +522,8 @@ TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
   for (std::size_t v = base; v < s.positions.size(); ++v) {
     for (double thetaDeg : {0.0, 30.0, 60.0}) {
       const double theta = thetaDeg * kPiD / 180.0;
-      const Vec3 eye = s.positions[v] + Vec3{static_cast<float>(std::sin(theta)), -static_cast<float>(std::cos(theta)), 0} * 0.05f;
+      const Vec3 eye =
+          s.positions[v] + Vec3{static_cast<float>(std::sin(theta)), -static_cast<float>(std::cos(theta)), 0} * 0.05f;
       const float total = exitRadiance(r, s, v, MatrixPacking::kFull, 3, r.glossyInterreflected, eye, light, false);
       const float direct = exitRadiance(r, s, v, MatrixPacking::kSymmetric, 1, r.glossyShadowed, eye, light, false);
       // Direct: the floor hides all but rays within 0.6 degrees of the horizon, whose
@@ -680,8 +683,10 @@ TEST(GlossyBake, HugeLocalSphereMatchesDistant) {
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
     for (int i = 0; i < n2; ++i)
       for (int j = 0; j < n2; ++j) {
-        worst = std::max(worst, std::fabs(static_cast<double>(local.glossyShadowed[v * fe + matrixEntryIndex(i, j, MatrixPacking::kFull)]) -
-                                          distant.glossyShadowed[v * se + matrixEntryIndex(i, j, MatrixPacking::kSymmetric)]));
+        worst = std::max(
+            worst,
+            std::fabs(static_cast<double>(local.glossyShadowed[v * fe + matrixEntryIndex(i, j, MatrixPacking::kFull)]) -
+                      distant.glossyShadowed[v * se + matrixEntryIndex(i, j, MatrixPacking::kSymmetric)]));
       }
     for (std::size_t k = 0; k < 3 * fe; ++k) {
       worstIr = std::max(worstIr, std::fabs(static_cast<double>(local.glossyInterreflected[v * 3 * fe + k]) -
@@ -741,7 +746,8 @@ TEST(GlossyBake, LocalMatrixMatchesBruteForceOnTheSphere) {
     return Rgb{sum, sum, sum};
   };
   double maxL = 0;
-  for (const auto& q : ref::sphereQuadrature(40)) maxL = std::max(maxL, std::fabs(static_cast<double>(truncated(q.dir).r)));
+  for (const auto& q : ref::sphereQuadrature(40))
+    maxL = std::max(maxL, std::fabs(static_cast<double>(truncated(q.dir).r)));
   double tail2 = 0;
   {
     std::vector<double> I(2001);
@@ -759,9 +765,10 @@ TEST(GlossyBake, LocalMatrixMatchesBruteForceOnTheSphere) {
     const Vec3 eye = eyeAt(scene.positions[v], alphaDeg * kPiD / 180.0);
     const float sh = exitRadiance(r, scene, v, MatrixPacking::kFull, 1, r.glossyShadowed, eye, light, false);
     std::vector<Rgb> ref, refDistant;
-    ASSERT_TRUE(glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, sphere, truncated, ro, &ref).isOk());
-    ASSERT_TRUE(glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, LightingInfo{}, truncated, ro,
-                                        &refDistant)
+    ASSERT_TRUE(
+        glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, sphere, truncated, ro, &ref).isOk());
+    ASSERT_TRUE(glossyReferenceRadiance(scene, std::span<const std::uint32_t>(&v, 1), eye, LightingInfo{}, truncated,
+                                        ro, &refDistant)
                     .isOk());
     EXPECT_NEAR(sh, ref[0].r, lobeBound + 2e-3 + 1e-3) << "alpha=" << alphaDeg;
     // The transposed matrix (columns at w, rows at w') gives another value.
@@ -774,7 +781,8 @@ TEST(GlossyBake, LocalMatrixMatchesBruteForceOnTheSphere) {
       const float* m = &r.glossyShadowed[v * matrixEntryCount(order, MatrixPacking::kFull)];
       double transposed = 0;
       for (int i = 0; i < n2; ++i)
-        for (int j = 0; j < n2; ++j) transposed += g[shBandOf(i)] * yR[i] * m[matrixEntryIndex(j, i, MatrixPacking::kFull)] * lightSh[j];
+        for (int j = 0; j < n2; ++j)
+          transposed += g[shBandOf(i)] * yR[i] * m[matrixEntryIndex(j, i, MatrixPacking::kFull)] * lightSh[j];
       // Measured over these eyes: |transposed - ref| >= 0.09, |refDistant - ref| >= 0.048.
       EXPECT_GT(std::fabs(transposed - ref[0].r), 0.04) << "alpha=" << alphaDeg;
     }
@@ -818,20 +826,29 @@ TEST(GlossyReference, RejectsBadArguments) {
   std::vector<Rgb> out;
   const std::uint32_t ok = 0, bad = 1000;
   GlossyReferenceOptions o;
-  EXPECT_FALSE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&bad, 1), {0, 5, 0}, LightingInfo{}, white, o, &out).isOk());
+  EXPECT_FALSE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&bad, 1), {0, 5, 0}, LightingInfo{}, white, o, &out)
+          .isOk());
   o.samples = 0;
-  EXPECT_FALSE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, LightingInfo{}, white, o, &out).isOk());
+  EXPECT_FALSE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, LightingInfo{}, white, o, &out)
+          .isOk());
   o.samples = 256;
-  EXPECT_FALSE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, LightingInfo{}, RadianceFunction{}, o, &out).isOk());
+  EXPECT_FALSE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, LightingInfo{},
+                                       RadianceFunction{}, o, &out)
+                   .isOk());
   LightingInfo paper;
   paper.model = LightingModel::kLocalSpherePaper;
   paper.radius = 10.0f;
-  EXPECT_FALSE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, paper, white, o, &out).isOk());
+  EXPECT_FALSE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&ok, 1), {0, 5, 0}, paper, white, o, &out).isOk());
   // White furnace, s = 1, unoccluded, eye along the normal: the lobe's mass above the horizon is 1.
   const std::uint32_t centre = static_cast<std::uint32_t>(centreVertex(s));
   o.samples = 4096;
   o.includeFresnel = false;
-  ASSERT_TRUE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {0, 5, 0}, LightingInfo{}, white, o, &out).isOk());
+  ASSERT_TRUE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {0, 5, 0}, LightingInfo{}, white, o, &out)
+          .isOk());
   EXPECT_NEAR(out[0].r, 1.0f, 1e-6);
   // Local lighting with a huge sphere: the same as distant for a direction-only radiance.
   LightingInfo sphere;
@@ -839,8 +856,11 @@ TEST(GlossyReference, RejectsBadArguments) {
   sphere.radius = 1e4f;
   const RadianceFunction up = [](Vec3 w) { return Rgb{w.y > 0.9f ? 1.0f : 0.0f, 0, 0}; };
   std::vector<Rgb> a, b;
-  ASSERT_TRUE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {1, 5, 0}, LightingInfo{}, up, o, &a).isOk());
-  ASSERT_TRUE(glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {1, 5, 0}, sphere, up, o, &b).isOk());
+  ASSERT_TRUE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {1, 5, 0}, LightingInfo{}, up, o, &a)
+          .isOk());
+  ASSERT_TRUE(
+      glossyReferenceRadiance(s, std::span<const std::uint32_t>(&centre, 1), {1, 5, 0}, sphere, up, o, &b).isOk());
   EXPECT_NEAR(a[0].r, b[0].r, 2e-3);
   EXPECT_GT(a[0].r, 0.05f);
 }
