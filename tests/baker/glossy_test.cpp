@@ -638,6 +638,21 @@ TEST(GlossyBake, DeterministicWhateverTheThreadCount) {
   ASSERT_EQ(a.glossyShadowed, b.glossyShadowed);
   ASSERT_EQ(a.glossyInterreflected, b.glossyInterreflected);
   ASSERT_EQ(a.glossyInterreflected.size(), s.positions.size() * 3 * matrixEntryCount(4, MatrixPacking::kFull));
+  // The same for local lighting (kFull shadowed matrices, the sgemm kernel).
+  {
+    BakeOptions lo = o;
+    lo.lighting.model = LightingModel::kLocalSpherePaper;
+    lo.lighting.center = {0, 0.5f, 0};
+    lo.lighting.radius = 3.0f;
+    BakeResult la, lb;
+    lo.threads = 1;
+    ASSERT_TRUE(bakeTransfer(s, lo, &la).isOk());
+    lo.threads = 3;
+    ASSERT_TRUE(bakeTransfer(s, lo, &lb).isOk());
+    ASSERT_EQ(la.glossyShadowed.size(), s.positions.size() * matrixEntryCount(4, MatrixPacking::kFull));
+    ASSERT_EQ(la.glossyShadowed, lb.glossyShadowed);
+    ASSERT_EQ(la.glossyInterreflected, lb.glossyInterreflected);
+  }
   // Every bounce adds light (DC-DC entries grow for vertices between the spheres and the floor).
   o.glossyBounces = 1;
   BakeResult one;
