@@ -39,39 +39,13 @@ std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
   return t;
 }
 
-// Fixed-order dot product in 8 interleaved partial sums (vectorisable without reassociating
-// at the compiler's discretion: the order is the same on every run and thread).
-inline float dot8(const float* __restrict a, const float* __restrict b, std::size_t n) {
-  float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  std::size_t j = 0;
-  for (; j + 8 <= n; j += 8) {
-    for (int l = 0; l < 8; ++l) acc[l] += a[j + l] * b[j + l];
-  }
-  float sum = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
-  for (; j < n; ++j) sum += a[j] * b[j];
-  return sum;
-}
-
-// tmp = t^T M (tmp_j = sum_q t_q M_qj) straight from the packed layout, contiguous runs only:
-//   kSymmetric row q: (q, 0..q), so tmp[0..q) += t_q M(q, .) and tmp_q += t[0..q) . M(q, .) + t_q M_qq;
-//   kFull shell k: (k, 0..k) left of the diagonal, (0..k, k) above it, then (k, k).
-void vectorTimesPacked(const float* __restrict t, const float* __restrict m, MatrixPacking packing, std::size_t n2,
-                       float* __restrict tmp) {
+// tmp = t^T M for a dense row-major n2 x n2 M: n2 contiguous axpys, which vectorise.
+void vectorTimesDense(const float* __restrict t, const float* __restrict m, std::size_t n2, float* __restrict tmp) {
   std::fill(tmp, tmp + n2, 0.0f);
-  if (packing == MatrixPacking::kSymmetric) {
-    for (std::size_t q = 0; q < n2; ++q) {
-      const float* row = m + q * (q + 1) / 2;
-      const float tq = t[q];
-      for (std::size_t j = 0; j < q; ++j) tmp[j] += tq * row[j];
-      tmp[q] += dot8(t, row, q) + tq * row[q];
-    }
-    return;
-  }
-  for (std::size_t k = 0; k < n2; ++k) {
-    const float* shell = m + k * k;
-    const float tk = t[k];
-    for (std::size_t j = 0; j < k; ++j) tmp[j] += tk * shell[j];  // (k, j)
-    tmp[k] += dot8(t, shell + k, k) + tk * shell[2 * k];          // (j, k), then (k, k)
+  for (std::size_t q = 0; q < n2; ++q) {
+    const float tq = t[q];
+    const float* row = m + q * n2;
+    for (std::size_t j = 0; j < n2; ++j) tmp[j] += tq * row[j];
   }
 }
 
@@ -138,8 +112,25 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   const std::size_t blockCount = job.blocks->size();
   const std::vector<std::int32_t>& senderIndex = *job.senderIndex;
   const bool firstBounce = job.bounce == 1;
-  const MatrixPacking prevPacking = firstBounce ? job.previousPacking : MatrixPacking::kFull;
-  const std::size_t prevStride = firstBounce ? matrixEntryCount(order, prevPacking) : 3 * full;
+  // The senders' previous bounce as dense row-major matrices, indexed by sender: for bounce 1
+  // a dense copy of the scalar shadowed matrices at the senders only (the packed layouts'
+  // short runs cost several times more per product); later bounces are kept dense already.
+  std::vector<float> dense0;
+  if (firstBounce) {
+    const std::size_t stride = matrixEntryCount(order, job.previousPacking);
+    std::size_t count = 0;
+    for (std::int32_t sender : senderIndex) count += sender >= 0;
+    dense0.resize(count * full);
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      if (senderIndex[v] < 0) continue;
+      const float* src = job.glossyPrevious + v * stride;
+      float* dst = &dense0[static_cast<std::size_t>(senderIndex[v]) * full];
+      for (std::size_t q = 0; q < n2; ++q)
+        for (std::size_t j = 0; j < n2; ++j) dst[q * n2 + j] = src[matrixEntryIndex(q, j, job.previousPacking)];
+    }
+  }
+  const float* previous = firstBounce ? dense0.data() : job.glossyPrevious;
+  const std::size_t prevStride = firstBounce ? full : 3 * full;
   const std::vector<std::uint32_t> fullIndex = packedIndexTable(static_cast<int>(n2), MatrixPacking::kFull);
 
   // Band scale of each coefficient for each sender (its own exponent).
@@ -159,6 +150,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 
   struct Scratch {
     std::vector<float> a, rows, dense, yR, t, tmp;
+    std::vector<std::uint64_t> order;  // (triangle, hit index) of one vertex's hits
   };
   const unsigned threads = std::max(1u, job.threads);
   std::vector<Scratch> scratch(threads);
@@ -182,12 +174,21 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
       const std::size_t local = v - begin;
       const std::uint32_t h0 = rec.hitStart[local], h1 = rec.hitStart[local + 1];
       std::fill(s.dense.begin(), s.dense.end(), 0.0f);
-      for (std::uint32_t c0 = h0; c0 < h1; c0 += static_cast<std::uint32_t>(kChunkRows)) {
-        const std::size_t kc = std::min<std::size_t>(kChunkRows, h1 - c0);
+      // Hits in triangle order: hits on one triangle read the same three senders' matrices
+      // back to back (the sample order scatters them over the scene). A fixed order, so the
+      // sums stay deterministic.
+      s.order.resize(h1 - h0);
+      for (std::uint32_t h = h0; h < h1; ++h) {
+        s.order[h - h0] = (static_cast<std::uint64_t>(rec.hits[h].triangle) << 32) | h;
+      }
+      std::sort(s.order.begin(), s.order.end());
+      for (std::uint32_t c0 = 0; c0 < h1 - h0; c0 += static_cast<std::uint32_t>(kChunkRows)) {
+        const std::size_t kc = std::min<std::size_t>(kChunkRows, h1 - h0 - c0);
         std::fill(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>(kc * row3), 0.0f);
         for (std::size_t r = 0; r < kc; ++r) {
-          const Hit& hit = rec.hits[c0 + r];
-          const std::uint32_t k = rec.hitSample[c0 + r];
+          const auto h = static_cast<std::uint32_t>(s.order[c0 + r]);
+          const Hit& hit = rec.hits[h];
+          const std::uint32_t k = rec.hitSample[h];
           const float* yw = job.sampleMajor + static_cast<std::size_t>(k) * n2;
           std::memcpy(&s.a[r * n2], yw, n2 * sizeof(float));
           const Vec3 w = job.dirs->at(k);
@@ -209,14 +210,12 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             evalShBasisUnchecked(order, R, s.yR.data());
             const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];
             for (std::size_t q = 0; q < n2; ++q) s.t[q] = g[q] * s.yR[q];
-            const float* M =
-                job.glossyPrevious +
-                (firstBounce ? static_cast<std::size_t>(u) : static_cast<std::size_t>(sender)) * prevStride;
+            const float* M = previous + static_cast<std::size_t>(sender) * prevStride;
             const int channels = firstBounce ? 1 : 3;
             for (int pc = 0; pc < channels; ++pc) {
               const float* Mc = M + static_cast<std::size_t>(pc) * full;
               // tmp_j = sum_q t_q M_qj: the sender's outgoing radiance per lighting coefficient.
-              vectorTimesPacked(s.t.data(), Mc, prevPacking, n2, s.tmp.data());
+              vectorTimesDense(s.t.data(), Mc, n2, s.tmp.data());
               for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
                 const float f = bc * Fc[c];
                 for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];
@@ -239,7 +238,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             const float value = s.dense[i * row3 + c * n2 + j];
             const std::size_t p = c * full + fullIndex[i * n2 + j];
             dst[p] += value;
-            if (keep) keep[p] = value;
+            if (keep) keep[c * full + i * n2 + j] = value;  // dense, for the next bounce
           }
         }
       }

@@ -82,9 +82,10 @@ struct GlossyBounceJob {
   // Glossy senders: senderIndex[v] >= 0 for vertices with f0 > 0 in some channel.
   const std::vector<std::int32_t>* senderIndex = nullptr;
   const float* glossyPrevious = nullptr;  // M^{b-1}: b = 1: [vertex][packed] (previousPacking,
-                                          // 1 channel, all vertices); b >= 2: [sender][channel][full]
+                                          // 1 channel, all vertices); b >= 2: [sender][channel][dense
+                                          // row-major n2 x n2], as glossyCurrent
   MatrixPacking previousPacking = MatrixPacking::kFull;
-  float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][full]; null: not kept
+  float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][dense n2 x n2]; null: not kept
   float* interreflected = nullptr;  // += M^b, [vertex][channel][full]
   unsigned threads = 1;
   const BakeOptions* options = nullptr;  // for progress
