@@ -100,8 +100,8 @@ struct BakeResult {
 // glossy (the sample index). Glossy: the shadowed matrices (order^2 (order^2+1)/2 floats
 // per vertex distant, order^4 local), glossyInterreflected (3 order^4 floats per vertex,
 // written bounce by bounce) and, for glossyBounces >= 2 only, two bounces of RGB matrices at
-// the glossy senders (f0 > 0) alone; bounce 1 reads the scalar shadowed matrices and the
-// diffuse bounce vectors. Glossy passes set the BLAS (OpenBLAS) single-threaded for the
+// the glossy senders (f0 > 0) alone; bounce 1 reads the scalar shadowed matrices (copied
+// dense, order^4 floats, at the glossy senders) and the diffuse bounce vectors. Glossy passes set the BLAS (OpenBLAS) single-threaded for the
 // process: the baker's threads split the vertices.
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);
 
