@@ -23,6 +23,9 @@ namespace {
 // Rows of one BLAS call: bounds the scratch (chunk x order^2 floats) for any sample count,
 // and is large enough that the call runs at the kernel's block rate.
 constexpr std::size_t kChunkRows = 512;
+// Hits of one vertex block whose rows a glossy gather holds at once (kGroupHits x 3 order^2
+// floats per thread: 2.4 MB at order 5).
+constexpr std::size_t kGroupHits = 8192;
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -39,12 +42,21 @@ std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
   return t;
 }
 
+// tmp = t^T M for a dense row-major n2 x n2 M: n2 contiguous axpys, which vectorise.
+void vectorTimesDense(const float* __restrict t, const float* __restrict m, std::size_t n2, float* __restrict tmp) {
+  std::fill(tmp, tmp + n2, 0.0f);
+  for (std::size_t q = 0; q < n2; ++q) {
+    const float tq = t[q];
+    const float* row = m + q * n2;
+    for (std::size_t j = 0; j < n2; ++j) tmp[j] += tq * row[j];
+  }
+}
+
 }  // namespace
 
 void useSingleThreadedBlas() { openblas_set_num_threads(1); }
 
-GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays)
-    : order_(order), n2_(shCoeffCount(order)) {
+GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays) : order_(order), n2_(shCoeffCount(order)) {
   a_.resize(std::min(maxRays, kChunkRows) * static_cast<std::size_t>(n2_) + 1);
   dense_.resize(static_cast<std::size_t>(n2_) * n2_);
 }
@@ -103,9 +115,25 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   const std::size_t blockCount = job.blocks->size();
   const std::vector<std::int32_t>& senderIndex = *job.senderIndex;
   const bool firstBounce = job.bounce == 1;
-  const MatrixPacking prevPacking = firstBounce ? job.previousPacking : MatrixPacking::kFull;
-  const std::size_t prevStride = firstBounce ? matrixEntryCount(order, prevPacking) : 3 * full;
-  const std::vector<std::uint32_t> prevIndex = packedIndexTable(static_cast<int>(n2), prevPacking);
+  // The senders' previous bounce as dense row-major matrices, indexed by sender: for bounce 1
+  // a dense copy of the scalar shadowed matrices at the senders only (the packed layouts'
+  // short runs cost several times more per product); later bounces are kept dense already.
+  std::vector<float> dense0;
+  if (firstBounce) {
+    const std::size_t stride = matrixEntryCount(order, job.previousPacking);
+    std::size_t count = 0;
+    for (std::int32_t sender : senderIndex) count += sender >= 0;
+    dense0.resize(count * full);
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      if (senderIndex[v] < 0) continue;
+      const float* src = job.glossyPrevious + v * stride;
+      float* dst = &dense0[static_cast<std::size_t>(senderIndex[v]) * full];
+      for (std::size_t q = 0; q < n2; ++q)
+        for (std::size_t j = 0; j < n2; ++j) dst[q * n2 + j] = src[matrixEntryIndex(q, j, job.previousPacking)];
+    }
+  }
+  const float* previous = firstBounce ? dense0.data() : job.glossyPrevious;
+  const std::size_t prevStride = firstBounce ? full : 3 * full;
   const std::vector<std::uint32_t> fullIndex = packedIndexTable(static_cast<int>(n2), MatrixPacking::kFull);
 
   // Band scale of each coefficient for each sender (its own exponent).
@@ -125,16 +153,18 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 
   struct Scratch {
     std::vector<float> a, rows, dense, yR, t, tmp;
+    std::vector<std::uint64_t> order;  // (triangle, hit index) of one group's hits
   };
   const unsigned threads = std::max(1u, job.threads);
   std::vector<Scratch> scratch(threads);
   for (auto& s : scratch) {
-    s.a.resize(kChunkRows * n2);
-    s.rows.resize(kChunkRows * row3);
-    s.dense.resize(n2 * row3);
+    s.a.resize(kGroupHits * n2);
+    s.rows.resize(kGroupHits * row3);
+    s.dense.resize(kBlockVertices * n2 * row3);
     s.yR.resize(n2);
     s.t.resize(n2);
     s.tmp.resize(n2);
+    s.order.reserve(kGroupHits);
   }
   const std::string name = "glossy bounce " + std::to_string(job.bounce);
   std::atomic<std::size_t> done{0};
@@ -144,60 +174,71 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
     Scratch& s = scratch[thread];
     const HitBlock& rec = (*job.blocks)[block];
     const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
-    for (std::size_t v = begin; v < end; ++v) {
-      const std::size_t local = v - begin;
-      const std::uint32_t h0 = rec.hitStart[local], h1 = rec.hitStart[local + 1];
-      std::fill(s.dense.begin(), s.dense.end(), 0.0f);
-      for (std::uint32_t c0 = h0; c0 < h1; c0 += static_cast<std::uint32_t>(kChunkRows)) {
-        const std::size_t kc = std::min<std::size_t>(kChunkRows, h1 - c0);
-        std::fill(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>(kc * row3), 0.0f);
-        for (std::size_t r = 0; r < kc; ++r) {
-          const Hit& hit = rec.hits[c0 + r];
-          const std::uint32_t k = rec.hitSample[c0 + r];
-          const float* yw = job.sampleMajor + static_cast<std::size_t>(k) * n2;
-          std::memcpy(&s.a[r * n2], yw, n2 * sizeof(float));
-          const Vec3 w = job.dirs->at(k);
-          const Vec3 toReceiver = w * -1.0f;
-          const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
-          const float bary[3] = {1.0f - b1 - b2, b1, b2};
-          float* row = &s.rows[r * row3];
-          for (int corner = 0; corner < 3; ++corner) {
-            const std::uint32_t u = scene.indices[3 * static_cast<std::size_t>(hit.triangle) + corner];
-            const float bc = bary[corner];
-            const float* diffuse = job.diffusePrevious + static_cast<std::size_t>(u) * row3;
-            for (std::size_t i = 0; i < row3; ++i) row[i] += bc * diffuse[i];
-            const std::int32_t sender = senderIndex[u];
-            if (sender < 0) continue;
-            const Vec3 nu = scene.normals[u];
-            const Vec3 R = reflectView(toReceiver, nu);
-            const Rgb F = schlickFresnel(scene.specular[u].f0, scene.specular[u].f90, dot(nu, toReceiver));
-            const float Fc[3] = {F.r, F.g, F.b};
-            evalShBasisUnchecked(order, R, s.yR.data());
-            const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];
-            for (std::size_t q = 0; q < n2; ++q) s.t[q] = g[q] * s.yR[q];
-            const float* M = job.glossyPrevious + (firstBounce ? static_cast<std::size_t>(u) : static_cast<std::size_t>(sender)) * prevStride;
-            const int channels = firstBounce ? 1 : 3;
-            for (int pc = 0; pc < channels; ++pc) {
-              const float* Mc = M + static_cast<std::size_t>(pc) * full;
-              // tmp_j = sum_q t_q M_qj: the sender's outgoing radiance per lighting coefficient.
-              std::fill(s.tmp.begin(), s.tmp.end(), 0.0f);
-              for (std::size_t q = 0; q < n2; ++q) {
-                const float tq = s.t[q];
-                const std::uint32_t* idx = &prevIndex[q * n2];
-                for (std::size_t j = 0; j < n2; ++j) s.tmp[j] += tq * Mc[idx[j]];
-              }
-              for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
-                const float f = bc * Fc[c];
-                for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];
-              }
+    const std::size_t blockVertices = end - begin;
+    const std::size_t vertexDense = n2 * row3;
+    std::fill(s.dense.begin(), s.dense.begin() + static_cast<std::ptrdiff_t>(blockVertices * vertexDense), 0.0f);
+    const std::uint32_t totalHits = rec.hitStart[blockVertices];
+    // The block's hits in groups of kGroupHits (fixed boundaries: deterministic). Within a
+    // group, rows are computed in triangle order: the block's neighbouring receivers see
+    // mostly the same triangles, so each sender's matrix is read from memory once per group
+    // rather than once per hit. The rank-k updates then run per vertex in hit order.
+    for (std::uint32_t g0 = 0; g0 < totalHits; g0 += static_cast<std::uint32_t>(kGroupHits)) {
+      const std::uint32_t g1 = std::min<std::uint32_t>(totalHits, g0 + static_cast<std::uint32_t>(kGroupHits));
+      s.order.resize(g1 - g0);
+      for (std::uint32_t h = g0; h < g1; ++h) {
+        s.order[h - g0] = (static_cast<std::uint64_t>(rec.hits[h].triangle) << 32) | h;
+      }
+      std::sort(s.order.begin(), s.order.end());
+      std::fill(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>((g1 - g0) * row3), 0.0f);
+      for (const std::uint64_t key : s.order) {
+        const auto h = static_cast<std::uint32_t>(key);
+        const std::size_t r = h - g0;
+        const Hit& hit = rec.hits[h];
+        const std::uint32_t k = rec.hitSample[h];
+        std::memcpy(&s.a[r * n2], job.sampleMajor + static_cast<std::size_t>(k) * n2, n2 * sizeof(float));
+        const Vec3 toReceiver = job.dirs->at(k) * -1.0f;
+        const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
+        const float bary[3] = {1.0f - b1 - b2, b1, b2};
+        float* row = &s.rows[r * row3];
+        for (int corner = 0; corner < 3; ++corner) {
+          const std::uint32_t u = scene.indices[3 * static_cast<std::size_t>(hit.triangle) + corner];
+          const float bc = bary[corner];
+          const float* diffuse = job.diffusePrevious + static_cast<std::size_t>(u) * row3;
+          for (std::size_t i = 0; i < row3; ++i) row[i] += bc * diffuse[i];
+          const std::int32_t sender = senderIndex[u];
+          if (sender < 0) continue;
+          const Vec3 nu = scene.normals[u];
+          const Vec3 R = reflectView(toReceiver, nu);
+          const Rgb F = schlickFresnel(scene.specular[u].f0, scene.specular[u].f90, dot(nu, toReceiver));
+          const float Fc[3] = {F.r, F.g, F.b};
+          evalShBasisUnchecked(order, R, s.yR.data());
+          const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];
+          for (std::size_t q = 0; q < n2; ++q) s.t[q] = g[q] * s.yR[q];
+          const float* M = previous + static_cast<std::size_t>(sender) * prevStride;
+          const int channels = firstBounce ? 1 : 3;
+          for (int pc = 0; pc < channels; ++pc) {
+            const float* Mc = M + static_cast<std::size_t>(pc) * full;
+            // tmp_j = sum_q t_q M_qj: the sender's outgoing radiance per lighting coefficient.
+            vectorTimesDense(s.t.data(), Mc, n2, s.tmp.data());
+            for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
+              const float f = bc * Fc[c];
+              for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];
             }
           }
         }
-        // dense (n2 x 3n2) += w A^T rows: the rank-kc update over this chunk of hits.
-        cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, static_cast<int>(n2), static_cast<int>(row3),
-                    static_cast<int>(kc), job.sampleWeight, s.a.data(), static_cast<int>(n2), s.rows.data(),
-                    static_cast<int>(row3), 1.0f, s.dense.data(), static_cast<int>(row3));
       }
+      for (std::size_t local = 0; local < blockVertices; ++local) {
+        const std::uint32_t lo = std::max(rec.hitStart[local], g0), hi = std::min(rec.hitStart[local + 1], g1);
+        if (lo >= hi) continue;
+        // dense (n2 x 3n2) += w A^T rows: the rank-k update over this vertex's hits in the group.
+        cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, static_cast<int>(n2), static_cast<int>(row3),
+                    static_cast<int>(hi - lo), job.sampleWeight, &s.a[(lo - g0) * n2], static_cast<int>(n2),
+                    &s.rows[(lo - g0) * row3], static_cast<int>(row3), 1.0f, &s.dense[local * vertexDense],
+                    static_cast<int>(row3));
+      }
+    }
+    for (std::size_t v = begin; v < end; ++v) {
+      const float* gathered = &s.dense[(v - begin) * vertexDense];
       float* dst = job.interreflected + v * 3 * full;
       float* keep = (job.glossyCurrent && senderIndex[v] >= 0)
                         ? job.glossyCurrent + static_cast<std::size_t>(senderIndex[v]) * 3 * full
@@ -205,10 +246,9 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
       for (std::size_t c = 0; c < 3; ++c) {
         for (std::size_t i = 0; i < n2; ++i) {
           for (std::size_t j = 0; j < n2; ++j) {
-            const float value = s.dense[i * row3 + c * n2 + j];
-            const std::size_t p = c * full + fullIndex[i * n2 + j];
-            dst[p] += value;
-            if (keep) keep[p] = value;
+            const float value = gathered[i * row3 + c * n2 + j];
+            dst[c * full + fullIndex[i * n2 + j]] += value;
+            if (keep) keep[c * full + i * n2 + j] = value;  // dense, for the next bounce
           }
         }
       }

@@ -13,17 +13,21 @@
 // front-face hits h (direction w_h, hit point q_h on triangle t_h with barycentrics):
 //   (M_x)^b_ij = w sum_h y_i(w_h) row^{b-1}_j(q_h),  row(q) = sum_corners bary * row(corner),
 //   row^{b-1}_{c,j}(u) = B^{b-1}_{c,j}(u)                                   (diffuse sender)
-//                      + F_c(n_u.v) sum_k g_l(k)(s_u) (M^{b-1}_{u,c})_kj y_k(R_u)  (glossy sender, f0 > 0)
+//                      + F_c(n_u.v) sum_k g_l(k)(s_u) (M^{b-1}_{u,c})_kj y_k(R_u)  (glossy sender: f0 or f90 > 0)
 // with v = -w_h (from q toward x), R_u = reflectView(v, n_u), F Schlick with the sender's f0,
 // g the Phong band scales, B^{b-1} the diffuse bounce vector of the interreflection pass
 // (B^0 = albedo x shadowed; albedo folded in) and M^0 the shadowed matrix. Evaluating each
 // corner's outgoing radiance with its own normal and material, then interpolating, is how
 // the diffuse bounces interpolate B.
-// What is NOT gathered: the diffuse transfer's own bounces (BakeResult::interreflected) do
-// not gather glossy senders (a diffuse receiver sees only diffuse interreflection); glossy
-// bounces gather light that reached the sender directly or by earlier bounces of the two
-// series above, but the diffuse series it reads never contains glossy-to-diffuse paths.
-// Caustic-like paths diffuse <- glossy <- light are thus missing from the diffuse transfer.
+// What is gathered, by path (receiver <- sender <- ... <- light): bounce b reads B^{b-1},
+// the diffuse series, whose paths are all diffuse (the diffuse transfer's own bounces,
+// BakeResult::interreflected, do NOT gather glossy senders), and M^{b-1} at glossy senders,
+// which gathered both kinds one level down. So every path receiver <- G...G <- D...D <- light
+// is gathered, and any path with a glossy reflection before a diffuse one
+// (... <- D <- ... <- G <- light: light focused by a glossy surface onto a diffuse one) is
+// not, neither in the glossy nor in the diffuse transfer. Senders' radiance is evaluated at
+// the hit triangle's corners (own normal, f0, exponent) and interpolated, not at the hit
+// point; hits on back faces carry nothing (as for the diffuse bounces).
 #pragma once
 
 #include <cstddef>
@@ -69,21 +73,22 @@ class GlossyShadowedKernel {
 struct GlossyBounceJob {
   const Scene* scene = nullptr;
   int order = 0;
-  int bounce = 0;                                  // b >= 1
+  int bounce = 0;                                 // b >= 1
   const std::vector<HitBlock>* blocks = nullptr;  // the direct pass's hits, kBlockVertices per block
-  const DirectionSet* dirs = nullptr;              // the sample directions w_k
-  const float* sampleMajor = nullptr;              // [sample][coefficient]
-  float sampleWeight = 0.0f;                       // 4pi/N
-  const float* diffusePrevious = nullptr;          // B^{b-1}: [vertex][channel][coefficient]
-  // Glossy senders: senderIndex[v] >= 0 for vertices with f0 > 0 in some channel.
+  const DirectionSet* dirs = nullptr;             // the sample directions w_k
+  const float* sampleMajor = nullptr;             // [sample][coefficient]
+  float sampleWeight = 0.0f;                      // 4pi/N
+  const float* diffusePrevious = nullptr;         // B^{b-1}: [vertex][channel][coefficient]
+  // Glossy senders: senderIndex[v] >= 0 for vertices with f0 or f90 > 0 (some Fresnel term).
   const std::vector<std::int32_t>* senderIndex = nullptr;
   const float* glossyPrevious = nullptr;  // M^{b-1}: b = 1: [vertex][packed] (previousPacking,
-                                          // 1 channel, all vertices); b >= 2: [sender][channel][full]
+                                          // 1 channel, all vertices); b >= 2: [sender][channel][dense
+                                          // row-major n2 x n2], as glossyCurrent
   MatrixPacking previousPacking = MatrixPacking::kFull;
-  float* glossyCurrent = nullptr;          // M^b at senders, [sender][channel][full]; null: not kept
-  float* interreflected = nullptr;         // += M^b, [vertex][channel][full]
+  float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][dense n2 x n2]; null: not kept
+  float* interreflected = nullptr;  // += M^b, [vertex][channel][full]
   unsigned threads = 1;
-  const BakeOptions* options = nullptr;    // for progress
+  const BakeOptions* options = nullptr;  // for progress
 };
 
 // Gathers bounce `job.bounce` for every vertex (deterministic whatever job.threads).

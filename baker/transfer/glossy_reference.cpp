@@ -47,17 +47,20 @@ Status glossyReferenceRadiance(const Scene& scene, std::span<const std::uint32_t
                          "glossy reference sample count " + std::to_string(o.samples) + " is outside [1, 2^24]");
   }
   if (!isFinite(eye)) return Status::error(StatusCode::kInvalidArgument, "glossy reference: eye is not finite");
-  if (Status s = checkLightingInfo(lighting); !s.isOk()) return Status::error(s.code(), "glossy reference " + s.message());
+  if (Status s = checkLightingInfo(lighting); !s.isOk())
+    return Status::error(s.code(), "glossy reference " + s.message());
   if (lighting.model == LightingModel::kLocalSpherePaper) {
     return Status::error(StatusCode::kInvalidArgument,
                          "glossy reference: local-sphere-paper lighting is not a radiance; use local-sphere");
   }
   const std::size_t vertexCount = scene.positions.size();
   if (scene.normals.size() != vertexCount || scene.specular.size() != vertexCount) {
-    return Status::error(StatusCode::kSizeMismatch, "glossy reference: scene normals/specular do not match its positions");
+    return Status::error(StatusCode::kSizeMismatch,
+                         "glossy reference: scene normals/specular do not match its positions");
   }
   for (std::uint32_t v : vertices) {
-    if (v >= vertexCount) return Status::error(StatusCode::kInvalidArgument, "glossy reference: vertex index out of range");
+    if (v >= vertexCount)
+      return Status::error(StatusCode::kInvalidArgument, "glossy reference: vertex index out of range");
     const SpecularMaterial& m = scene.specular[v];
     if (!(m.exponent >= 0.0f) || !std::isfinite(m.exponent)) {
       return Status::error(StatusCode::kInvalidArgument, "glossy reference: specular exponent negative or not finite");
@@ -142,7 +145,8 @@ Status glossyReferenceRadiance(const Scene& scene, std::span<const std::uint32_t
         s.lookup[count] = look;
         ++count;
       }
-      if (count > 0) rtcOccluded1M(embree.handle(), &context, s.rays.data(), static_cast<unsigned>(count), sizeof(RTCRay));
+      if (count > 0)
+        rtcOccluded1M(embree.handle(), &context, s.rays.data(), static_cast<unsigned>(count), sizeof(RTCRay));
       for (std::size_t j = 0; j < count; ++j) {
         if (s.rays[j].tfar < 0.0f) continue;  // occluded
         const Rgb L = radiance(s.lookup[j]);

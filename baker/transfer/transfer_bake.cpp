@@ -169,9 +169,9 @@ Status checkOptions(const Scene& scene, const BakeOptions& o) {
     return Status::error(StatusCode::kSizeMismatch, "scene specular materials do not match its positions");
   }
   for (const SpecularMaterial& m : scene.specular) {
-    const float f[3] = {m.f0.r, m.f0.g, m.f0.b};
+    const float f[4] = {m.f0.r, m.f0.g, m.f0.b, m.f90};
     for (float x : f) {
-      if (!(x >= 0.0f && x <= 1.0f)) return Status::error(StatusCode::kInvalidArgument, "scene specular f0 outside [0, 1]");
+      if (!(x >= 0.0f && x <= 1.0f)) return Status::error(StatusCode::kInvalidArgument, "scene specular f0 or f90 outside [0, 1]");
     }
     if (!(m.exponent >= 0.0f) || !std::isfinite(m.exponent)) {
       return Status::error(StatusCode::kInvalidArgument, "scene specular exponent is negative or not finite");
@@ -398,16 +398,14 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
     senderIndex.assign(vertexCount, -1);
     std::int32_t senders = 0;
     for (std::size_t v = 0; v < scene.specular.size(); ++v) {
+      // A sender reflects glossily unless its Fresnel term is 0 at every angle (f0 = f90 = 0).
       const Rgb f0 = scene.specular[v].f0;
-      if (f0.r > 0.0f || f0.g > 0.0f || f0.b > 0.0f) senderIndex[v] = senders++;
+      if (f0.r > 0.0f || f0.g > 0.0f || f0.b > 0.0f || scene.specular[v].f90 > 0.0f) senderIndex[v] = senders++;
     }
     if (o.glossyBounces > 1) glossyCurrent.assign(static_cast<std::size_t>(senders) * 3 * fullEntries, 0.0f);
   }
 
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string name = "bounce " + std::to_string(bounce);
-    ProgressReporter progress(o, name, vertexCount);
     if (glossyBounce && bounce <= o.glossyBounces) {
       GlossyBounceJob job;
       job.scene = &scene;
@@ -438,6 +436,9 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
         glossyCurrent.shrink_to_fit();
       }
     }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string name = "bounce " + std::to_string(bounce);
+    ProgressReporter progress(o, name, vertexCount);
     std::vector<double> blockEnergy(blockCount, 0.0);
     parallelFor(blockCount, threads, [&](std::size_t block, unsigned) {
       const Block& rec = blocks[block];

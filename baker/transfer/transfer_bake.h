@@ -96,7 +96,13 @@ struct BakeResult {
 // Bakes all passes for `scene` (normals unit length, albedo in [0, 1]; in a closed scene of albedo 1 the bounce
 // series converges only as far as maxBounces allows). Deterministic for
 // a given (scene, options) whatever options.threads. Memory: the outputs plus, with
-// interreflection, 12 bytes per occluded ray (hit triangle, barycentrics, weight).
+// interreflection, 12 bytes per occluded ray (hit triangle, barycentrics, weight), 16 with
+// glossy (the sample index). Glossy: the shadowed matrices (order^2 (order^2+1)/2 floats
+// per vertex distant, order^4 local), glossyInterreflected (3 order^4 floats per vertex,
+// written bounce by bounce) and, for glossyBounces >= 2 only, two bounces of RGB matrices at
+// the glossy senders (f0 > 0) alone; bounce 1 reads the scalar shadowed matrices (copied
+// dense, order^4 floats, at the glossy senders) and the diffuse bounce vectors. Glossy passes set the BLAS (OpenBLAS) single-threaded for the
+// process: the baker's threads split the vertices.
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);
 
 // Benchmark reference: casts exactly the direct pass's rays (same origins, directions and
