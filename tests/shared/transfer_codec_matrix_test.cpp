@@ -401,6 +401,23 @@ TEST(TransferCodecMatrix, CpcaIsDeterministicForASeed) {
   EXPECT_EQ(encodeOrDie(x, 3, MatrixPacking::kSymmetric, 1, s), encodeOrDie(x, 3, MatrixPacking::kSymmetric, 1, s));
 }
 
+// Degenerate inputs: all zero, all equal, one vertex. CPCA stores them exactly (the means
+// carry everything; no basis matrix is needed).
+TEST(TransferCodecMatrix, CpcaHandlesDegenerateTransfer) {
+  for (std::size_t V : {std::size_t{1}, std::size_t{50}}) {
+    for (float value : {0.0f, 0.375f}) {
+      const std::vector<float> x(V * 3 * entries(2, MatrixPacking::kFull), value);
+      TransferEncodeReport report;
+      const Bytes blob = encodeOrDie(x, 2, MatrixPacking::kFull, 3, setting("cpca8@0.02"), &report);
+      EXPECT_EQ(decodeOrDie(blob, 2), x) << V << " vertices of " << value;
+      EXPECT_EQ(report.relativeError, 0.0);
+      EXPECT_EQ(report.clusters, 1);
+      ASSERT_EQ(report.vectorsPerBand.size(), 1u);
+      EXPECT_EQ(report.vectorsPerBand[0], 0);
+    }
+  }
+}
+
 TEST(TransferCodecMatrix, BadInputIsRefusedWithItsReason) {
   Bytes blob;
   const std::vector<float> x(2 * entries(2, MatrixPacking::kFull), 0.5f);
