@@ -236,6 +236,17 @@ TEST(TransferCodecMatrix, BlobInfoRecordsTheLayoutAndVectorBlobsStayVersionOneZe
   EXPECT_EQ(decodeTransferMatrix(vblob, 3, &out).code(), StatusCode::kInvalidArgument);
   CpcaMatrixTransfer cm;
   EXPECT_EQ(decodeCpcaMatrixTransfer(blob, 3, &cm).code(), StatusCode::kInvalidArgument);
+  // And the CPCA forms: a matrix CPCA blob is not vector CPCA, nor the other way round.
+  TransferCodecSettings cpca = setting("cpca16@0.05");
+  cpca.cpcaMaxClusters = 2;
+  const Bytes mcpca = encodeOrDie(x, 3, MatrixPacking::kFull, 3, cpca);
+  CpcaTransfer vc;
+  EXPECT_EQ(decodeCpcaTransfer(mcpca, 3, &vc).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(decodeTransfer(mcpca, 3, &out).code(), StatusCode::kInvalidArgument);
+  Bytes vcpca;
+  ASSERT_TRUE(encodeTransfer(vec, 3, 1, cpca, &vcpca).isOk());
+  EXPECT_EQ(decodeCpcaMatrixTransfer(vcpca, 3, &cm).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(decodeTransferMatrix(vcpca, 3, &out).code(), StatusCode::kInvalidArgument);
 }
 
 TEST(TransferCodecMatrix, SizesFollowTheDocumentedFormula) {
