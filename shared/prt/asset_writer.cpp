@@ -171,8 +171,8 @@ Status checkAsset(const BakedAsset& asset) {
       // Visibility has no colour; bounces carry the senders' colours (prt/asset.h).
       const int wanted = pass.kind == TransferKind::kInterreflected ? 3 : 1;
       if (pass.channels != wanted) {
-        return Status::error(StatusCode::kInvalidArgument, named + " has " + std::to_string(pass.channels) + " channels; a " +
-                                                               transferKindName(pass.kind) + " matrix pass has " +
+        return Status::error(StatusCode::kInvalidArgument, named + " has " + std::to_string(pass.channels) + " channels; " +
+                                                               transferKindName(pass.kind) + " matrix passes have " +
                                                                std::to_string(wanted));
       }
       if (asset.shOrder > kMaxMatrixOrder) {

@@ -230,7 +230,7 @@ const cases = {
     }
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.1' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
+      check(info.version === '1.3' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
       check(info.lighting?.model === 'local-sphere' && Math.abs(info.lighting.radius - radius) < 1e-5,
             `info lighting: ${JSON.stringify(info.lighting)}`);
     }

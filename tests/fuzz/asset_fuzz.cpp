@@ -7,12 +7,16 @@
 // checks. So the first input byte picks a mode: with bit 0 set, the rest of the input gets
 // its checksums recomputed before decoding (as the tests' reseal() does), which lets the
 // fuzzer reach the table, size, content and metadata checks; otherwise the bytes are
-// decoded as they are.
+// decoded as they are. With bit 1 set, the input instead describes a small glossy asset
+// (order, lighting model, a matrix pass float32 or encoded, specular materials) that is
+// encoded and then damaged by (position, xor) edits, so that the matrix, encoded matrix and
+// specular sections are explored from well-formed files.
 //
 // Beyond "no crash, no sanitizer report", it traps when the entry points disagree:
 // decodeAsset and verifyAsset must return the same code; whatever decodes must also pass
 // peekAssetHeader with the same summary, and must re-encode (the encoder accepts
-// everything the decoder does) to bytes that decode to the same asset.
+// everything the decoder does) to bytes that decode to the same asset; every pass decodes
+// progressively to the same floats, and decodeAssetSpecular to the same materials.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -21,6 +25,7 @@
 
 #include "prt/asset.h"
 #include "prt/checksum.h"
+#include "prt/transfer_codec.h"
 
 namespace {
 
@@ -74,9 +79,50 @@ bool sameAsset(const prt::BakedAsset& a, const prt::BakedAsset& b) {
   }
   for (std::size_t i = 0; i < a.passes.size(); ++i) {
     const prt::TransferPass &p = a.passes[i], &q = b.passes[i];
-    if (p.kind != q.kind || p.channels != q.channels || p.bounces != q.bounces || !sameBits(p.coeffs, q.coeffs)) return false;
+    if (p.kind != q.kind || p.channels != q.channels || p.bounces != q.bounces || p.form != q.form ||
+        !sameBits(p.coeffs, q.coeffs) || p.encoded != q.encoded) {
+      return false;
+    }
   }
-  return true;
+  if (a.specular.size() != b.specular.size()) return false;
+  return a.specular.empty() || std::memcmp(a.specular.data(), b.specular.data(), a.specular.size() * sizeof(prt::SpecularMaterial)) == 0;
+}
+
+// A glossy asset from the input: [order][flags][vertices][values...]; the rest are edits.
+std::size_t glossyFromInput(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>* file) {
+  if (size < 3) return 0;
+  prt::BakedAsset a;
+  a.shOrder = 1 + data[0] % 3;
+  const std::uint8_t flags = data[1];
+  const std::size_t V = 1 + data[2] % 6;
+  std::size_t used = 3;
+  auto next = [&]() { return used < size ? data[used++] : static_cast<std::uint8_t>(used++ * 29); };
+  for (std::size_t v = 0; v < V; ++v) {
+    a.positions.push_back({static_cast<float>(v), 0.0f, 1.0f});
+    a.normals.push_back({0.0f, 0.0f, 1.0f});
+    a.albedo.push_back({0.5f, 0.5f, 0.5f});
+    a.specular.push_back({{next() / 255.0f, next() / 255.0f, next() / 255.0f}, static_cast<float>(next())});
+  }
+  a.indices = {0, 0, 0};
+  if (flags & 1) a.lighting = {prt::LightingModel::kLocalSphere, {0.0f, 0.0f, 0.0f}, 3.0f};
+  prt::TransferPass m;
+  m.kind = (flags & 2) ? prt::TransferKind::kInterreflected : prt::TransferKind::kShadowed;
+  m.channels = (flags & 2) ? 3 : 1;
+  m.bounces = (flags & 2) ? 1 : 0;
+  m.form = prt::TransferForm::kMatrix;
+  const prt::MatrixPacking packing = prt::matrixPackingFor(m.kind, a.lighting.model);
+  m.coeffs.resize(V * static_cast<std::size_t>(m.channels) * prt::matrixEntryCount(a.shOrder, packing));
+  for (float& x : m.coeffs) x = static_cast<float>(static_cast<int>(next()) - 128) / 32.0f;
+  if (flags & 4) {
+    static const char* const kSettings[] = {"f32", "f16", "q8", "cpca8@0.1", "cpca16@0.01"};
+    prt::TransferCodecSettings s;
+    if (!prt::parseTransferSetting(kSettings[(flags >> 3) % 5], {}, &s).isOk()) return 0;
+    s.cpcaMaxClusters = 3;
+    if (!prt::encodeTransferMatrix(m.coeffs, a.shOrder, packing, m.channels, s, &m.encoded).isOk()) return 0;
+  }
+  a.passes.push_back(std::move(m));
+  if (!prt::encodeAsset(a, file).isOk()) return 0;
+  return std::min(used, size);
 }
 
 void check(bool condition) {
@@ -87,7 +133,17 @@ void check(bool condition) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  std::vector<std::uint8_t> bytes(data + 1, data + size);
+  std::vector<std::uint8_t> bytes;
+  if (data[0] & 2u) {
+    const std::size_t used = glossyFromInput(data + 1, size - 1, &bytes);
+    if (used == 0) return 0;
+    for (std::size_t i = 1 + used; i + 2 < size && !bytes.empty(); i += 3) {
+      const std::size_t at = (static_cast<std::size_t>(data[i]) | static_cast<std::size_t>(data[i + 1]) << 8) % bytes.size();
+      bytes[at] ^= data[i + 2];
+    }
+  } else {
+    bytes.assign(data + 1, data + size);
+  }
   if (data[0] & 1u) reseal(bytes);
 
   prt::BakedAsset asset;
@@ -107,6 +163,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         peeked.name == verified.name && peeked.fileSize == bytes.size() &&
         sameLighting(peeked.lighting, verified.lighting) && sameLighting(asset.lighting, verified.lighting));
   check(asset.positions.size() == verified.vertexCount && asset.indices.size() == 3u * verified.triangleCount);
+
+  for (std::size_t i = 0; i < verified.passes.size(); ++i) {
+    check(peeked.passes[i].form == verified.passes[i].form && asset.passes[i].form == verified.passes[i].form);
+    prt::TransferPass pass;
+    int bands = 0;
+    check(prt::decodeAssetPass(bytes, static_cast<int>(i), 0, &pass, &bands).isOk());
+    check(bands == asset.shOrder && sameBits(pass.coeffs, asset.passes[i].coeffs));
+  }
+  std::vector<prt::SpecularMaterial> specular;
+  check(prt::decodeAssetSpecular(bytes, &specular).isOk() && specular.size() == asset.specular.size());
 
   std::vector<std::uint8_t> again;
   check(prt::encodeAsset(asset, &again).isOk());

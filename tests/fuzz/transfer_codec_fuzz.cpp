@@ -11,12 +11,16 @@
 //                that is encoded, and then the remaining bytes are (position, xor) edits of
 //                the blob, so the fuzzer explores damage to well-formed blobs of every encoding;
 //   bit 0 set:   the blob's checksums are recomputed before decoding (as the tests' reseal()
-//                does), so damage reaches the content checks instead of stopping at a CRC.
+//                does), so damage reaches the content checks instead of stopping at a CRC;
+//   bit 2 set:   (with bit 1) the transfer is per-vertex packed matrices (symmetric or full,
+//                encodeTransferMatrix) instead of vectors.
 //
 // Beyond "no crash, no sanitizer report", it traps when results disagree: whatever
 // decodes is finite; every band prefix of a decodable blob decodes to the first bands of
 // the full decode; the CPCA structured decode expands to the same values; and float32 /
 // float16 blobs re-encode to the same values (the encoder accepts what the decoder returns).
+// Matrix blobs the same, with decodeTransferMatrix / decodeCpcaMatrixTransfer and the
+// packed prefix rule; each layout's decoder refuses the other's blobs.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -68,14 +72,16 @@ void reseal(Bytes& b) {
 
 // Builds a blob from a description: [setting][order][channels][vertices][values...] and
 // returns how many input bytes it used (0 when the description does not encode).
-std::size_t encodeFromInput(const std::uint8_t* data, std::size_t size, Bytes* blob) {
+std::size_t encodeFromInput(const std::uint8_t* data, std::size_t size, Bytes* blob, bool matrix) {
   if (size < 4) return 0;
   static const char* const kSettings[] = {"f32", "f16", "q16", "q8", "cpca8@0.05", "cpca16@0.01", "cpca8@0.2", "cpca16@0.002"};
   prt::TransferCodecSettings s;
   if (!prt::parseTransferSetting(kSettings[data[0] % 8], {}, &s).isOk()) return 0;
   s.cpcaMaxClusters = 8;
-  const int order = 1 + data[1] % 4, channels = (data[2] & 1) ? 3 : 1;
-  const std::size_t vertices = 1 + data[3] % 24, count = vertices * static_cast<std::size_t>(channels * order * order);
+  const int order = matrix ? 1 + data[1] % 3 : 1 + data[1] % 4, channels = (data[2] & 1) ? 3 : 1;
+  const prt::MatrixPacking packing = (data[2] & 2) ? prt::MatrixPacking::kFull : prt::MatrixPacking::kSymmetric;
+  const std::size_t perChannel = matrix ? prt::matrixEntryCount(order, packing) : static_cast<std::size_t>(order * order);
+  const std::size_t vertices = 1 + data[3] % 24, count = vertices * static_cast<std::size_t>(channels) * perChannel;
   std::size_t used = 4;
   std::vector<float> transfer(count);
   for (float& x : transfer) {
@@ -85,8 +91,55 @@ std::size_t encodeFromInput(const std::uint8_t* data, std::size_t size, Bytes* b
     ++used;
     x = static_cast<float>(static_cast<int>(b) - 128) * (b & 1 ? 1.0f / 64.0f : 1.0f / 4096.0f);
   }
-  if (!prt::encodeTransfer(transfer, order, channels, s, blob).isOk()) return 0;
+  const prt::Status st = matrix ? prt::encodeTransferMatrix(transfer, order, packing, channels, s, blob)
+                                : prt::encodeTransfer(transfer, order, channels, s, blob);
+  if (!st.isOk()) return 0;
   return std::min(used, size);
+}
+
+void decodeMatrixAndCheck(const Bytes& blob, const prt::TransferBlobInfo& info) {
+  std::vector<float> full;
+  check(prt::decodeTransfer(blob, 1, &full).code() == prt::StatusCode::kInvalidArgument);
+  const std::uint64_t rows = std::uint64_t{info.vertexCount} * static_cast<std::uint64_t>(info.channels);
+  const std::size_t E = prt::matrixEntryCount(info.order, info.packing);
+  if (rows * E > kMaxDecodedFloats) return;
+  const prt::Status fullStatus = prt::decodeTransferMatrix(blob, info.order, &full);
+  if (fullStatus.isOk()) check(info.bandsAvailable == info.order);
+  if (!fullStatus.isOk()) check(!fullStatus.message().empty());
+  for (float x : full) check(std::isfinite(x) && std::fabs(x) <= prt::kMaxTransferMagnitude * 1.0001f);
+  for (int b = 1; b <= info.order; ++b) {
+    std::vector<float> part;
+    const prt::Status s = prt::decodeTransferMatrix(blob, b, &part);
+    if (b > info.bandsAvailable) {
+      check(s.code() == prt::StatusCode::kTruncated);
+      continue;
+    }
+    if (!s.isOk()) {
+      check(!s.message().empty() && !fullStatus.isOk());
+      continue;
+    }
+    for (float x : part) check(std::isfinite(x));
+    if (!fullStatus.isOk()) continue;
+    const std::size_t Eb = prt::matrixEntryCount(b, info.packing);
+    for (std::size_t row = 0; row < rows; ++row) check(std::memcmp(&part[row * Eb], &full[row * E], Eb * sizeof(float)) == 0);
+  }
+  if (info.encoding == prt::TransferEncoding::kCpca && fullStatus.isOk()) {
+    prt::CpcaMatrixTransfer cpca;
+    check(prt::decodeCpcaMatrixTransfer(blob, info.order, &cpca).isOk());
+    std::vector<float> again(full.size());
+    check(prt::cpcaMatrixReconstruct(cpca, again).isOk());
+    check(std::memcmp(again.data(), full.data(), full.size() * sizeof(float)) == 0);
+  }
+  if (fullStatus.isOk() &&
+      (info.encoding == prt::TransferEncoding::kFloat32 || info.encoding == prt::TransferEncoding::kFloat16)) {
+    prt::TransferCodecSettings s;
+    s.encoding = info.encoding;
+    Bytes again;
+    check(prt::encodeTransferMatrix(full, info.order, info.packing, info.channels, s, &again).isOk());
+    std::vector<float> back;
+    check(prt::decodeTransferMatrix(again, info.order, &back).isOk());
+    check(back.size() == full.size() && std::memcmp(back.data(), full.data(), full.size() * sizeof(float)) == 0);
+  }
 }
 
 void decodeAndCheck(const Bytes& blob) {
@@ -99,6 +152,11 @@ void decodeAndCheck(const Bytes& blob) {
     check(!s.isOk() && s.code() == infoStatus.code());
     return;
   }
+  if (info.matrix) {
+    decodeMatrixAndCheck(blob, info);
+    return;
+  }
+  check(prt::decodeTransferMatrix(blob, 1, &full).code() == prt::StatusCode::kInvalidArgument);
   const std::uint64_t perBandFloats = std::uint64_t{info.vertexCount} * static_cast<std::uint64_t>(info.channels);
   if (perBandFloats * static_cast<std::uint64_t>(info.order * info.order) > kMaxDecodedFloats) return;
   const prt::Status fullStatus = prt::decodeTransfer(blob, info.order, &full);
@@ -152,7 +210,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   --size;
   Bytes blob;
   if (mode & 2u) {
-    const std::size_t used = encodeFromInput(data, size, &blob);
+    const std::size_t used = encodeFromInput(data, size, &blob, (mode & 4u) != 0);
     if (used == 0) return 0;
     // Edits: (position low, position high, xor) triples.
     for (std::size_t i = used; i + 2 < size && !blob.empty(); i += 3) {

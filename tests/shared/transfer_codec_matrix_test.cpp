@@ -236,6 +236,17 @@ TEST(TransferCodecMatrix, BlobInfoRecordsTheLayoutAndVectorBlobsStayVersionOneZe
   EXPECT_EQ(decodeTransferMatrix(vblob, 3, &out).code(), StatusCode::kInvalidArgument);
   CpcaMatrixTransfer cm;
   EXPECT_EQ(decodeCpcaMatrixTransfer(blob, 3, &cm).code(), StatusCode::kInvalidArgument);
+  // And the CPCA forms: a matrix CPCA blob is not vector CPCA, nor the other way round.
+  TransferCodecSettings cpca = setting("cpca16@0.05");
+  cpca.cpcaMaxClusters = 2;
+  const Bytes mcpca = encodeOrDie(x, 3, MatrixPacking::kFull, 3, cpca);
+  CpcaTransfer vc;
+  EXPECT_EQ(decodeCpcaTransfer(mcpca, 3, &vc).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(decodeTransfer(mcpca, 3, &out).code(), StatusCode::kInvalidArgument);
+  Bytes vcpca;
+  ASSERT_TRUE(encodeTransfer(vec, 3, 1, cpca, &vcpca).isOk());
+  EXPECT_EQ(decodeCpcaMatrixTransfer(vcpca, 3, &cm).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(decodeTransferMatrix(vcpca, 3, &out).code(), StatusCode::kInvalidArgument);
 }
 
 TEST(TransferCodecMatrix, SizesFollowTheDocumentedFormula) {
@@ -399,6 +410,23 @@ TEST(TransferCodecMatrix, CpcaIsDeterministicForASeed) {
   const std::vector<float> x = lowRankMatrices(150, 45, 3, 3, 0.01, 9);
   TransferCodecSettings s = setting("cpca8@0.05");
   EXPECT_EQ(encodeOrDie(x, 3, MatrixPacking::kSymmetric, 1, s), encodeOrDie(x, 3, MatrixPacking::kSymmetric, 1, s));
+}
+
+// Degenerate inputs: all zero, all equal, one vertex. CPCA stores them exactly (the means
+// carry everything; no basis matrix is needed).
+TEST(TransferCodecMatrix, CpcaHandlesDegenerateTransfer) {
+  for (std::size_t V : {std::size_t{1}, std::size_t{50}}) {
+    for (float value : {0.0f, 0.375f}) {
+      const std::vector<float> x(V * 3 * entries(2, MatrixPacking::kFull), value);
+      TransferEncodeReport report;
+      const Bytes blob = encodeOrDie(x, 2, MatrixPacking::kFull, 3, setting("cpca8@0.02"), &report);
+      EXPECT_EQ(decodeOrDie(blob, 2), x) << V << " vertices of " << value;
+      EXPECT_EQ(report.relativeError, 0.0);
+      EXPECT_EQ(report.clusters, 1);
+      ASSERT_EQ(report.vectorsPerBand.size(), 1u);
+      EXPECT_EQ(report.vectorsPerBand[0], 0);
+    }
+  }
 }
 
 TEST(TransferCodecMatrix, BadInputIsRefusedWithItsReason) {

@@ -80,12 +80,11 @@ Status checkMatrixInput(std::span<const float> packed, int order, MatrixPacking 
   }
   for (std::size_t i = 0; i < packed.size(); ++i) {
     const float x = packed[i];
+    if (std::fabs(x) <= kMaxTransferMagnitude) continue;  // the common case; NaN falls through
     const std::string at = "vertex " + std::to_string(i / stride) + ", value " + std::to_string(i % stride);
     if (!std::isfinite(x)) return Status::error(StatusCode::kNotFinite, "matrix transfer value at " + at + " is not finite");
-    if (std::fabs(x) > kMaxTransferMagnitude) {
-      return invalid("matrix transfer value " + std::to_string(x) + " at " + at +
-                     " is beyond the largest an asset may hold (65504, kMaxTransferMagnitude)");
-    }
+    return invalid("matrix transfer value " + std::to_string(x) + " at " + at +
+                   " is beyond the largest an asset may hold (65504, kMaxTransferMagnitude)");
   }
   return Status::ok();
 }

@@ -33,6 +33,13 @@ constexpr int kSketch = kMaxVectors + kOversample;
 constexpr double kEstimateMargin = 0.97;  // estimates aim a little under the target
 constexpr int kDeltaSteps = 20;      // deltas tried: maxWeight * 2^-i, i = 1..kDeltaSteps, and 0
 constexpr int kVerifyRetries = 12;
+// Above this many vertices the cluster count is searched on an evenly strided sample of
+// this size (the fits cost O(V D kSketch) each), and only the winner is fitted on all of
+// them; the global sketch is computed on the sample too, then every vertex projected once.
+constexpr std::size_t kSearchVertices = 4096;
+// The sample search keeps at least this many members per cluster on average, so that a
+// per-cluster PCA does not look better than it is by fitting few points exactly.
+constexpr std::size_t kMinSampleMembers = 32;
 
 // Unit Gaussian numbers by Box-Muller from SplitMix64 (deterministic on every platform).
 void gaussian(SplitMix64& rng, std::vector<float>& out) {
@@ -269,14 +276,15 @@ struct Choice {
 };
 
 // Best (N', delta) of one fit: smallest estimated size whose estimated error meets `goal`.
+// `scale` (>= 1) multiplies the per-vertex costs (ids, weights) when `fit` is of a sample.
 Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order, MatrixPacking packing, int bits,
-                    double goal, int* tried) {
+                    double goal, int* tried, double scale = 1.0) {
   const int levelsMax = quantLevels(bits), wb = bits / 8;
   const std::uint64_t E = matrixEntryCount(order, packing), C = static_cast<std::uint64_t>(channels);
   const std::uint64_t K = static_cast<std::uint64_t>(fit.clusters);
   std::vector<std::int32_t> ids(fit.clusterOf.begin(), fit.clusterOf.end());
   const double fixedBytes = static_cast<double>(kHeaderBytes + kPartEntryBytes * static_cast<std::uint64_t>(order + 2)) +
-                            estimateStreamGroupBytes(ids, 1, V, clusterIdBytes(fit.clusters)) + 4.0 * static_cast<double>(K);
+                            scale * estimateStreamGroupBytes(ids, 1, V, clusterIdBytes(fit.clusters)) + 4.0 * static_cast<double>(K);
   // Energy left after keeping N' vectors (per-cluster eigenvalues; clusters with fewer keep all).
   std::vector<double> resid(kMaxVectors + 1, 0.0);
   for (int n = 0; n <= kMaxVectors; ++n) {
@@ -306,7 +314,7 @@ Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order
                          static_cast<double>(q.levels[j * V + v]) * static_cast<double>(q.steps[fit.clusterOf[v]]);
         errSum += e * e;
       }
-      streamSum += estimateStreamGroupBytes(std::span<const std::int32_t>(q.levels).subspan(j * V, V), 1, V, wb);
+      streamSum += scale * estimateStreamGroupBytes(std::span<const std::int32_t>(q.levels).subspan(j * V, V), 1, V, wb);
     }
   }
   return best;
@@ -358,44 +366,89 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   double energy = 0.0;
   for (float x : packed) energy += static_cast<double>(x) * x;
 
-  // k-means points: the data itself when it is small, else its coordinates in the global sketch.
-  std::vector<float> projected;
-  std::span<const float> points = packed;
+  // The search sample: every vertex, or an evenly strided subset (kSearchVertices).
+  const bool sampled = V > kSearchVertices;
+  const std::size_t S = sampled ? kSearchVertices : V;
+  std::vector<float> sampleCopy;
+  std::span<const float> sample = packed;
+  if (sampled) {
+    sampleCopy.resize(S * D);
+    for (std::size_t i = 0; i < S; ++i) {
+      const std::size_t v = i * V / S;
+      std::copy_n(packed.data() + v * D, D, sampleCopy.data() + i * D);
+    }
+    sample = sampleCopy;
+  }
+  double sampleEnergy = 0.0;
+  for (float x : sample) sampleEnergy += static_cast<double>(x) * x;
+
+  // k-means points: the data itself when it is small, else its coordinates in the global
+  // sketch (a subspace fitted on the sample, every vertex projected once).
+  std::vector<float> projected, sampleProjected;
+  std::span<const float> points = packed, samplePoints = sample;
   int pointDims = static_cast<int>(D);
   if (D > static_cast<std::size_t>(kSketch)) {
     std::vector<double> mean(D, 0.0);
-    for (std::size_t v = 0; v < V; ++v)
-      for (std::size_t d = 0; d < D; ++d) mean[d] += packed[v * D + d];
+    for (std::size_t v = 0; v < S; ++v)
+      for (std::size_t d = 0; d < D; ++d) mean[d] += sample[v * D + d];
     std::vector<float> meanF(D);
-    for (std::size_t d = 0; d < D; ++d) meanF[d] = static_cast<float>(mean[d] / static_cast<double>(V));
-    std::vector<std::uint32_t> all(V);
-    for (std::size_t v = 0; v < V; ++v) all[v] = static_cast<std::uint32_t>(v);
-    Subspace s = sketch(packed, D, all, meanF.data(), kSketch, settings.seed ^ 0x5eedu);
-    if (s.dims > 0) {
-      projected = std::move(s.coords);
+    for (std::size_t d = 0; d < D; ++d) meanF[d] = static_cast<float>(mean[d] / static_cast<double>(S));
+    std::vector<std::uint32_t> all(S);
+    for (std::size_t v = 0; v < S; ++v) all[v] = static_cast<std::uint32_t>(v);
+    Subspace sub = sketch(sample, D, all, meanF.data(), kSketch, settings.seed ^ 0x5eedu);
+    if (sub.dims > 0) {
+      pointDims = sub.dims;
+      const std::size_t L = static_cast<std::size_t>(sub.dims);
+      if (sampled) {
+        projected.resize(V * L);
+        std::vector<float> row(D);
+        for (std::size_t v = 0; v < V; ++v) {
+          for (std::size_t d = 0; d < D; ++d) row[d] = packed[v * D + d] - meanF[d];
+          rowTimes(row.data(), sub.q.data(), D, L, &projected[v * L]);
+        }
+        sampleProjected = std::move(sub.coords);
+      } else {
+        projected = std::move(sub.coords);
+      }
       points = projected;
-      pointDims = s.dims;
+      samplePoints = sampled ? std::span<const float>(sampleProjected) : std::span<const float>(projected);
     }
   }
 
-  const double goal = kEstimateMargin * kEstimateMargin * target * target * energy;
+  int tried = 0;
+  // Cluster count: 1, 2, 4, ... on the sample, while it keeps improving the estimate.
+  const int sampleMaxClusters = sampled ? std::min<int>(maxClusters, static_cast<int>(S / kMinSampleMembers)) : maxClusters;
+  const double sampleGoal = kEstimateMargin * kEstimateMargin * target * target * sampleEnergy;
+  const double scale = static_cast<double>(V) / static_cast<double>(S);
   MatrixFit best;
   Choice bestChoice;
-  int tried = 0, worseInARow = 0, previousClusters = 0;
-  for (int k = 1; k <= maxClusters; k = k >= maxClusters ? maxClusters + 1 : std::min(2 * k, maxClusters)) {
+  int bestK = 0, worseInARow = 0, previousClusters = 0;
+  for (int k = 1; k <= sampleMaxClusters;
+       k = k >= sampleMaxClusters ? sampleMaxClusters + 1 : std::min(2 * k, sampleMaxClusters)) {
     // The means alone of k clusters outweigh the best so far: larger k cannot win.
     if (static_cast<double>(k) * static_cast<double>(D) * 4.0 > bestChoice.bytes) break;
-    MatrixFit fit = fitMatrixCpca(packed, V, D, k, settings.seed, points, pointDims, energy);
+    MatrixFit fit = fitMatrixCpca(sample, S, D, k, settings.seed, samplePoints, pointDims, sampleEnergy);
     if (fit.clusters == previousClusters) break;  // no more distinct points to split
     previousClusters = fit.clusters;
-    const Choice c = chooseForFit(fit, V, channels, order, packing, bits, goal, &tried);
+    const Choice c = chooseForFit(fit, S, channels, order, packing, bits, sampleGoal, &tried, scale);
     const bool improved = c.bytes < bestChoice.bytes;
     if (improved) {
       bestChoice = c;
-      best = std::move(fit);
+      bestK = k;
+      if (!sampled) best = std::move(fit);
     }
     worseInARow = improved ? 0 : worseInARow + 1;
     if (bestChoice.bytes < INFINITY && worseInARow >= 2) break;
+  }
+  const double goal = kEstimateMargin * kEstimateMargin * target * target * energy;
+  if (sampled) {
+    // The winner on every vertex; where the sample misled (the full fit misses the goal),
+    // twice the clusters, up to the limit.
+    for (int k = std::max(bestK, 1);; k = std::min(2 * k, maxClusters)) {
+      best = fitMatrixCpca(packed, V, D, k, settings.seed, points, pointDims, energy);
+      bestChoice = chooseForFit(best, V, channels, order, packing, bits, goal, &tried);
+      if (bestChoice.bytes < INFINITY || k >= maxClusters || best.clusters < k) break;
+    }
   }
   if (!(bestChoice.bytes < INFINITY)) {
     return Status::error(StatusCode::kInvalidArgument,

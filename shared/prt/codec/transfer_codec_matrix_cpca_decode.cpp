@@ -189,7 +189,7 @@ Status cpcaMatrixReconstruct(const CpcaMatrixTransfer& cpca, std::span<float> ou
   const std::size_t D = C * Eb;
   for (std::size_t v = 0; v < V; ++v) {
     const float* m = &cpca.matrices[cpca.clusterOf[v] * (N + 1) * D];
-    const float* w = &cpca.weights[v * N];
+    const float* w = cpca.weights.data() + v * N;  // N may be 0: no element to index
     float* o = &out[v * D];
     for (std::size_t i = 0; i < D; ++i) o[i] = m[i];
     for (std::size_t j = 0; j < N; ++j) {
