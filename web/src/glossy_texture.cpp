@@ -95,6 +95,32 @@ void glossyShBasis(int order, Vec3 d, float* out) {
   }
 }
 
+Status cpcaFromPlainMatrices(std::span<const float> packed, int bands, MatrixPacking packing, int channels,
+                             std::uint32_t vertexCount, CpcaMatrixTransfer* out) {
+  if (bands < 1 || bands > kMaxGlossyOrder || (channels != 1 && channels != 3)) return invalid("plain glossy pass: bad bands or channels");
+  if (vertexCount == 0 || vertexCount > kMaxTransferClusters) {
+    return invalid("plain glossy pass of " + std::to_string(vertexCount) + " vertices: the client renders uncompressed matrices of at most " +
+                   std::to_string(kMaxTransferClusters) + " vertices (one cluster each); compress it with CPCA");
+  }
+  const std::size_t entries = matrixEntryCount(bands, packing);
+  if (packed.size() != static_cast<std::size_t>(vertexCount) * static_cast<std::size_t>(channels) * entries) {
+    return Status::error(StatusCode::kSizeMismatch, "plain glossy pass: matrix count disagrees with the vertex count");
+  }
+  CpcaMatrixTransfer t;
+  t.order = t.bands = bands;
+  t.channels = channels;
+  t.packing = packing;
+  t.vertexCount = t.clusterCount = vertexCount;
+  t.weightBits = 8;
+  t.vectors = 0;
+  t.clusterOf.resize(vertexCount);
+  for (std::uint32_t v = 0; v < vertexCount; ++v) t.clusterOf[v] = v;
+  t.steps.assign(vertexCount, 1.0f);
+  t.matrices.assign(packed.begin(), packed.end());
+  *out = std::move(t);
+  return Status::ok();
+}
+
 Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular, int maxHeight,
                   GlossyTextures* out) {
   const std::size_t V = cpca.vertexCount, K = cpca.clusterCount, C = static_cast<std::size_t>(cpca.channels);

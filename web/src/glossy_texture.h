@@ -67,6 +67,12 @@ struct GlossyTextures {
 Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular, int maxHeight,
                   GlossyTextures* out);
 
+// A plain (float) matrix pass as a trivial CPCA pass the renderer takes: every vertex its own
+// cluster (mean = its matrix), no basis matrices. `packed` holds vertexCount * channels *
+// matrixEntryCount(bands, packing) floats. kInvalidArgument beyond kMaxTransferClusters vertices.
+Status cpcaFromPlainMatrices(std::span<const float> packed, int bands, MatrixPacking packing, int channels,
+                             std::uint32_t vertexCount, CpcaMatrixTransfer* out);
+
 // The real-SH recurrence constants (prt/sh_basis.cpp's Lisle & Huang table, normalisation
 // folded in) that glossy.vert evaluates y_i(R) with, as its uniforms uShA / uShB take them:
 // kMaxGlossyOrder^2 floats each, plus y_00 and the band-1 factor.
