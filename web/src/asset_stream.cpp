@@ -55,8 +55,17 @@ Status AssetStream::decodeSpecular(std::vector<SpecularMaterial>* out) {
   return decodeAssetSpecular(file_, out);
 }
 
-bool AssetStream::isCpca(int kind) const {
-  const int i = passIndex(kind);
+bool AssetStream::isCpca(int kind) const { return isCpcaAt(passIndex(kind)); }
+bool AssetStream::isMatrixCpca(int kind) const { return isCpcaAt(passIndex(kind, TransferForm::kMatrix)); }
+
+Status AssetStream::decodeMatrixPass(int kind, int bands, TransferPass* out, int* order) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = passIndex(kind, TransferForm::kMatrix);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no matrix pass of kind " + std::to_string(kind));
+  return decodeAssetPass(file_, i, bands, out, order);
+}
+
+bool AssetStream::isCpcaAt(int i) const {
   if (!headerRead_ || i < 0 || !summary_.passes[static_cast<std::size_t>(i)].encoded) return false;
   const AssetSectionInfo& section = summary_.sections[summary_.passes[static_cast<std::size_t>(i)].section];
   // Offsets were checked against the file size by peekAssetHeader.

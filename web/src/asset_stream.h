@@ -39,6 +39,10 @@ class AssetStream {
   // Whether pass `kind` is CPCA-encoded, read from its blob's header (which arrives with the
   // pass's first part): false before then, for other encodings and for float32 passes.
   bool isCpca(int kind) const;
+  // The same for the matrix pass of `kind`.
+  bool isMatrixCpca(int kind) const;
+  // The matrix pass of `kind` expanded (decodeAssetPass): *order its bands.
+  Status decodeMatrixPass(int kind, int bands, TransferPass* out, int* order);
 
   // Whether the asset holds a (vector) pass of `kind`.
   bool hasKind(int kind) const;
@@ -59,6 +63,7 @@ class AssetStream {
   bool headerRead_ = false;
   // Index into summary_.passes of the pass of `kind` and `form`, or -1.
   int passIndex(int kind, TransferForm form = TransferForm::kVector) const;
+  bool isCpcaAt(int index) const;
 };
 
 }  // namespace prt::web

@@ -144,14 +144,33 @@ bool ClientApp::hasGlossy(ShadingMode kind) const {
 std::string ClientApp::streamGlossyPass(ShadingMode mode, int bands) {
   if (!ok()) return error_;
   if (!isPassKind(mode)) return "streamGlossyPass: kind must be a pass kind (unshadowed, shadowed or interreflected)";
+  const int kind = static_cast<int>(mode);
   CpcaMatrixTransfer cpca;
-  TransferPass info;
-  if (Status s = stream_.decodeMatrixPassCpca(static_cast<int>(mode), bands, &cpca, &info); !s.isOk()) return s.toString();
-  if (cpca.bands > kMaxGlossyOrder) {
-    // The client draws at most kMaxGlossyOrder bands: decode that prefix (the leading block).
-    if (Status s = stream_.decodeMatrixPassCpca(static_cast<int>(mode), kMaxGlossyOrder, &cpca, &info); !s.isOk()) return s.toString();
+  if (stream_.isMatrixCpca(kind)) {
+    TransferPass info;
+    if (Status s = stream_.decodeMatrixPassCpca(kind, bands, &cpca, &info); !s.isOk()) return s.toString();
+    if (cpca.bands > kMaxGlossyOrder) {
+      // The client draws at most kMaxGlossyOrder bands: decode that prefix (the leading block).
+      if (Status s = stream_.decodeMatrixPassCpca(kind, kMaxGlossyOrder, &cpca, &info); !s.isOk()) return s.toString();
+    }
+  } else {
+    // Float32 (or another encoding): expanded, then one cluster per vertex.
+    TransferPass pass;
+    int order = 0;
+    if (Status s = stream_.decodeMatrixPass(kind, bands, &pass, &order); !s.isOk()) return s.toString();
+    const int lead = std::min(order, kMaxGlossyOrder);
+    const MatrixPacking packing = matrixPackingFor(static_cast<TransferKind>(kind), asset_.lighting.model);
+    const std::size_t full = matrixEntryCount(order, packing), part = matrixEntryCount(lead, packing);
+    const std::size_t rows = asset_.positions.size() * static_cast<std::size_t>(pass.channels);
+    if (pass.coeffs.size() != rows * full) return "glossy pass: matrix count disagrees with the vertex count";
+    std::vector<float> block(rows * part);
+    for (std::size_t r = 0; r < rows; ++r) std::copy_n(&pass.coeffs[r * full], part, &block[r * part]);
+    if (Status s = cpcaFromPlainMatrices(block, lead, packing, pass.channels, static_cast<std::uint32_t>(asset_.positions.size()), &cpca);
+        !s.isOk()) {
+      return s.message();
+    }
   }
-  if (std::string e = uploadGlossy(info.kind, std::move(cpca)); !e.empty()) return e;
+  if (std::string e = uploadGlossy(static_cast<TransferKind>(kind), std::move(cpca)); !e.empty()) return e;
   if (pendingMode_ == mode) {
     mode_ = mode;
     pendingMode_.reset();
@@ -198,11 +217,15 @@ std::string ClientApp::useSyntheticGlossy(ShadingMode kind, int bands, int chann
   spec.vectors = vectors;
   spec.seed = static_cast<std::uint64_t>(seed);
   spec.packing = kind == ShadingMode::kShadowed ? MatrixPacking::kSymmetric : MatrixPacking::kFull;
-  CpcaMatrixTransfer cpca;
-  if (Status s = makeSyntheticCpcaMatrix(spec, static_cast<std::uint32_t>(asset_.positions.size()), &cpca); !s.isOk()) return s.toString();
+  std::vector<std::uint8_t> glossy(asset_.positions.size());
   asset_.specular.assign(asset_.positions.size(), SpecularMaterial{});
   for (std::size_t v = 0; v < asset_.positions.size(); ++v) {
-    if (asset_.albedo[v].g >= minGreen) asset_.specular[v] = {{f0, f0, f0}, exponent};
+    glossy[v] = asset_.albedo[v].g >= minGreen ? 1 : 0;
+    if (glossy[v]) asset_.specular[v] = {{f0, f0, f0}, exponent};
+  }
+  CpcaMatrixTransfer cpca;
+  if (Status s = makeSyntheticCpcaMatrix(spec, static_cast<std::uint32_t>(asset_.positions.size()), &cpca, glossy); !s.isOk()) {
+    return s.toString();
   }
   return uploadGlossy(static_cast<TransferKind>(kind), std::move(cpca));
 }

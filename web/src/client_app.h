@@ -99,7 +99,8 @@ class ClientApp {
   std::vector<float> glossyReference(ShadingMode kind);
   // Tests: replaces the glossy pass of `kind` by a synthetic CPCA matrix pass (glossy_synthetic.h:
   // `bands`, `channels`, `clusters`, `vectors`, `seed`) with material (f0, exponent) on every
-  // vertex whose albedo's green channel is >= `minGreen` and f0 = 0 elsewhere. "" or the error.
+  // vertex whose albedo's green channel is >= `minGreen`; the others get f0 = 0 and all-zero
+  // matrices (no glossy term), as a bake stores non-glossy vertices. "" or the error.
   std::string useSyntheticGlossy(ShadingMode kind, int bands, int channels, int clusters, int vectors, int seed,
                                  float f0, float exponent, float minGreen);
 

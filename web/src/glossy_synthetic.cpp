@@ -23,37 +23,49 @@ struct Rng {
 
 }  // namespace
 
-Status makeSyntheticCpcaMatrix(const SyntheticGlossySpec& spec, std::uint32_t vertexCount, CpcaMatrixTransfer* out) {
+Status makeSyntheticCpcaMatrix(const SyntheticGlossySpec& spec, std::uint32_t vertexCount, CpcaMatrixTransfer* out,
+                               std::span<const std::uint8_t> glossy) {
   if (spec.bands < 1 || spec.bands > 8 || (spec.channels != 1 && spec.channels != 3) || spec.clusters < 1 ||
       spec.clusters > 65536 || spec.vectors < 0 || spec.vectors > 64 || (spec.weightBits != 8 && spec.weightBits != 16) ||
       vertexCount == 0 || (spec.packing != MatrixPacking::kFull && spec.packing != MatrixPacking::kSymmetric)) {
     return Status::error(StatusCode::kInvalidArgument, "synthetic glossy pass: bands 1..8, channels 1 or 3, clusters 1..65536, "
                                                        "vectors 0..64, weight bits 8 or 16, at least one vertex");
   }
+  if (!glossy.empty() && glossy.size() != vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "synthetic glossy pass: the glossy mask needs one flag per vertex");
+  }
+  if (!glossy.empty() && spec.clusters == 65536) return Status::error(StatusCode::kInvalidArgument, "synthetic glossy pass: no room for the zero cluster");
   Rng rng{spec.seed};
   CpcaMatrixTransfer t;
   t.order = t.bands = spec.bands;
   t.channels = spec.channels;
   t.packing = spec.packing;
   t.vertexCount = vertexCount;
-  t.clusterCount = static_cast<std::uint32_t>(spec.clusters);
+  t.clusterCount = static_cast<std::uint32_t>(spec.clusters) + (glossy.empty() ? 0u : 1u);
   t.weightBits = spec.weightBits;
   t.vectors = spec.vectors;
-  const std::size_t V = vertexCount, K = t.clusterCount, N = static_cast<std::size_t>(spec.vectors);
+  const std::size_t V = vertexCount, K = t.clusterCount, random = static_cast<std::size_t>(spec.clusters), N = static_cast<std::size_t>(spec.vectors);
   const std::size_t C = static_cast<std::size_t>(spec.channels), n2 = static_cast<std::size_t>(spec.bands * spec.bands);
   const std::size_t entries = matrixEntryCount(spec.bands, spec.packing);
   const int maxLevel = (1 << (spec.weightBits - 1)) - 1;
   t.clusterOf.resize(V);
-  for (std::size_t v = 0; v < V; ++v) t.clusterOf[v] = static_cast<std::uint32_t>(rng.next() % K);
+  for (std::size_t v = 0; v < V; ++v) t.clusterOf[v] = static_cast<std::uint32_t>(rng.next() % random);
   t.steps.resize(K);
   for (std::size_t k = 0; k < K; ++k) t.steps[k] = (0.5f + rng.uniform()) / static_cast<float>(maxLevel);
   t.levels.resize(V * N);
   for (std::int16_t& q : t.levels) q = static_cast<std::int16_t>(static_cast<int>(rng.next() % (2 * maxLevel + 1)) - maxLevel);
+  if (!glossy.empty()) {
+    for (std::size_t v = 0; v < V; ++v) {
+      if (glossy[v]) continue;
+      t.clusterOf[v] = static_cast<std::uint32_t>(random);  // the zero cluster
+      for (std::size_t j = 0; j < N; ++j) t.levels[v * N + j] = 0;
+    }
+  }
   t.weights.resize(V * N);
   for (std::size_t v = 0; v < V; ++v)
     for (std::size_t j = 0; j < N; ++j) t.weights[v * N + j] = static_cast<float>(t.levels[v * N + j]) * t.steps[t.clusterOf[v]];
   t.matrices.assign(K * (1 + N) * C * entries, 0.0f);
-  for (std::size_t k = 0; k < K; ++k) {
+  for (std::size_t k = 0; k < random; ++k) {  // the zero cluster, if any, stays zero
     for (std::size_t m = 0; m <= N; ++m) {
       for (std::size_t c = 0; c < C; ++c) {
         float* dst = &t.matrices[((k * (1 + N) + m) * C + c) * entries];

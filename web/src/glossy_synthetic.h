@@ -24,8 +24,12 @@ struct SyntheticGlossySpec {
   std::uint64_t seed = 1;
 };
 
-// Fills *out (vertexCount vertices) deterministically from spec.seed. Errors on bad spec.
-Status makeSyntheticCpcaMatrix(const SyntheticGlossySpec& spec, std::uint32_t vertexCount, CpcaMatrixTransfer* out);
+// Fills *out (vertexCount vertices) deterministically from spec.seed. With `glossy` (one flag
+// per vertex, else empty) the vertices flagged 0 go to one extra cluster whose matrices are
+// all zero, as a bake stores non-glossy vertices: their glossy term is exactly 0 whatever
+// the Fresnel factor. Errors on a bad spec or mask size.
+Status makeSyntheticCpcaMatrix(const SyntheticGlossySpec& spec, std::uint32_t vertexCount, CpcaMatrixTransfer* out,
+                               std::span<const std::uint8_t> glossy = {});
 
 // Expands `cpca` to [vertex][channel][packed entry] floats of order cpca.bands:
 // x = mean + sum_j (level_j * step) B_j, summed in j order in float, as
