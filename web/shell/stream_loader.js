@@ -56,10 +56,9 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
     transferBytesReceived: 0,
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
-  // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there;
-  // glossyBands the same for the glossy matrix passes.
+  // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there
+  // (the glossy passes': prtApp.glossyBands).
   Object.defineProperty(progress, 'loadedBands', { get: () => PASS_NAMES.map((n) => app.loadedBands(kinds[n])), configurable: true, enumerable: true });
-  Object.defineProperty(progress, 'glossyBands', { get: () => PASS_NAMES.map((n) => app.glossyBands(kinds[n])), configurable: true, enumerable: true });
   const generation = ++currentStream;
   const superseded = () => generation !== currentStream;
   if (!app.reserveStream(entry.bytes)) throw new Error(`Out of memory: cannot hold scene '${entry.name}' (${(entry.bytes / 1e6).toFixed(1)} MB).`);
