@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The demo, from a fresh clone: install what is missing, build the native tools and the
-# wasm client, bake the built-in room scene twice -- for distant lighting and for
-# spatially-varying lighting from a sphere around it (docs/spatially-varying.md) -- where an
-# asset is missing or older than the baker, and serve them with prt-serve on 127.0.0.1.
-# Open the printed URL. The catalogue lists files by path, so default-room-local.prt comes
-# before default-room.prt and the page, which opens the first usable scene, shows it first.
+# wasm client, bake the built-in room scene three times -- with glossy transfer (a polished
+# sphere and a metal torus whose highlights follow the camera and the lights, docs/glossy.md),
+# for distant lighting, and for spatially-varying lighting from a sphere around it
+# (docs/spatially-varying.md) -- where an asset is missing or older than the baker, and serve
+# them with prt-serve on 127.0.0.1. Open the printed URL. The catalogue lists files by path,
+# so default-room-glossy.prt comes first and the page, which opens the first usable scene,
+# shows it first.
 # PORT=8080 by default; PRT_DEMO_SAMPLES (default 1024) trades bake time for noise;
 # PRT_DEMO_COMPRESS picks the transfer codec setting (f32 for none).
 set -euo pipefail
@@ -35,6 +37,8 @@ bake_room() {
 # Transfer stored with the codec's CPCA at 1.5% relative error: about 13 bytes per vertex
 # after zstd against 213 for float32, above 40 dB radiance PSNR (docs/transfer-codec.md).
 compress=${PRT_DEMO_COMPRESS:-cpca8@0.015}
+bake_room "$root/default-room-glossy.prt" "glossy (shadowed and interreflected matrices)" --glossy \
+  --name default-room-glossy --compress "$compress"
 bake_room "$root/default-room.prt" "distant lighting" --compress "$compress"
 bake_room "$root/default-room-local.prt" "spatially-varying lighting" --lighting local --name default-room-local \
   --compress "$compress"

@@ -12,6 +12,8 @@ packages=(
   emscripten nodejs
   # the baker: ray tracing, image loading for `prt-bake probe`
   libembree-dev libtinygltf-dev libglm-dev libopenexr-dev libstb-dev
+  # the baker's glossy matrices: ssyrk/sgemm rank-k updates (CBLAS header and library)
+  libopenblas-dev
   # vertex and index order for cache and compression locality
   libmeshoptimizer-dev
   # JSON checks of glTF files that tinygltf does not make (header-only)

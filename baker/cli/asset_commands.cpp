@@ -13,6 +13,7 @@
 #include "native/json_text.h"
 #include "prt/asset.h"
 #include "prt/exit_radiance.h"
+#include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 
 namespace prt {
@@ -41,14 +42,65 @@ constexpr const char* kInfoHelp =
     "model its transfer was baked for included (distant, or a local sphere's centre and radius).\n";
 
 constexpr const char* kShadeHelp =
-    "Usage: prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--order N] [--json]\n"
+    "Usage: prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--view X,Y,Z [--glossy-only]]\n"
+    "                        [--order N] [--json]\n"
     "\n"
     "Prints every vertex's position and RGB exit radiance under a light:\n"
     "  --light constant    uniform white radiance 1 from every direction\n"
     "  --light ENVMAP      an environment image (EXR, HDR, PNG, JPEG; layout from its aspect)\n"
-    "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored)\n"
+    "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored);\n"
+    "                      glossy-shadowed or glossy-interreflected: that diffuse pass plus the\n"
+    "                      glossy matrix pass of the same kind, seen from --view (docs/glossy.md);\n"
+    "                      glossy: the richest such pair\n"
+    "  --view X,Y,Z        the eye position (world units) for a glossy pass\n"
+    "  --glossy-only       print the glossy term alone (k_s x the lobe integral), no diffuse\n"
     "  --order N           truncate to N bands (default: the asset's order)\n"
     "  --json              JSON instead of a table\n";
+
+// "X,Y,Z": three finite numbers.
+Status parseEye(const std::string& text, Vec3* out) {
+  float v[3] = {};
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos)) {
+      return usageError("--view expects X,Y,Z (three numbers separated by commas), got '" + text + "'");
+    }
+    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
+    const float big = 3.0e38f;
+    if (!parseFloatArg("--view", part, -big, big, &v[i]).isOk()) {
+      return usageError("--view expects X,Y,Z of finite numbers; component " + std::to_string(i + 1) + " '" + part +
+                        "' is not one");
+    }
+    start = comma + 1;
+  }
+  *out = {v[0], v[1], v[2]};
+  return Status::ok();
+}
+
+struct ShadePass {
+  std::optional<TransferKind> kind;  // unset: the richest stored
+  bool glossy = false;
+};
+
+Status parseShadePass(const std::string& name, ShadePass* out) {
+  const std::string glossyPrefix = "glossy-";
+  std::string kind = name;
+  if (name == "glossy") {
+    out->glossy = true;
+    return Status::ok();
+  }
+  if (name.rfind(glossyPrefix, 0) == 0) {
+    out->glossy = true;
+    kind = name.substr(glossyPrefix.size());
+  }
+  if (kind == "unshadowed" && !out->glossy) out->kind = TransferKind::kUnshadowed;
+  else if (kind == "shadowed") out->kind = TransferKind::kShadowed;
+  else if (kind == "interreflected") out->kind = TransferKind::kInterreflected;
+  else return usageError("unknown --pass '" + name + "' (expected unshadowed, shadowed, interreflected, glossy, "
+                         "glossy-shadowed or glossy-interreflected)");
+  return Status::ok();
+}
 
 }  // namespace
 
@@ -85,8 +137,10 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "},\n  \"passes\": [";
     for (std::size_t i = 0; i < sum.passes.size(); ++i) {
       const auto& ps = sum.passes[i];
-      s += std::string(i ? ", " : "") + "{\"kind\": \"" + transferKindName(ps.kind) +
-           "\", \"channels\": " + std::to_string(ps.channels) + ", \"bounces\": " + std::to_string(ps.bounces) + "}";
+      s += std::string(i ? ", " : "") + "{\"kind\": \"" + transferKindName(ps.kind) + "\", \"form\": \"" +
+           transferFormName(ps.form) + "\", \"channels\": " + std::to_string(ps.channels) +
+           ", \"bounces\": " + std::to_string(ps.bounces) + ", \"encoded\": " + (ps.encoded ? "true" : "false") +
+           ", \"bytes\": " + std::to_string(ps.bytes) + "}";
     }
     s += "]\n}\n";
     std::fputs(s.c_str(), out);
@@ -106,9 +160,16 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       std::fprintf(out, "lighting: %s\n", lightingModelName(sum.lighting.model));
     }
     for (const auto& ps : sum.passes) {
-      std::fprintf(out, "pass: %s, %s", transferKindName(ps.kind), ps.channels == 3 ? "RGB" : "scalar (x albedo)");
+      if (ps.form == TransferForm::kMatrix) {
+        const MatrixPacking packing = matrixPackingFor(ps.kind, sum.lighting.model);
+        std::fprintf(out, "pass: %s glossy matrix, %s, %s packing (%zu entries per channel)", transferKindName(ps.kind),
+                     ps.channels == 3 ? "RGB" : "scalar (one matrix for r, g, b)", matrixPackingName(packing),
+                     matrixEntryCount(sum.shOrder, packing));
+      } else {
+        std::fprintf(out, "pass: %s, %s", transferKindName(ps.kind), ps.channels == 3 ? "RGB" : "scalar (x albedo)");
+      }
       if (ps.kind == TransferKind::kInterreflected) std::fprintf(out, ", %d bounces", ps.bounces);
-      std::fputc('\n', out);
+      std::fprintf(out, ", %s, %llu bytes\n", ps.encoded ? "encoded" : "float32", static_cast<unsigned long long>(ps.bytes));
     }
   }
   return kExitOk;
@@ -119,20 +180,29 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     std::fputs(kShadeHelp, out);
     return kExitOk;
   }
-  static constexpr FlagSpec kFlags[] = {{"--light", true}, {"--pass", true}, {"--order", true}, {"--json", false}};
+  static constexpr FlagSpec kFlags[] = {{"--light", true}, {"--pass", true},         {"--order", true},
+                                         {"--json", false},  {"--view", true},         {"--glossy-only", false}};
   ParsedArgs p;
   std::string path;
   if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "shade", s);
   if (Status s = oneAsset(p, &path); !s.isOk()) return reportFailure(err, "shade", s);
   const std::string* light = p.value("--light");
   if (!light) return reportFailure(err, "shade", usageError("missing --light constant|ENVMAP"));
-  std::optional<TransferKind> wanted;
+  ShadePass wanted;
   if (const std::string* ps = p.value("--pass")) {
-    if (*ps == "unshadowed") wanted = TransferKind::kUnshadowed;
-    else if (*ps == "shadowed") wanted = TransferKind::kShadowed;
-    else if (*ps == "interreflected") wanted = TransferKind::kInterreflected;
-    else return reportFailure(err, "shade", usageError("unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)"));
+    if (Status s = parseShadePass(*ps, &wanted); !s.isOk()) return reportFailure(err, "shade", s);
   }
+  Vec3 eye{};
+  if (wanted.glossy) {
+    const std::string* view = p.value("--view");
+    if (!view) return reportFailure(err, "shade", usageError("a glossy --pass needs --view X,Y,Z (the eye position)"));
+    if (Status s = parseEye(*view, &eye); !s.isOk()) return reportFailure(err, "shade", s);
+  } else {
+    for (const char* flag : {"--view", "--glossy-only"}) {
+      if (p.has(flag)) return reportFailure(err, "shade", usageError(std::string(flag) + " needs a glossy --pass"));
+    }
+  }
+  const bool glossyOnly = p.has("--glossy-only");
   int order = 0;
   if (const std::string* o = p.value("--order")) {
     if (Status s = parseIntArg("--order", *o, 1, kMaxShOrder, &order); !s.isOk()) return reportFailure(err, "shade", s);
@@ -148,12 +218,32 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     return reportFailure(err, "shade", usageError("--order " + std::to_string(order) + " exceeds the asset's order " + std::to_string(asset.shOrder)));
   }
   const TransferPass* pass = nullptr;
-  if (wanted) {
-    pass = findPass(asset, *wanted);
-    if (!pass) return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument, "'" + path + "' has no " + transferKindName(*wanted) + " pass"));
+  const TransferPass* matrix = nullptr;
+  const auto noPass = [&](TransferKind k, const char* what) {
+    return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument, "'" + path + "' has no " +
+                                                                                      transferKindName(k) + what));
+  };
+  if (wanted.kind) {
+    pass = findPass(asset, *wanted.kind);
+    if (!pass) return noPass(*wanted.kind, " pass");
+    if (wanted.glossy) {
+      matrix = findPass(asset, *wanted.kind, TransferForm::kMatrix);
+      if (!matrix) return noPass(*wanted.kind, " glossy matrix pass (bake with --glossy)");
+    }
   } else {
-    for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed})
-      if (!pass) pass = findPass(asset, k);
+    for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
+      const TransferPass* vector = findPass(asset, k);
+      const TransferPass* m = findPass(asset, k, TransferForm::kMatrix);
+      if (pass || !vector || (wanted.glossy && !m)) continue;
+      pass = vector;
+      matrix = wanted.glossy ? m : nullptr;
+    }
+    if (!pass) {
+      return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument,
+                                                       "'" + path + "' has no " +
+                                                           (wanted.glossy ? "glossy matrix pass with its diffuse pass (bake with --glossy)"
+                                                                          : "transfer pass")));
+    }
   }
 
   std::vector<Rgb> lighting(static_cast<std::size_t>(shCoeffCount(order)));
@@ -169,15 +259,32 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   }
 
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
-  std::vector<float> exit(3 * asset.positions.size());
-  if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {
-    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
+  std::vector<float> exit(3 * asset.positions.size(), 0.0f);
+  if (!glossyOnly) {
+    if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {
+      return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
+    }
+  }
+  if (matrix) {
+    std::vector<float> glossy(exit.size());
+    const Status s = glossyExitRadiance(matrix->coeffs, asset.shOrder, matrixPackingFor(matrix->kind, asset.lighting.model),
+                                        matrix->channels, asset.positions, asset.normals, asset.specular,
+                                        GlossyView{eye, true}, lighting, glossy);
+    if (!s.isOk()) return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
+    for (std::size_t i = 0; i < exit.size(); ++i) exit[i] += glossy[i];
   }
   const bool json = p.has("--json");
-  std::string text = json ? "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + transferKindName(pass->kind) +
-                                "\",\n  \"order\": " + std::to_string(order) + ",\n  \"light\": " + jsonString(*light) +
-                                ",\n  \"vertices\": [\n"
-                          : "";
+  std::string passName = std::string(matrix ? "glossy-" : "") + transferKindName(pass->kind);
+  std::string text;
+  if (json) {
+    text = "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + passName + "\",\n  \"order\": " +
+           std::to_string(order) + ",\n  \"light\": " + jsonString(*light) + ",\n";
+    if (matrix) {
+      text += "  \"view\": [" + jsonNumber(eye.x) + ", " + jsonNumber(eye.y) + ", " + jsonNumber(eye.z) +
+              "],\n  \"terms\": \"" + (glossyOnly ? "glossy" : "diffuse+glossy") + "\",\n";
+    }
+    text += "  \"vertices\": [\n";
+  }
   for (std::size_t v = 0; v < asset.positions.size(); ++v) {
     const Rgb radiance{exit[3 * v], exit[3 * v + 1], exit[3 * v + 2]};
     const Vec3 x = asset.positions[v];

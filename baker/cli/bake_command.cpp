@@ -30,7 +30,8 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--samples", true},  {"--bounces", true}, {"--bounce-threshold", true}, {"--sampling", true},
     {"--seed", true},     {"--threads", true}, {"--passes", true},  {"--quiet", false},
     {"--json", false},    {"--lighting", true}, {"--light-center", true}, {"--light-radius", true},
-    {"--name", true},     {"--compress", true},
+    {"--name", true},     {"--compress", true}, {"--glossy", false}, {"--glossy-bounces", true},
+    {"--specular-exponent", true}, {"--max-specular-exponent", true},
 };
 
 constexpr const char* kHelp =
@@ -65,6 +66,16 @@ constexpr const char* kHelp =
     "  --compress SETTING        store the transfer with the transfer codec (docs/transfer-codec.md):\n"
     "                            f16, q16, q8, cpca8 or cpca16, CPCA with an optional target\n"
     "                            relative error, e.g. cpca8@0.02 (default: float32, uncompressed)\n"
+    "  --glossy                  also bake glossy transfer matrices (docs/glossy.md): the base\n"
+    "                            colour splits into (1 - metallic) x base (diffuse) and a Phong\n"
+    "                            lobe of f0 = mix(0.04, base, metallic) and an exponent from\n"
+    "                            roughness; stores the shadowed matrix and, with glossy bounces,\n"
+    "                            the interreflected one (matrix memory: order^4 floats per vertex\n"
+    "                            and channel, 2.5 KB at order 5)\n"
+    "  --glossy-bounces N        bounces gathered into the interreflected matrix, 0..--bounces\n"
+    "                            (default 1; 0 stores the shadowed matrix only)\n"
+    "  --specular-exponent S     one Phong exponent S >= 0 for every vertex instead of roughness\n"
+    "  --max-specular-exponent S the exponent roughness 0 (a mirror) maps to (default 10000)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -123,6 +134,39 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
       return usage("--light-radius expects a finite number > 0, got '" + *s + "'");
     }
     c->bake.lightRadius = r;
+  }
+  return Status::ok();
+}
+
+Status parseGlossyArgs(const ParsedArgs& p, BakeCli* c) {
+  bake::BakeOptions& t = c->bake.transfer;
+  t.glossy = p.has("--glossy");
+  for (const char* flag : {"--glossy-bounces", "--specular-exponent", "--max-specular-exponent"}) {
+    if (p.has(flag) && !t.glossy) return usage(std::string(flag) + " needs --glossy");
+  }
+  if (!t.glossy) return Status::ok();
+  t.glossyBounces = 1;
+  if (const std::string* s = p.value("--glossy-bounces")) {
+    int v = 0;
+    if (Status st = parseIntArg("--glossy-bounces", *s, 0, 64, &v); !st.isOk()) return st;
+    t.glossyBounces = v;
+  }
+  if (t.glossyBounces > 0 && !c->bake.storeInterreflected) {
+    return usage("--glossy-bounces " + std::to_string(t.glossyBounces) +
+                 " gathers from the diffuse bounces: keep interreflected in --passes, or give --glossy-bounces 0");
+  }
+  if (t.glossyBounces > t.maxBounces) {
+    return usage("--glossy-bounces " + std::to_string(t.glossyBounces) + " exceeds --bounces " + std::to_string(t.maxBounces));
+  }
+  const float big = std::numeric_limits<float>::max();
+  float x = 0.0f;
+  if (const std::string* s = p.value("--specular-exponent")) {
+    if (Status st = parseFloatArg("--specular-exponent", *s, 0.0f, big, &x); !st.isOk()) return st;
+    c->bake.glossyMaterials.exponent = x;
+  }
+  if (const std::string* s = p.value("--max-specular-exponent")) {
+    if (Status st = parseFloatArg("--max-specular-exponent", *s, 0.0f, big, &x); !st.isOk()) return st;
+    c->bake.glossyMaterials.maxExponent = x;
   }
   return Status::ok();
 }
@@ -210,6 +254,7 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
     }
   }
   if (Status st = parseLightingArgs(p, c); !st.isOk()) return st;
+  if (Status st = parseGlossyArgs(p, c); !st.isOk()) return st;
   if (const std::string* s = p.value("--name")) {
     if (!isValidAssetName(*s)) {
       return usage("--name must be at most " + std::to_string(kMaxAssetNameBytes) + " bytes of UTF-8 without control characters");
@@ -233,8 +278,8 @@ std::string describeCompression(const std::vector<bake::CompressedPass>& passes)
   std::string summary;
   for (const bake::CompressedPass& p : passes) {
     char line[200];
-    std::snprintf(line, sizeof line, "%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary.empty() ? "" : "; ",
-                  transferKindName(p.kind), p.floatBytes, p.encodedBytes, p.codec.relativeError,
+    std::snprintf(line, sizeof line, "%s%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary.empty() ? "" : "; ",
+                  transferKindName(p.kind), p.form == TransferForm::kMatrix ? " glossy" : "", p.floatBytes, p.encodedBytes, p.codec.relativeError,
                   p.codec.clusters > 0 ? (", " + std::to_string(p.codec.clusters) + " clusters").c_str() : "");
     summary += line;
   }
@@ -318,6 +363,8 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "  \"order\": " + std::to_string(c.bake.transfer.order) + ",\n";
     s += "  \"samples\": " + std::to_string(c.bake.transfer.samples) + ",\n";
     s += "  \"bounces\": " + std::to_string(report.bounces) + ",\n";
+    s += "  \"glossy\": " + std::string(c.bake.transfer.glossy ? "true" : "false") + ",\n";
+    s += "  \"glossy_bounces\": " + std::to_string(report.glossyBounces) + ",\n";
     const LightingInfo& l = report.lighting;
     s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(l.model));
     if (isLocalLighting(l.model)) {

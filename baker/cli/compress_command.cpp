@@ -16,6 +16,7 @@
 #include "native/json_text.h"
 #include "prt/asset.h"
 #include "prt/exit_radiance.h"
+#include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 
@@ -32,12 +33,16 @@ constexpr double kRelativeErrorFloor = 0.01;
 
 constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
                                {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
-                               {"--per-lighting", false}, {"--save-blobs", true}};
+                               {"--per-lighting", false}, {"--save-blobs", true}, {"--views", true},
+                               {"--lightings", true}};
 
 struct Options {
   std::string asset;
   std::vector<TransferCodecSettings> settings;
   std::optional<TransferKind> pass;
+  bool glossy = false;    // a matrix pass: exit radiance over lightings x views
+  int views = 16;         // eye positions for matrix passes
+  int maxLightings = 0;   // 0: every test lighting
   std::string envDir = kDefaultEnvDir;
   bool json = false;
   bool perLighting = false;
@@ -79,10 +84,25 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
     start = comma + 1;
   }
   if (const std::string* ps = p.value("--pass")) {
-    if (*ps == "unshadowed") o->pass = TransferKind::kUnshadowed;
-    else if (*ps == "shadowed") o->pass = TransferKind::kShadowed;
-    else if (*ps == "interreflected") o->pass = TransferKind::kInterreflected;
-    else return usage("unknown --pass '" + *ps + "' (expected unshadowed, shadowed or interreflected)");
+    std::string kind = *ps;
+    if (kind.rfind("glossy", 0) == 0) {
+      o->glossy = true;
+      kind = kind == "glossy" ? "" : kind.substr(7);
+    }
+    if (kind == "unshadowed" && !o->glossy) o->pass = TransferKind::kUnshadowed;
+    else if (kind == "shadowed") o->pass = TransferKind::kShadowed;
+    else if (kind == "interreflected") o->pass = TransferKind::kInterreflected;
+    else if (!(kind.empty() && o->glossy)) {
+      return usage("unknown --pass '" + *ps + "' (expected unshadowed, shadowed, interreflected, glossy, glossy-shadowed "
+                   "or glossy-interreflected)");
+    }
+  }
+  if (const std::string* v = p.value("--views")) {
+    if (!o->glossy) return usage("--views needs a glossy --pass");
+    if (Status s = parseIntArg("--views", *v, 1, 1024, &o->views); !s.isOk()) return s;
+  }
+  if (const std::string* v = p.value("--lightings")) {
+    if (Status s = parseIntArg("--lightings", *v, 1, 1 << 20, &o->maxLightings); !s.isOk()) return s;
   }
   if (const std::string* d = p.value("--env-dir")) o->envDir = *d;
   if (const std::string* d = p.value("--save-blobs")) {
@@ -98,6 +118,26 @@ Status passExitRadiance(const TransferPass& pass, std::span<const float> transfe
                         const std::vector<Rgb>& light, std::vector<double>* out) {
   out->assign(albedo.size() * 3, 0.0);
   return exitRadianceDouble(transfer, pass.channels, static_cast<std::size_t>(order * order), albedo, light, *out);
+}
+
+// `count` eye positions spread evenly (Fibonacci sphere) at twice the bounding-sphere radius
+// around the scene's bounds centre: the views a glossy pass is measured from.
+std::vector<Vec3> testViews(const std::vector<Vec3>& positions, int count) {
+  Vec3 lo = positions[0], hi = positions[0];
+  for (const Vec3& p : positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const Vec3 centre = (lo + hi) * 0.5f;
+  const float radius = std::max(length(hi - lo), 1e-3f);  // twice the half diagonal
+  std::vector<Vec3> views;
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < count; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / count, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = golden * k;
+    views.push_back(centre + Vec3{static_cast<float>(r * std::cos(phi)), static_cast<float>(z),
+                                  static_cast<float>(r * std::sin(phi))} * radius);
+  }
+  return views;
 }
 
 struct LightingError {
@@ -147,7 +187,7 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
                        const std::vector<std::string>& names, const std::vector<Row>& rows) {
   const std::size_t lightings = names.size();
   const double V = static_cast<double>(vertices);
-  std::string s = "{\n  \"asset\": " + jsonString(o.asset) + ",\n  \"pass\": \"" + transferKindName(pass.kind) +
+  std::string s = "{\n  \"asset\": " + jsonString(o.asset) + ",\n  \"pass\": \"" + (o.glossy ? "glossy-" : "") + transferKindName(pass.kind) +
                   "\",\n  \"channels\": " + std::to_string(pass.channels) + ",\n  \"order\": " + std::to_string(order) +
                   ",\n  \"vertices\": " + std::to_string(vertices) + ",\n  \"lightings\": " + std::to_string(lightings) +
                   ",\n  \"zstd_level\": " + std::to_string(kReportZstdLevel) + ",\n  \"brotli_quality\": " +
@@ -185,9 +225,9 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
 std::string formatTable(const Options& o, const TransferPass& pass, int order, std::size_t vertices,
                         const std::vector<std::string>& names, const std::vector<Row>& rows) {
   const std::size_t lightings = names.size();
-  std::string s = o.asset + ": " + transferKindName(pass.kind) + " transfer, " + std::to_string(pass.channels) + " channel(s), order " +
+  std::string s = o.asset + ": " + transferKindName(pass.kind) + (o.glossy ? " glossy matrix" : "") + " transfer, " + std::to_string(pass.channels) + " channel(s), order " +
                   std::to_string(order) + ", " + std::to_string(vertices) + " vertices; " + std::to_string(lightings) +
-                  " test lightings (PSNR: peak = max reference radiance; max rel: vertices above 1% of peak)\n";
+                  (o.glossy ? " test lighting x view cases" : " test lightings") + " (PSNR: peak = max reference radiance; max rel: vertices above 1% of peak)\n";
   char line[320];
   std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9s %9s %9s %9s %9s %8s %-14s %8s\n", "setting", "B/vtx", "zstd-19",
                 "brotli", "x f16z", "PSNR min", "PSNR avg", "rel max", "rel avg", "T rel", "clusters", "vectors/band", "enc s");
@@ -232,7 +272,13 @@ const char* compressReportHelpText() {
          "  --quality Q         CPCA target relative RMS transfer error where no @ is given\n"
          "                      (default 0.02)\n"
          "  --max-clusters N    CPCA cluster-count limit (default 256)\n"
-         "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored)\n"
+         "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored);\n"
+         "                      glossy-shadowed, glossy-interreflected or glossy (the richest): a\n"
+         "                      glossy matrix pass, measured by its glossy exit radiance over every\n"
+         "                      lighting seen from each of --views eyes\n"
+         "  --views N           eyes for a glossy pass, spread over a sphere twice the scene's size\n"
+         "                      (default 16)\n"
+         "  --lightings N       use only the first N test lightings (default: all)\n"
          "  --env-dir DIR       directory of .exr environment maps\n"
          "                      (default /usr/share/blender/datafiles/studiolights/world)\n"
          "  --per-lighting      also list PSNR and max relative error of every lighting\n"
@@ -258,24 +304,48 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   BakedAsset asset;
   if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return reportFailure(err, "compress-report", Status::error(s.code(), "'" + o.asset + "': " + s.toString()));
   bytes = {};
+  const TransferForm form = o.glossy ? TransferForm::kMatrix : TransferForm::kVector;
   const TransferPass* pass = nullptr;
   if (o.pass) {
-    pass = findPass(asset, *o.pass);
-    if (!pass) return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " + transferKindName(*o.pass) + " pass"));
+    pass = findPass(asset, *o.pass, form);
+    if (!pass) {
+      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " +
+                                                                                                   transferKindName(*o.pass) +
+                                                                                                   (o.glossy ? " glossy matrix" : "") + " pass"));
+    }
   } else {
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
-      if (!pass) pass = findPass(asset, k);
+      if (!pass) pass = findPass(asset, k, form);
+    }
+    if (!pass) {
+      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " +
+                                                                                                   (o.glossy ? "glossy matrix pass" : "transfer pass")));
     }
   }
   const int order = asset.shOrder;
   const std::size_t vertices = asset.positions.size();
+  const MatrixPacking packing = matrixPackingFor(pass->kind, asset.lighting.model);
 
   std::vector<TestLighting> lightings;
   if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return reportFailure(err, "compress-report", s);
-  std::vector<std::vector<double>> reference(lightings.size());
+  if (o.maxLightings > 0 && lightings.size() > static_cast<std::size_t>(o.maxLightings)) lightings.resize(static_cast<std::size_t>(o.maxLightings));
+  // Vector passes: one case per lighting. Matrix passes: one per (lighting, view), the glossy
+  // term alone, since the diffuse term does not depend on the matrix codec.
+  const std::vector<Vec3> views = o.glossy ? testViews(asset.positions, o.views) : std::vector<Vec3>{Vec3{}};
+  const auto evaluate = [&](std::span<const float> transfer, std::size_t lighting, std::size_t view,
+                            std::vector<double>* radiance) -> Status {
+    if (!o.glossy) return passExitRadiance(*pass, transfer, asset.albedo, order, lightings[lighting].coeffs, radiance);
+    radiance->assign(vertices * 3, 0.0);
+    return glossyExitRadianceDouble(transfer, order, packing, pass->channels, asset.positions, asset.normals, asset.specular,
+                                    GlossyView{views[view], true}, lightings[lighting].coeffs, *radiance);
+  };
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> reference;
   for (std::size_t i = 0; i < lightings.size(); ++i) {
-    if (Status s = passExitRadiance(*pass, pass->coeffs, asset.albedo, order, lightings[i].coeffs, &reference[i]); !s.isOk()) {
-      return reportFailure(err, "compress-report", s);
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      names.push_back(o.glossy ? lightings[i].name + " view " + std::to_string(v) : lightings[i].name);
+      reference.emplace_back();
+      if (Status s = evaluate(pass->coeffs, i, v, &reference.back()); !s.isOk()) return reportFailure(err, "compress-report", s);
     }
   }
 
@@ -288,11 +358,15 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     std::fprintf(err, "prt-bake: note: encoding %s...\n", r.setting.c_str());
     std::vector<std::uint8_t> blob;
     const auto start = std::chrono::steady_clock::now();
-    if (Status s = encodeTransfer(pass->coeffs, order, pass->channels, setting, &blob, &r.report); !s.isOk()) {
-      return reportFailure(err, "compress-report", Status::error(s.code(), r.setting + ": " + s.message()));
+    const Status encoded = o.glossy ? encodeTransferMatrix(pass->coeffs, order, packing, pass->channels, setting, &blob, &r.report)
+                                    : encodeTransfer(pass->coeffs, order, pass->channels, setting, &blob, &r.report);
+    if (!encoded.isOk()) {
+      return reportFailure(err, "compress-report", Status::error(encoded.code(), r.setting + ": " + encoded.message()));
     }
     r.encodeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (Status s = decodeTransfer(blob, order, std::span<float>(decoded)); !s.isOk()) {
+    const Status decodedOk = o.glossy ? decodeTransferMatrix(blob, order, std::span<float>(decoded))
+                                      : decodeTransfer(blob, order, std::span<float>(decoded));
+    if (Status s = decodedOk; !s.isOk()) {
       return reportFailure(err, "compress-report", Status::error(StatusCode::kInternal, r.setting + ": the blob does not decode: " + s.toString()));
     }
     r.bytes = blob.size();
@@ -308,8 +382,8 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     r.psnrWorst = std::numeric_limits<double>::infinity();
     double psnrSum = 0.0;
     std::size_t finite = 0;
-    for (std::size_t i = 0; i < lightings.size(); ++i) {
-      if (Status s = passExitRadiance(*pass, decoded, asset.albedo, order, lightings[i].coeffs, &radiance); !s.isOk()) {
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      if (Status s = evaluate(decoded, i / views.size(), i % views.size(), &radiance); !s.isOk()) {
         return reportFailure(err, "compress-report", s);
       }
       const LightingError e = compareRadiance(reference[i], radiance);
@@ -320,13 +394,11 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
         ++finite;
       }
       r.maxRelWorst = std::max(r.maxRelWorst, e.maxRelError);
-      r.maxRelMean += e.maxRelError / static_cast<double>(lightings.size());
+      r.maxRelMean += e.maxRelError / static_cast<double>(reference.size());
     }
-    r.psnrMean = finite == lightings.size() ? psnrSum / static_cast<double>(finite) : std::numeric_limits<double>::infinity();
+    r.psnrMean = finite == reference.size() ? psnrSum / static_cast<double>(finite) : std::numeric_limits<double>::infinity();
     rows.push_back(std::move(r));
   }
-  std::vector<std::string> names;
-  for (const TestLighting& l : lightings) names.push_back(l.name);
   const std::string text = o.json ? formatJson(o, *pass, order, vertices, names, rows) : formatTable(o, *pass, order, vertices, names, rows);
   std::fputs(text.c_str(), out);
   return kExitOk;

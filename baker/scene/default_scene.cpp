@@ -24,6 +24,18 @@ constexpr Rgb kCube{0.80f, 0.50f, 0.12f};
 constexpr Rgb kTallBox{0.30f, 0.45f, 0.75f};
 constexpr Rgb kTorus{0.55f, 0.25f, 0.65f};
 
+// The glossy part, read only by a glossy bake (docs/glossy.md): the room and the boxes are
+// matte paint (no specular reflection at all, f0 = 0, so their shading does not depend on
+// the view); the sphere is a polished white dielectric and the torus a purple metal.
+constexpr PbrVertex kMatte{0.0f, 1.0f, {0.0f, 0.0f, 0.0f}};
+constexpr PbrVertex kPolishedDielectric{0.0f, 0.3f, {0.04f, 0.04f, 0.04f}};
+constexpr PbrVertex kBrushedMetal{1.0f, 0.4f, {0.04f, 0.04f, 0.04f}};
+
+struct Surface {
+  Rgb albedo;
+  PbrVertex pbr = kMatte;
+};
+
 struct Vertex {
   Vec3 position;
   Vec3 normal;  // unit
@@ -49,14 +61,15 @@ Vec3 normalized(Vec3 v) { return v * (1.0f / length(v)); }
 // (the order is chosen per cell from the analytic normals, so callers need not get their
 // parametrisation's handedness right), and triangles that collapse at a pole are skipped.
 template <typename At>
-void addGrid(Scene* s, int nu, int nv, Rgb albedo, const Placement& where, At at) {
+void addGrid(Scene* s, int nu, int nv, const Surface& surface, const Placement& where, At at) {
   const auto base = static_cast<std::uint32_t>(s->positions.size());
   for (int j = 0; j <= nv; ++j) {
     for (int i = 0; i <= nu; ++i) {
       const Vertex v = where.apply(at(i, j));
       s->positions.push_back(v.position);
       s->normals.push_back(normalized(v.normal));
-      s->albedo.push_back(albedo);
+      s->albedo.push_back(surface.albedo);
+      s->pbr.push_back(surface.pbr);
     }
   }
   const auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (nu + 1) + i); };
@@ -80,8 +93,8 @@ void addGrid(Scene* s, int nu, int nv, Rgb albedo, const Placement& where, At at
 }
 
 // A flat rectangle origin + s·edgeU + t·edgeV (s, t in [0, 1]) facing `normal`.
-void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, Rgb albedo, const Placement& where) {
-  addGrid(s, cells(length(edgeU)), cells(length(edgeV)), albedo, where, [&](int i, int j) {
+void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, const Surface& surface, const Placement& where) {
+  addGrid(s, cells(length(edgeU)), cells(length(edgeV)), surface, where, [&](int i, int j) {
     const float fu = static_cast<float>(i) / static_cast<float>(cells(length(edgeU)));
     const float fv = static_cast<float>(j) / static_cast<float>(cells(length(edgeV)));
     return Vertex{origin + edgeU * fu + edgeV * fv, normal};
@@ -90,19 +103,19 @@ void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, Rg
 
 // A box resting on y = 0 with its own vertices on each face (sharp edges). The bottom face
 // is left out: it lies on the floor, where no ray could reach it.
-void addBox(Scene* s, Vec3 size, Rgb albedo, const Placement& where) {
+void addBox(Scene* s, Vec3 size, const Surface& surface, const Placement& where) {
   const float hx = size.x / 2, hz = size.z / 2, h = size.y;
   const Vec3 x{size.x, 0, 0}, y{0, h, 0}, z{0, 0, size.z};
-  addRectangle(s, {-hx, h, -hz}, x, z, {0, 1, 0}, albedo, where);   // top
-  addRectangle(s, {-hx, 0, hz}, x, y, {0, 0, 1}, albedo, where);    // +z
-  addRectangle(s, {-hx, 0, -hz}, x, y, {0, 0, -1}, albedo, where);  // -z
-  addRectangle(s, {hx, 0, -hz}, z, y, {1, 0, 0}, albedo, where);    // +x
-  addRectangle(s, {-hx, 0, -hz}, z, y, {-1, 0, 0}, albedo, where);  // -x
+  addRectangle(s, {-hx, h, -hz}, x, z, {0, 1, 0}, surface, where);   // top
+  addRectangle(s, {-hx, 0, hz}, x, y, {0, 0, 1}, surface, where);    // +z
+  addRectangle(s, {-hx, 0, -hz}, x, y, {0, 0, -1}, surface, where);  // -z
+  addRectangle(s, {hx, 0, -hz}, z, y, {1, 0, 0}, surface, where);    // +x
+  addRectangle(s, {-hx, 0, -hz}, z, y, {-1, 0, 0}, surface, where);  // -x
 }
 
 // A UV sphere; the seam column is duplicated with identical normals.
-void addSphere(Scene* s, float radius, int segments, int rings, Rgb albedo, const Placement& where) {
-  addGrid(s, segments, rings, albedo, where, [&](int i, int j) {
+void addSphere(Scene* s, float radius, int segments, int rings, const Surface& surface, const Placement& where) {
+  addGrid(s, segments, rings, surface, where, [&](int i, int j) {
     const double phi = 2.0 * kPi * i / segments;
     const double theta = kPi * j / rings;
     const Vec3 n{static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
@@ -112,8 +125,8 @@ void addSphere(Scene* s, float radius, int segments, int rings, Rgb albedo, cons
 }
 
 // A torus around +y (ring radius `major`, tube radius `minor`) centred at the origin.
-void addTorus(Scene* s, float major, float minor, int segments, int sides, Rgb albedo, const Placement& where) {
-  addGrid(s, segments, sides, albedo, where, [&](int i, int j) {
+void addTorus(Scene* s, float major, float minor, int segments, int sides, const Surface& surface, const Placement& where) {
+  addGrid(s, segments, sides, surface, where, [&](int i, int j) {
     const double phi = 2.0 * kPi * i / segments;
     const double psi = 2.0 * kPi * j / sides;
     const Vec3 n{static_cast<float>(std::cos(psi) * std::cos(phi)), static_cast<float>(std::sin(psi)),
@@ -131,18 +144,18 @@ Scene makeDefaultScene() {
   const Placement room = place(0, {0, 0, 0});
   const float w = 2 * kRoomHalfWidth, r = kRoomHalfWidth;
   // The room: normals point into it.
-  addRectangle(&s, {-r, 0, -r}, {0, 0, w}, {w, 0, 0}, {0, 1, 0}, kFloor, room);
-  addRectangle(&s, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, kBackWall, room);
-  addRectangle(&s, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, kRedWall, room);
-  addRectangle(&s, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, kGreenWall, room);
+  addRectangle(&s, {-r, 0, -r}, {0, 0, w}, {w, 0, 0}, {0, 1, 0}, {kFloor}, room);
+  addRectangle(&s, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, {kBackWall}, room);
+  addRectangle(&s, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, {kRedWall}, room);
+  addRectangle(&s, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, {kGreenWall}, room);
 
   // The objects, spaced so none touches another or a wall: the sphere (touching the floor
   // in one point) near the red wall, the cube near the green one, the tall box casting a
   // long shadow on the back wall, the torus lying flat (self-shadowing in its hole).
-  addSphere(&s, 0.5f, 64, 32, kSphere, place(0, {-0.9f, 0.5f, 0.5f}));
-  addBox(&s, {1.0f, 1.0f, 1.0f}, kCube, place(25, {0.9f, 0.0f, 0.6f}));
-  addBox(&s, {0.6f, 1.8f, 0.6f}, kTallBox, place(-20, {-0.6f, 0.0f, -1.2f}));
-  addTorus(&s, 0.4f, 0.14f, 64, 24, kTorus, place(0, {0.7f, 0.14f, -0.9f}));
+  addSphere(&s, 0.5f, 64, 32, {kSphere, kPolishedDielectric}, place(0, {-0.9f, 0.5f, 0.5f}));
+  addBox(&s, {1.0f, 1.0f, 1.0f}, {kCube}, place(25, {0.9f, 0.0f, 0.6f}));
+  addBox(&s, {0.6f, 1.8f, 0.6f}, {kTallBox}, place(-20, {-0.6f, 0.0f, -1.2f}));
+  addTorus(&s, 0.4f, 0.14f, 64, 24, {kTorus, kBrushedMetal}, place(0, {0.7f, 0.14f, -0.9f}));
   // The sphere's pole rows have one vertex per column, and the seam column's pole vertex
   // ends up in no triangle (its triangles collapse); drop such vertices.
   removeUnreferencedVertices(&s);

@@ -6,7 +6,9 @@
 // sphere, a cube, a tall box and a torus that stand on the floor. It is chosen to show what
 // transfer captures: soft shadows, contact darkening where objects meet the floor, and
 // colour bleeding from the coloured walls onto the white-ish floor and sphere. Every surface
-// is a fine grid (16 cells per metre) so per-vertex transfer can show gradients.
+// is a fine grid (16 cells per metre) so per-vertex transfer can show gradients. For glossy
+// bakes the sphere is a polished white dielectric and the torus a purple metal; the room
+// and the boxes are matte (no specular part), so their shading does not follow the eye.
 #pragma once
 
 #include "baker/scene/scene.h"

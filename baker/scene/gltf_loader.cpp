@@ -157,6 +157,7 @@ struct BaseColor {
   WrapMode wrapT = WrapMode::kRepeat;
   int texCoord = 0;
   UvTransform uv;
+  PbrVertex pbr;  // the material's metallic-roughness part (factors; textures are not sampled)
 };
 
 double numberOr(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
@@ -218,6 +219,7 @@ struct Counters {
   std::size_t nonOpaquePrimitives = 0;
   std::size_t unnormalisedRotations = 0;
   std::size_t albedoOutOfRange = 0;  // channel values, before removal of unused vertices
+  std::size_t materialOutOfRange = 0;  // metallic, roughness and specular factors outside [0, 1]
 };
 
 class SceneBuilder {
@@ -232,6 +234,7 @@ class SceneBuilder {
   Status addMesh(int meshIndex, const glm::dmat4& world);
   Status addPrimitive(int meshIndex, int primitiveIndex, const glm::dmat4& world);
   Status baseColorFor(int materialIndex, BaseColor* out);
+  void readMetallicRoughness(const tinygltf::Material& material, const std::string& label, PbrVertex* out);
   const LinearTexture* textureFor(int textureIndex, const std::string& user, BaseColor* out);
   std::string meshLabel(int meshIndex) const;
 
@@ -243,6 +246,7 @@ class SceneBuilder {
   std::vector<Vec3> positions_;
   std::vector<Vec3> normals_;
   std::vector<Rgb> albedo_;
+  std::vector<PbrVertex> pbr_;
   std::vector<std::uint8_t> needsNormal_;
   std::vector<std::uint32_t> indices_;
 
@@ -402,9 +406,36 @@ const LinearTexture* SceneBuilder::textureFor(int textureIndex, const std::strin
   return it->second.rgb.empty() ? nullptr : &it->second;
 }
 
+void SceneBuilder::readMetallicRoughness(const tinygltf::Material& material, const std::string& label, PbrVertex* out) {
+  const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
+  std::size_t& bad = counters_.materialOutOfRange;
+  out->metallic = albedoInRange(static_cast<float>(pbr.metallicFactor), &bad);
+  out->roughness = albedoInRange(static_cast<float>(pbr.roughnessFactor), &bad);
+  if (pbr.metallicRoughnessTexture.index >= 0) {
+    notes_.insert(label + ": metallicRoughnessTexture not sampled; metallicFactor and roughnessFactor are used");
+  }
+  // KHR_materials_specular: dielectric f0 = min(0.04 x specularColorFactor, 1) x specularFactor.
+  const auto it = material.extensions.find("KHR_materials_specular");
+  if (it == material.extensions.end() || !it->second.IsObject()) return;
+  const tinygltf::Value& ext = it->second;
+  const float factor = albedoInRange(static_cast<float>(numberOr(ext.Get("specularFactor"), 1.0)), &bad);
+  double color[3] = {1.0, 1.0, 1.0};
+  const tinygltf::Value& c = ext.Get("specularColorFactor");
+  if (c.IsArray() && c.ArrayLen() == 3) {
+    for (int i = 0; i < 3; ++i) color[i] = std::max(0.0, numberOr(c.Get(i), 1.0));
+  }
+  auto f0 = [&](double k) { return static_cast<float>(std::min(0.04 * k, 1.0)) * factor; };
+  out->dielectricF0 = {f0(color[0]), f0(color[1]), f0(color[2])};
+  if (ext.Has("specularTexture") || ext.Has("specularColorTexture")) {
+    notes_.insert(label + ": KHR_materials_specular textures not sampled; its factors are used");
+  }
+}
+
 Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
   *out = BaseColor();
-  if (materialIndex == -1) return Status::ok();  // glTF's default material: white, untextured
+  // glTF's default material: white, untextured, metallic 1 and roughness 1 (glTF 2.0 §3.9.6).
+  out->pbr.metallic = 1.0f;
+  if (materialIndex == -1) return Status::ok();
   if (materialIndex < 0 || static_cast<std::size_t>(materialIndex) >= model_.materials.size()) {
     return fail("material " + std::to_string(materialIndex) + " does not exist");
   }
@@ -413,6 +444,7 @@ Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
       "material " + std::to_string(materialIndex) + (material.name.empty() ? "" : " ('" + material.name + "')");
   const std::vector<double>& f = material.pbrMetallicRoughness.baseColorFactor;
   if (f.size() >= 3) out->factor = {static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2])};
+  readMetallicRoughness(material, label, &out->pbr);
   if (!material.alphaMode.empty() && material.alphaMode != "OPAQUE") ++counters_.nonOpaquePrimitives;
   if (material.extensions.count("KHR_materials_pbrSpecularGlossiness") != 0) {
     notes_.insert(label + ": KHR_materials_pbrSpecularGlossiness ignored; its metallic-roughness base colour is used");
@@ -599,6 +631,7 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
     }
     std::size_t& bad = counters_.albedoOutOfRange;
     albedo_.push_back({albedoInRange(a.r, &bad), albedoInRange(a.g, &bad), albedoInRange(a.b, &bad)});
+    pbr_.push_back(base.pbr);
   }
   ++counters_.trianglePrimitives;
   return Status::ok();
@@ -673,6 +706,7 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   scene.positions = std::move(positions_);
   scene.normals = std::move(normals_);
   scene.albedo = std::move(albedo_);
+  scene.pbr = std::move(pbr_);
   scene.indices = std::move(indices_);
   scene.name = sceneName_.empty() ? fallbackName : sceneName_;
   const std::size_t removed = removeUnreferencedVertices(&scene);
@@ -692,6 +726,9 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   if (c.albedoOutOfRange)
     warn(plural(c.albedoOutOfRange, "albedo channel value lies", "albedo channel values lie") +
          " outside glTF's [0, 1] (base colour x texture x COLOR_0): brought to the nearest bound");
+  if (c.materialOutOfRange)
+    warn(plural(c.materialOutOfRange, "metallic, roughness or specular factor lies", "metallic, roughness or specular factors lie") +
+         " outside glTF's [0, 1]: brought to the nearest bound");
   for (const std::string& note : notes_) warn(note);
   *out = std::move(scene);
   return Status::ok();

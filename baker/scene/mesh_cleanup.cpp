@@ -67,11 +67,15 @@ std::size_t removeUnreferencedVertices(Scene* scene) {
     scene->positions[next] = scene->positions[v];
     scene->normals[next] = scene->normals[v];
     scene->albedo[next] = scene->albedo[v];
+    if (scene->pbr.size() == n) scene->pbr[next] = scene->pbr[v];
+    if (scene->specular.size() == n) scene->specular[next] = scene->specular[v];
     ++next;
   }
   scene->positions.resize(next);
   scene->normals.resize(next);
   scene->albedo.resize(next);
+  if (scene->pbr.size() == n) scene->pbr.resize(next);
+  if (scene->specular.size() == n) scene->specular.resize(next);
   for (std::uint32_t& v : scene->indices) {
     if (v < n) v = remap[v];
   }

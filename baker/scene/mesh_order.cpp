@@ -32,6 +32,8 @@ void optimizeMeshOrder(Scene* scene) {
   remapArray(&scene->positions, remap, used);
   remapArray(&scene->normals, remap, used);
   remapArray(&scene->albedo, remap, used);
+  if (scene->pbr.size() == vertexCount) remapArray(&scene->pbr, remap, used);
+  if (scene->specular.size() == vertexCount) remapArray(&scene->specular, remap, used);
 }
 
 }  // namespace prt::bake

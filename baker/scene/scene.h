@@ -12,15 +12,26 @@
 
 namespace prt::bake {
 
+// glTF 2.0 metallic-roughness parameters at a vertex (defaults: a rough dielectric).
+struct PbrVertex {
+  float metallic = 0.0f;   // [0, 1]
+  float roughness = 1.0f;  // perceptual roughness, [0, 1]
+  // Specular reflectance at normal incidence of the dielectric part: 0.04 by default, scaled
+  // by KHR_materials_specular (specularFactor x specularColorFactor, capped at 1 per the
+  // extension); 0 makes the dielectric part purely Lambertian.
+  Rgb dielectricF0{0.04f, 0.04f, 0.04f};
+};
+
 struct Scene {
   std::vector<Vec3> positions;       // world space, metres (glTF units), +y up
   std::vector<Vec3> normals;         // unit length, one per position
   std::vector<Rgb> albedo;           // linear diffuse reflectance in [0, 1], one per position:
-                                     // (1 - metallic) x base colour for glTF materials
-  // The glossy part (docs/glossy.md), one per position: f0 = mix(0.04, base colour,
-  // metallic) (0 with KHR_materials_specular factor 0, and for the built-in diffuse walls),
-  // exponent from roughness (specularExponentFromRoughness) or --specular-exponent.
-  // Empty for scenes built before materials were read: treated as f0 = 0 (no glossy part).
+                                     // the base colour, until applyGlossyMaterials splits it
+  // The metallic-roughness material of each vertex (glTF's), one per position or empty
+  // (unknown: a rough dielectric). Only a glossy bake reads it (glossy_materials.h).
+  std::vector<PbrVertex> pbr;
+  // The glossy part (docs/glossy.md), one per position, filled by applyGlossyMaterials (or
+  // by hand in tests); empty: no glossy part (f0 = 0).
   std::vector<SpecularMaterial> specular;
   std::vector<std::uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
   std::string name;                  // for catalogues and logs

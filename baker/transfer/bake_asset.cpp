@@ -32,6 +32,14 @@ BakedAsset makeAsset(Scene&& scene, BakeResult&& r, const AssetBakeOptions& o, c
   if (o.storeUnshadowed) a.passes.push_back({TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed), {}});
   if (o.storeShadowed) a.passes.push_back({TransferKind::kShadowed, 1, 0, std::move(r.shadowed), {}});
   if (o.storeInterreflected) a.passes.push_back({TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected), {}});
+  if (o.transfer.glossy) {
+    a.passes.push_back({TransferKind::kShadowed, 1, 0, std::move(r.glossyShadowed), {}, TransferForm::kMatrix});
+    if (!r.glossyInterreflected.empty()) {
+      a.passes.push_back(
+          {TransferKind::kInterreflected, 3, r.glossyBounces, std::move(r.glossyInterreflected), {}, TransferForm::kMatrix});
+    }
+    a.specular = std::move(scene.specular);
+  }
   return a;
 }
 
@@ -40,9 +48,16 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
   for (TransferPass& pass : a->passes) {
     CompressedPass c;
     c.kind = pass.kind;
+    c.form = pass.form;
     c.floatBytes = pass.coeffs.size() * sizeof(float);
-    if (Status s = encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &c.codec); !s.isOk()) {
-      return Status::error(s.code(), std::string("cannot compress: ") + transferKindName(pass.kind) + " transfer: " + s.message());
+    const Status s = pass.form == TransferForm::kMatrix
+                         ? encodeTransferMatrix(pass.coeffs, a->shOrder, matrixPackingFor(pass.kind, a->lighting.model),
+                                                pass.channels, settings, &pass.encoded, &c.codec)
+                         : encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &c.codec);
+    if (!s.isOk()) {
+      return Status::error(s.code(), std::string("cannot compress: ") + transferKindName(pass.kind) + " " +
+                                         (pass.form == TransferForm::kMatrix ? "glossy matrix" : "transfer") + ": " +
+                                         s.message());
     }
     c.encodedBytes = pass.encoded.size();
     out->push_back(c);
@@ -57,6 +72,7 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started) {
   *report = AssetBakeReport{};
+  if (options.transfer.glossy) PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
   optimizeMeshOrder(&scene);
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
@@ -69,6 +85,7 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   BakeResult result;
   PRT_RETURN_IF_ERROR(bakeTransfer(scene, transfer, &result));
   report->bounces = result.bounces;
+  report->glossyBounces = result.glossyBounces;
   report->bounceEnergy = result.bounceEnergy;
   report->passes = result.passes;
   report->verticesOutsideLight = result.verticesOutsideLight;

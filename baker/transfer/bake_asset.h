@@ -2,7 +2,7 @@
 // a caller prints or logs about it. prt-bake's bake command is this call between argument
 // parsing and writing; a sharded or remote bake calls the same function.
 //
-//   scene -> optimizeMeshOrder -> local lighting defaults -> bakeTransfer
+//   scene -> [glossy materials] -> optimizeMeshOrder -> local lighting defaults -> bakeTransfer
 //         -> BakedAsset (chosen passes) -> [transfer codec] -> (asset, report)
 #pragma once
 
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "baker/scene/glossy_materials.h"
 #include "baker/scene/scene.h"
 #include "baker/transfer/transfer_bake.h"
 #include "prt/asset.h"
@@ -30,12 +31,16 @@ struct AssetBakeOptions {
   // Which passes the asset stores (unshadowed and shadowed cost nothing extra to compute;
   // interreflected is computed only when stored).
   bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
+  // With transfer.glossy: the glossy material split (applied to the scene before the bake)
+  // and the matrix passes stored: shadowed always, interreflected when transfer.glossyBounces > 0.
+  GlossyMaterialOptions glossyMaterials;
   std::optional<std::string> name;                 // default: the scene's name
   std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
 };
 
 struct CompressedPass {
   TransferKind kind = TransferKind::kUnshadowed;
+  TransferForm form = TransferForm::kVector;
   std::size_t floatBytes = 0, encodedBytes = 0;
   TransferEncodeReport codec;
 };
@@ -44,6 +49,7 @@ struct AssetBakeReport {
   std::size_t vertices = 0, triangles = 0;
   LightingInfo lighting;  // as baked: local defaults filled in
   int bounces = 0;
+  int glossyBounces = 0;
   std::vector<double> bounceEnergy;
   std::vector<PassStats> passes;
   std::size_t verticesOutsideLight = 0;  // local lighting only

@@ -6,10 +6,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <utility>
 
 #include "baker/transfer/embree_scene.h"
+#include "baker/transfer/glossy_bake.h"
+#include "baker/transfer/hit_record.h"
 #include "baker/transfer/local_sphere.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/sampling.h"
@@ -18,24 +21,13 @@
 namespace prt::bake {
 namespace {
 
-constexpr std::size_t kBlockVertices = 64;
-
-// One occluded ray that hit a front face: where, and how much it weighs at its origin.
-struct Hit {
-  std::uint32_t triangle;
-  std::uint16_t u, v;  // barycentrics of vertices 1 and 2, unorm16
-  float weight;        // w max(0, n.w) / pi
-};
-
-struct Block {
-  std::vector<std::uint32_t> hitStart;  // per vertex of the block, plus one
-  std::vector<Hit> hits;
-};
+using Block = HitBlock;
 
 // The shared sample directions and their basis values, coefficient-major.
 struct SampleTable {
   DirectionSet dirs;
   std::vector<float> basis;  // [coefficient][sample]
+  std::vector<float> sampleMajor;  // glossy bakes: the same, [sample][coefficient]
 };
 
 Status makeSamples(const BakeOptions& o, SampleTable* t) {
@@ -62,8 +54,16 @@ Status makeSamples(const BakeOptions& o, SampleTable* t) {
       }
     }
   }
-  t->basis.resize(static_cast<std::size_t>(shCoeffCount(o.order)) * t->dirs.size());
-  return evalShBasisBatch(o.order, t->dirs.x, t->dirs.y, t->dirs.z, t->basis);
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(o.order)), count = t->dirs.size();
+  t->basis.resize(n2 * count);
+  if (Status s = evalShBasisBatch(o.order, t->dirs.x, t->dirs.y, t->dirs.z, t->basis); !s.isOk()) return s;
+  if (o.glossy) {
+    t->sampleMajor.resize(n2 * count);
+    for (std::size_t i = 0; i < n2; ++i) {
+      for (std::size_t k = 0; k < count; ++k) t->sampleMajor[k * n2 + i] = t->basis[i * count + k];
+    }
+  }
+  return Status::ok();
 }
 
 // out[i] = sum_k weights[k] basis[i][k]
@@ -152,9 +152,30 @@ Status checkOptions(const Scene& scene, const BakeOptions& o) {
     return Status::error(StatusCode::kInvalidArgument, "bounce count must be in [0, 64]");
   }
   if (Status s = checkLightingInfo(o.lighting); !s.isOk()) return Status::error(s.code(), "bake " + s.message());
+  if (o.glossy && (o.glossyBounces < 0 || o.glossyBounces > o.maxBounces)) {
+    return Status::error(StatusCode::kInvalidArgument, "glossy bounce count " + std::to_string(o.glossyBounces) +
+                                                           " is outside [0, maxBounces = " +
+                                                           std::to_string(o.maxBounces) + "]");
+  }
+  if (o.glossy && o.glossyBounces > 0 && !o.interreflection) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "glossy bounces need interreflection (set glossyBounces to 0 or enable interreflection)");
+  }
   const std::size_t vertexCount = scene.positions.size();
   if (scene.normals.size() != vertexCount || scene.albedo.size() != vertexCount) {
     return Status::error(StatusCode::kSizeMismatch, "scene normals/albedo do not match its positions");
+  }
+  if (!scene.specular.empty() && scene.specular.size() != vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "scene specular materials do not match its positions");
+  }
+  for (const SpecularMaterial& m : scene.specular) {
+    const float f[3] = {m.f0.r, m.f0.g, m.f0.b};
+    for (float x : f) {
+      if (!(x >= 0.0f && x <= 1.0f)) return Status::error(StatusCode::kInvalidArgument, "scene specular f0 outside [0, 1]");
+    }
+    if (!(m.exponent >= 0.0f) || !std::isfinite(m.exponent)) {
+      return Status::error(StatusCode::kInvalidArgument, "scene specular exponent is negative or not finite");
+    }
   }
   for (std::uint32_t index : scene.indices) {
     if (index >= vertexCount) return Status::error(StatusCode::kInvalidArgument, "scene index out of range");
@@ -187,6 +208,16 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   out->passes.clear();
   out->bounces = 0;
   out->verticesOutsideLight = 0;
+  out->glossyShadowed.clear();
+  out->glossyInterreflected.clear();
+  out->glossyBounces = 0;
+  out->glossyRankUpdate = {};
+  const MatrixPacking glossyPacking = matrixPackingFor(TransferKind::kShadowed, o.lighting.model);
+  const std::size_t glossyEntries = matrixEntryCount(o.order, glossyPacking);
+  if (o.glossy) {
+    useSingleThreadedBlas();
+    out->glossyShadowed.assign(vertexCount * glossyEntries, 0.0f);
+  }
 
   // Geometric (winding) normals decide whether a ray hit the front of a triangle.
   std::vector<Vec3> faceNormal(scene.indices.size() / 3);
@@ -210,6 +241,11 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
       // Local lighting, per ray j: w'_j, the lit weights (solid angle x remap weight, 0 for rays
       // that never reach S) and the basis at w'_j, [coefficient][ray].
       std::vector<float> lightX, lightY, lightZ, litUnshadowed, litShadowed, basis;
+      // Glossy: visible sample indices (distant) or per-ray weights w q V (local), no cosine.
+      std::vector<std::uint32_t> visible;
+      std::vector<float> litGlossy;
+      std::unique_ptr<GlossyShadowedKernel> kernel;
+      GlossyKernelStats kernelStats;
     };
     std::vector<Scratch> scratch(threads);
     for (auto& s : scratch) {
@@ -220,6 +256,11 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
       if (local) {
         for (auto* a : {&s.lightX, &s.lightY, &s.lightZ, &s.litUnshadowed, &s.litShadowed}) a->resize(sampleCount);
         s.basis.resize(static_cast<std::size_t>(n2) * sampleCount);
+      }
+      if (o.glossy) {
+        s.visible.resize(sampleCount);
+        s.litGlossy.resize(sampleCount);
+        s.kernel = std::make_unique<GlossyShadowedKernel>(o.order, sampleCount);
       }
     }
     parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
@@ -246,6 +287,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
             s.lightY[j] = m.lightDir.y;
             s.lightZ[j] = m.lightDir.z;
             s.litUnshadowed[j] = s.litShadowed[j] = s.unshadowedW[s.sample[j]] * m.weight;
+            if (o.glossy) s.litGlossy[j] = static_cast<float>(table.dirs.weight) * m.weight;
           }
         } else {
           std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
@@ -257,13 +299,18 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
           rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
         }
         rays += count;
+        std::size_t visibleCount = 0;
         for (unsigned j = 0; j < count; ++j) {
           const RTCRayHit& r = s.rays[j];
           const bool blocked = rec ? r.hit.geomID != RTC_INVALID_GEOMETRY_ID : r.ray.tfar < 0.0f;
-          if (!blocked) continue;
+          if (!blocked) {
+            if (o.glossy) s.visible[visibleCount++] = s.sample[j];
+            continue;
+          }
           const std::uint32_t k = s.sample[j];
           if (local) {
             s.litShadowed[j] = 0.0f;
+            if (o.glossy) s.litGlossy[j] = 0.0f;
           } else {
             s.shadowedW[k] = 0.0f;
           }
@@ -272,6 +319,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
           if (rec && dot(faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
             auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
             rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
+            if (o.glossy) rec->hitSample.push_back(k);
           }
         }
         if (rec) rec->hitStart.push_back(static_cast<std::uint32_t>(rec->hits.size()));
@@ -281,14 +329,27 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
           evalShBasisBatchUnchecked(o.order, count, s.lightX.data(), s.lightY.data(), s.lightZ.data(), s.basis.data());
           projectWeights(n2, count, s.litUnshadowed.data(), s.basis.data(), &out->unshadowed[v * n2]);
           projectWeights(n2, count, s.litShadowed.data(), s.basis.data(), &out->shadowed[v * n2]);
+          if (o.glossy) {
+            s.kernel->local(table.sampleMajor.data(), s.sample.data(), s.litGlossy.data(), count, s.basis.data(),
+                            &out->glossyShadowed[v * glossyEntries], &s.kernelStats);
+          }
         } else {
           projectWeights(n2, sampleCount, s.unshadowedW.data(), table.basis.data(), &out->unshadowed[v * n2]);
           projectWeights(n2, sampleCount, s.shadowedW.data(), table.basis.data(), &out->shadowed[v * n2]);
+          if (o.glossy) {
+            s.kernel->distant(table.sampleMajor.data(), s.visible.data(), visibleCount,
+                              static_cast<float>(table.dirs.weight), &out->glossyShadowed[v * glossyEntries],
+                              &s.kernelStats);
+          }
         }
       }
       progress.add(end - begin, rays);
     });
     out->passes.push_back({"direct", secondsSince(t0), progress.rays()});
+    for (const Scratch& s : scratch) {  // thread order: the sums of flops are exact, seconds are timings
+      out->glossyRankUpdate.flops += s.kernelStats.flops;
+      out->glossyRankUpdate.threadSeconds += s.kernelStats.threadSeconds;
+    }
   }
   for (std::uint8_t x : outside) out->verticesOutsideLight += x;
   if (!o.interreflection) return Status::ok();
@@ -315,10 +376,68 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   out->interreflected = previous;
   out->bounceEnergy.push_back(energy0);
 
+  // Glossy interreflection: starts as the shadowed matrix in every channel, full packing;
+  // bounce b gathers (glossy_bake.h) from B^{b-1} (`previous` inside the loop below) and
+  // M^{b-1}, which beyond the first bounce is kept only at glossy senders and only for one bounce.
+  const bool glossyBounce = o.glossy && o.glossyBounces > 0;
+  const std::size_t fullEntries = matrixEntryCount(o.order, MatrixPacking::kFull);
+  std::vector<std::int32_t> senderIndex;
+  std::vector<float> glossyPrevious, glossyCurrent;
+  if (glossyBounce) {
+    out->glossyInterreflected.assign(vertexCount * 3 * fullEntries, 0.0f);
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      const float* src = &out->glossyShadowed[v * glossyEntries];
+      float* dst = &out->glossyInterreflected[v * 3 * fullEntries];
+      for (int i = 0; i < n2; ++i) {
+        for (int j = 0; j < n2; ++j) {
+          const float m = src[matrixEntryIndex(i, j, glossyPacking)];
+          for (int c = 0; c < 3; ++c) dst[c * fullEntries + matrixEntryIndex(i, j, MatrixPacking::kFull)] = m;
+        }
+      }
+    }
+    senderIndex.assign(vertexCount, -1);
+    std::int32_t senders = 0;
+    for (std::size_t v = 0; v < scene.specular.size(); ++v) {
+      const Rgb f0 = scene.specular[v].f0;
+      if (f0.r > 0.0f || f0.g > 0.0f || f0.b > 0.0f) senderIndex[v] = senders++;
+    }
+    if (o.glossyBounces > 1) glossyCurrent.assign(static_cast<std::size_t>(senders) * 3 * fullEntries, 0.0f);
+  }
+
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string name = "bounce " + std::to_string(bounce);
     ProgressReporter progress(o, name, vertexCount);
+    if (glossyBounce && bounce <= o.glossyBounces) {
+      GlossyBounceJob job;
+      job.scene = &scene;
+      job.order = o.order;
+      job.bounce = bounce;
+      job.blocks = &blocks;
+      job.dirs = &table.dirs;
+      job.sampleMajor = table.sampleMajor.data();
+      job.sampleWeight = static_cast<float>(table.dirs.weight);
+      job.diffusePrevious = previous.data();
+      job.senderIndex = &senderIndex;
+      job.glossyPrevious = bounce == 1 ? out->glossyShadowed.data() : glossyPrevious.data();
+      job.previousPacking = glossyPacking;
+      job.glossyCurrent = bounce < o.glossyBounces ? glossyCurrent.data() : nullptr;
+      job.interreflected = out->glossyInterreflected.data();
+      job.threads = threads;
+      job.options = &o;
+      out->passes.push_back(gatherGlossyBounce(job));
+      out->glossyBounces = bounce;
+      if (bounce < o.glossyBounces) std::swap(glossyPrevious, glossyCurrent);
+      if (bounce + 1 < o.glossyBounces && glossyCurrent.size() != glossyPrevious.size()) {
+        glossyCurrent.assign(glossyPrevious.size(), 0.0f);
+      }
+      if (bounce == o.glossyBounces) {
+        glossyPrevious.clear();
+        glossyPrevious.shrink_to_fit();
+        glossyCurrent.clear();
+        glossyCurrent.shrink_to_fit();
+      }
+    }
     std::vector<double> blockEnergy(blockCount, 0.0);
     parallelFor(blockCount, threads, [&](std::size_t block, unsigned) {
       const Block& rec = blocks[block];

@@ -35,7 +35,7 @@ namespace prt::bake {
 enum class Sampling { kHammersley, kStratified };
 
 struct BakeProgress {
-  const char* pass;          // "direct" or "bounce N"
+  const char* pass;          // "direct", "bounce N" or "glossy bounce N"
   std::size_t done, total;   // vertices
   std::uint64_t rays;        // rays cast so far in this pass
 };
@@ -64,6 +64,14 @@ struct PassStats {
   std::uint64_t rays = 0;  // rays cast (0 for gather-only bounce passes)
 };
 
+// Work of the glossy shadowed matrix's rank-k update (ssyrk, or sgemm for local lighting):
+// flops counted as BLAS does (syrk: K n2 (n2+1), gemm: 2 K n2^2) and seconds summed over
+// the worker threads (gathering the rows and packing the result included).
+struct GlossyKernelStats {
+  std::uint64_t flops = 0;
+  double threadSeconds = 0.0;
+};
+
 struct BakeResult {
   int order = 0;
   std::vector<float> unshadowed;      // [vertex][coefficient]
@@ -80,6 +88,7 @@ struct BakeResult {
   std::vector<float> glossyShadowed;
   std::vector<float> glossyInterreflected;
   int glossyBounces = 0;              // bounces actually gathered into glossyInterreflected
+  GlossyKernelStats glossyRankUpdate; // the shadowed matrices' rank-k updates, for benchmarks
   // Local lighting: vertices outside the sphere S, whose rays that miss S carry no light.
   std::size_t verticesOutsideLight = 0;
 };

@@ -8,6 +8,7 @@
 // size_t is 32 bits.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -47,7 +48,8 @@ struct Parsed {
   std::vector<Entry> entries;  // table order
   int positions = -1, normals = -1, indices = -1, albedo = -1, metadata = -1;
   int lighting = -1;  // optional (format 1.1); absent means distant
-  std::vector<int> transfer;  // entry indices, table order
+  int specular = -1;  // required exactly when a matrix section exists (format 1.3)
+  std::vector<int> transfer;  // entry indices, table order (vector and matrix passes)
 };
 
 // What the small sections hold: the metadata and the lighting.
@@ -65,6 +67,12 @@ constexpr std::uint32_t kTypeTransfer = static_cast<std::uint32_t>(AssetSectionT
 constexpr std::uint32_t kTypeMetadata = static_cast<std::uint32_t>(AssetSectionType::kMetadata);
 constexpr std::uint32_t kTypeLighting = static_cast<std::uint32_t>(AssetSectionType::kLighting);
 constexpr std::uint32_t kTypeEncodedTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer);
+constexpr std::uint32_t kTypeMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kMatrixTransfer);
+constexpr std::uint32_t kTypeEncodedMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer);
+constexpr std::uint32_t kTypeSpecular = static_cast<std::uint32_t>(AssetSectionType::kSpecular);
+
+bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
+bool isEncodedType(std::uint32_t type) { return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer; }
 constexpr std::uint32_t kFormatFloat32 = static_cast<std::uint32_t>(AssetElementFormat::kFloat32);
 constexpr std::uint32_t kFormatUint32 = static_cast<std::uint32_t>(AssetElementFormat::kUint32);
 constexpr std::uint32_t kFormatBytes = static_cast<std::uint32_t>(AssetElementFormat::kBytes);
@@ -81,12 +89,16 @@ std::string sectionLabel(const Entry& e) {
     case kTypeAlbedo: s += "albedo"; break;
     case kTypeTransfer:
     case kTypeEncodedTransfer:
-      s += e.type == kTypeEncodedTransfer ? "encoded " : "";
+    case kTypeMatrixTransfer:
+    case kTypeEncodedMatrixTransfer:
+      s += isEncodedType(e.type) ? "encoded " : "";
+      s += isMatrixType(e.type) ? "matrix " : "";
       s += e.arg0 <= 2 ? std::string("transfer ") + transferKindName(static_cast<TransferKind>(e.arg0))
                        : "transfer kind " + num(e.arg0);
       break;
     case kTypeMetadata: s += "metadata"; break;
     case kTypeLighting: s += "lighting"; break;
+    case kTypeSpecular: s += "specular"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -221,12 +233,27 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
         return s;
       }
       return once(&p->lighting);
+    case kTypeSpecular:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(v * 16, "f0 r, g, b and exponent per vertex")).isOk()) {
+        return s;
+      }
+      return once(&p->specular);
     case kTypeTransfer:
-    case kTypeEncodedTransfer: {
-      const bool encoded = e.type == kTypeEncodedTransfer;
+    case kTypeEncodedTransfer:
+    case kTypeMatrixTransfer:
+    case kTypeEncodedMatrixTransfer: {
+      const bool encoded = isEncodedType(e.type), matrix = isMatrixType(e.type);
       if (!(s = encoded ? expectFormat(kFormatBytes, "bytes") : expectFormat(kFormatFloat32, "float32")).isOk()) return s;
       if (e.arg0 > 2) return corrupt(label + " has unknown transfer kind " + num(e.arg0));
       if (e.arg1 != 1 && e.arg1 != 3) return corrupt(label + " has " + num(e.arg1) + " channels; 1 or 3 expected");
+      if (matrix) {
+        const std::uint32_t wanted = e.arg0 == static_cast<std::uint32_t>(TransferKind::kInterreflected) ? 3 : 1;
+        if (e.arg1 != wanted) return corrupt(label + " has " + num(e.arg1) + " channels; " + num(wanted) + " expected");
+        if (p->order > static_cast<std::uint32_t>(kMaxMatrixOrder)) {
+          return corrupt(label + ": matrix passes need order <= " + num(kMaxMatrixOrder) + ", the header says " + num(p->order));
+        }
+      }
       const bool interreflected = e.arg0 == static_cast<std::uint32_t>(TransferKind::kInterreflected);
       if (interreflected ? e.arg2 > kMaxAssetBounces : e.arg2 != 0) {
         return corrupt(label + " has " + num(e.arg2) + " bounces; " +
@@ -234,13 +261,26 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       }
       // v <= 2^28, channels <= 3, order^2 <= 256: the product stays below 2^40. An encoded
       // section's size is its blob's, checked with its contents.
-      if (!encoded && !(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
+      if (!encoded && !matrix &&
+          !(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
                            "4 bytes per vertex, channel and coefficient"))
                .isOk()) {
         return s;
       }
+      // A float32 matrix section's packing depends on the lighting model, a payload checked
+      // later (checkMatrixPackings); here its size must be one of the two packings'.
+      if (!encoded && matrix) {
+        const int order = static_cast<int>(p->order);
+        const std::uint64_t sym = v * e.arg1 * matrixEntryCount(order, MatrixPacking::kSymmetric) * 4;
+        const std::uint64_t full = v * e.arg1 * matrixEntryCount(order, MatrixPacking::kFull) * 4;
+        if (e.size != sym && e.size != full) {
+          return corrupt(label + " is " + num(e.size) + " bytes; " + num(sym) + " (symmetric) or " + num(full) +
+                         " (full) expected (4 bytes per vertex, channel and packed entry)");
+        }
+      }
       for (int other : p->transfer) {
-        if (p->entries[static_cast<std::size_t>(other)].arg0 == e.arg0) {
+        const Entry& o = p->entries[static_cast<std::size_t>(other)];
+        if (o.arg0 == e.arg0 && isMatrixType(o.type) == matrix) {
           return corrupt(label + " repeats the transfer kind of section " + num(static_cast<std::uint64_t>(other)));
         }
       }
@@ -318,6 +358,27 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
     if (slot < 0) return corrupt(std::string("the required ") + name + " section is missing");
   }
   if (p->transfer.empty()) return corrupt("the asset has no transfer section");
+  bool anyMatrix = false;
+  for (int t : p->transfer) anyMatrix = anyMatrix || isMatrixType(p->entries[static_cast<std::size_t>(t)].type);
+  if (anyMatrix && p->specular < 0) return corrupt("the asset has a matrix transfer section but no specular section");
+  if (!anyMatrix && p->specular >= 0) {
+    return corrupt(sectionLabel(p->entries[static_cast<std::size_t>(p->specular)]) + " is present without a matrix transfer section");
+  }
+  return Status::ok();
+}
+
+// A float32 matrix section's size must match its packing, which the lighting model decides.
+Status checkMatrixPackings(const Parsed& p, const LightingInfo& lighting) {
+  for (int t : p.transfer) {
+    const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    if (e.type != kTypeMatrixTransfer) continue;
+    const MatrixPacking packing = matrixPackingFor(static_cast<TransferKind>(e.arg0), lighting.model);
+    const std::uint64_t want = std::uint64_t{p.vertexCount} * e.arg1 * matrixEntryCount(static_cast<int>(p.order), packing) * 4;
+    if (e.size != want) {
+      return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(want) + " expected (" + matrixPackingName(packing) +
+                     " packing under " + lightingModelName(lighting.model) + " lighting)");
+    }
+  }
   return Status::ok();
 }
 
@@ -420,6 +481,22 @@ Status checkTransferFloats(std::span<const std::uint8_t> payload, const Entry& e
   return Status::ok();
 }
 
+// Specular materials: f0 r, g, b in [0, 1] and the exponent finite and >= 0, per vertex.
+Status checkSpecularPayload(std::span<const std::uint8_t> payload, const Entry& e) {
+  const std::size_t count = payload.size() / 16;
+  for (std::size_t v = 0; v < count; ++v) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      const float x = floatFromBits(readLe32(payload.data() + 16 * v + 4 * k));
+      const bool ok = k < 3 ? (x >= 0.0f && x <= 1.0f) : (std::isfinite(x) && x >= 0.0f);  // NaN fails both
+      if (!ok) {
+        return corrupt(sectionLabel(e) + ": vertex " + num(v) + (k < 3 ? " f0 " + num(k) + " is " + std::to_string(x) + ", outside [0, 1]"
+                                                                        : " exponent is " + std::to_string(x) + ", not finite and >= 0"));
+      }
+    }
+  }
+  return Status::ok();
+}
+
 Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::uint32_t vertexCount) {
   const std::size_t count = payload.size() / 4;
   const std::uint8_t* b = payload.data();
@@ -437,12 +514,27 @@ Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::
 // An encoded transfer section's blob: its header must describe the asset's pass, and it must
 // decode in full (every part's checksum and value). `decoded` (may be null) receives the floats.
 // `cpca` (may be null): decode the CPCA parts unexpanded instead (the blob must be CPCA).
+// For a matrix section `lighting` gives the packing its blob must have; `cpcaMatrix` (may be
+// null) decodes the matrix CPCA parts unexpanded instead.
 Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& e, const Parsed& p, int bands,
-                            std::vector<float>* decoded, int* bandsDecoded, CpcaTransfer* cpca = nullptr) {
+                            std::vector<float>* decoded, int* bandsDecoded, CpcaTransfer* cpca = nullptr,
+                            const LightingInfo* lighting = nullptr, CpcaMatrixTransfer* cpcaMatrix = nullptr) {
   TransferBlobInfo info;
   if (Status s = readTransferBlobInfo(payload, &info); !s.isOk()) {
     return Status::error(s.code() == StatusCode::kTruncated ? StatusCode::kTruncated : StatusCode::kCorrupt,
                          sectionLabel(e) + ": " + s.message());
+  }
+  const bool matrix = isMatrixType(e.type);
+  if (info.matrix != matrix) {
+    return corrupt(sectionLabel(e) + ": its blob holds " + (info.matrix ? "matrices" : "vectors") + ", the section " +
+                   (matrix ? "matrices" : "vectors"));
+  }
+  if (matrix) {
+    const MatrixPacking packing = matrixPackingFor(static_cast<TransferKind>(e.arg0), lighting != nullptr ? lighting->model : LightingModel::kDistant);
+    if (info.packing != packing) {
+      return corrupt(sectionLabel(e) + ": its blob is " + matrixPackingName(info.packing) + ", the pass needs " +
+                     matrixPackingName(packing) + " packing");
+    }
   }
   if (info.order != static_cast<int>(p.order) || info.channels != static_cast<int>(e.arg1) ||
       info.vertexCount != p.vertexCount) {
@@ -458,8 +550,13 @@ Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& 
   }
   std::vector<float> scratch;
   std::vector<float>* out = decoded != nullptr ? decoded : &scratch;
-  if (Status s = cpca != nullptr ? decodeCpcaTransfer(payload, want, cpca) : decodeTransfer(payload, want, out); !s.isOk()) {
-    if (cpca != nullptr && s.code() == StatusCode::kInvalidArgument) return Status::error(s.code(), sectionLabel(e) + ": " + s.message());
+  const bool structured = cpca != nullptr || cpcaMatrix != nullptr;
+  Status decodedStatus = cpcaMatrix != nullptr ? decodeCpcaMatrixTransfer(payload, want, cpcaMatrix)
+                         : cpca != nullptr     ? decodeCpcaTransfer(payload, want, cpca)
+                         : matrix              ? decodeTransferMatrix(payload, want, out)
+                                               : decodeTransfer(payload, want, out);
+  if (Status s = decodedStatus; !s.isOk()) {
+    if (structured && s.code() == StatusCode::kInvalidArgument) return Status::error(s.code(), sectionLabel(e) + ": " + s.message());
     return Status::error(s.code() == StatusCode::kChecksumMismatch ? s.code() : StatusCode::kCorrupt,
                          sectionLabel(e) + ": " + s.message());
   }
@@ -478,6 +575,12 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
   for (const Entry& e : p->entries) {
     if (Status s = checkSectionCrc(bytes, e); !s.isOk()) return s;
   }
+  // The lighting first: matrix sections' packing depends on its model.
+  if (p->lighting >= 0) {
+    const Entry& light = p->entries[static_cast<std::size_t>(p->lighting)];
+    if (Status s = parseLighting(payloadOf(bytes, light), light, &m->lighting); !s.isOk()) return s;
+  }
+  if (Status s = checkMatrixPackings(*p, m->lighting); !s.isOk()) return s;
   for (const Entry& e : p->entries) {
     const auto payload = payloadOf(bytes, e);
     Status s;
@@ -485,16 +588,19 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypePositions:
       case kTypeNormals:
       case kTypeAlbedo: s = checkFloats(payload, e); break;
-      case kTypeTransfer: s = checkTransferFloats(payload, e); break;
+      case kTypeSpecular: s = checkSpecularPayload(payload, e); break;
+      case kTypeTransfer:
+      case kTypeMatrixTransfer: s = checkTransferFloats(payload, e); break;
       case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
       case kTypeMetadata: s = parseMetadata(payload, e, m); break;
-      case kTypeLighting: s = parseLighting(payload, e, &m->lighting); break;
-      case kTypeEncodedTransfer: {
+      case kTypeLighting: break;  // parsed above
+      case kTypeEncodedTransfer:
+      case kTypeEncodedMatrixTransfer: {
         const std::size_t slot = static_cast<std::size_t>(
             std::find(p->transfer.begin(), p->transfer.end(), static_cast<int>(e.index)) - p->transfer.begin());
         if (payload.size() != e.size) return corrupt(sectionLabel(e) + ": size mismatch");
         s = checkEncodedTransfer(payload, e, *p, static_cast<int>(p->order),
-                                 decoded != nullptr ? &(*decoded)[slot] : nullptr, nullptr);
+                                 decoded != nullptr ? &(*decoded)[slot] : nullptr, nullptr, nullptr, &m->lighting);
         // The whole section is here: its blob must be exactly the section.
         if (s.isOk()) {
           TransferBlobInfo info;
@@ -524,7 +630,8 @@ void fillSummary(const Parsed& p, Metadata&& m, AssetSummary* out) {
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
     s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2),
-                        e.type == kTypeEncodedTransfer, e.size, e.index});
+                        isEncodedType(e.type), e.size, e.index,
+                        isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector});
   }
   s.samples = m.samples;
   s.seed = m.seed;
@@ -560,6 +667,16 @@ void readTriples(std::span<const std::uint8_t> payload, std::vector<T>* out) {
       readFloats(payload.subspan(12 * i, 12), f);
       std::memcpy(&(*out)[i], f, sizeof f);
     }
+  }
+}
+
+void readSpecular(std::span<const std::uint8_t> payload, std::vector<SpecularMaterial>* out) {
+  out->resize(payload.size() / 16);
+  for (std::size_t v = 0; v < out->size(); ++v) {
+    float f[4];
+    readFloats(payload.subspan(16 * v, 16), f);
+    (*out)[v].f0 = {f[0], f[1], f[2]};
+    (*out)[v].exponent = f[3];
   }
 }
 
@@ -659,6 +776,7 @@ Status peekAssetHeader(std::span<const std::uint8_t> bytes, AssetSummary* out) {
     if (Status s = inPrefix(light, "lighting"); !s.isOk()) return s;
     if (Status s = parseLighting(payloadOf(bytes, light), light, &m.lighting); !s.isOk()) return s;
   }
+  if (Status s = checkMatrixPackings(p, m.lighting); !s.isOk()) return s;
   fillSummary(p, std::move(m), out);
   return Status::ok();
 }
@@ -675,7 +793,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
   if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAsset: out is null");
   Parsed p;
   Metadata m;
-  std::vector<std::vector<float>> decoded(3);  // per transfer slot (one per kind), encoded ones only
+  std::vector<std::vector<float>> decoded(6);  // per transfer slot (one per kind and form), encoded ones only
   if (Status s = validateAll(bytes, &p, &m, &decoded); !s.isOk()) return s;
   BakedAsset a;
   a.shOrder = static_cast<int>(p.order);
@@ -698,7 +816,8 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     pass.kind = static_cast<TransferKind>(e.arg0);
     pass.channels = static_cast<int>(e.arg1);
     pass.bounces = static_cast<int>(e.arg2);
-    if (e.type == kTypeEncodedTransfer) {
+    pass.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
+    if (isEncodedType(e.type)) {
       const std::size_t slot = a.passes.size();
       pass.coeffs = std::move(decoded[slot]);
       const auto blob = payload(t);
@@ -709,6 +828,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     }
     a.passes.push_back(std::move(pass));
   }
+  if (p.specular >= 0) readSpecular(payload(p.specular), &a.specular);
   a.samples = m.samples;
   a.seed = m.seed;
   a.sampling = std::move(m.sampling);
@@ -782,7 +902,20 @@ TransferPass passHeader(const Entry& e) {
   t.kind = static_cast<TransferKind>(e.arg0);
   t.channels = static_cast<int>(e.arg1);
   t.bounces = static_cast<int>(e.arg2);
+  t.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
   return t;
+}
+
+// The lighting a matrix pass's packing depends on: the lighting section (which must have
+// arrived) or distant when the file has none; then the float32 matrix sizes against it.
+Status progressiveLighting(std::span<const std::uint8_t> file, const Parsed& p, LightingInfo* out) {
+  *out = LightingInfo{};
+  if (p.lighting >= 0) {
+    const Entry& e = p.entries[static_cast<std::size_t>(p.lighting)];
+    if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
+    if (Status s = parseLighting(payloadOf(file, e), e, out); !s.isOk()) return s;
+  }
+  return checkMatrixPackings(p, *out);
 }
 
 }  // namespace
@@ -796,10 +929,15 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
   const auto payload = payloadOf(file, e);
   TransferPass t = passHeader(e);
   int decodedBands = static_cast<int>(p.order);
-  if (e.type == kTypeEncodedTransfer) {
+  LightingInfo lighting;
+  if (isMatrixType(e.type)) {
+    if (Status s = progressiveLighting(file, p, &lighting); !s.isOk()) return s;
+  }
+  if (isEncodedType(e.type)) {
     // The blob's own header and part checksums protect a prefix; the section checksum
-    // needs the whole section, which a progressive client does not have yet.
-    if (Status s = checkEncodedTransfer(payload, e, p, bands, &t.coeffs, &decodedBands); !s.isOk()) return s;
+    // needs the whole section, which a progressive client does not have yet. A matrix
+    // pass's prefix holds the order-`bands` leading blocks (the packing's prefix rule).
+    if (Status s = checkEncodedTransfer(payload, e, p, bands, &t.coeffs, &decodedBands, nullptr, &lighting); !s.isOk()) return s;
   } else {
     if (bands != 0 && bands != static_cast<int>(p.order)) {
       // A float32 section is coefficient-interleaved: it cannot be cut into bands.
@@ -821,12 +959,58 @@ Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int ban
   const Entry* entry = nullptr;
   if (Status s = locatePass(file, pass, bands, "decodeAssetPassCpca", &p, &entry); !s.isOk()) return s;
   if (entry->type != kTypeEncodedTransfer) {
-    return Status::error(StatusCode::kInvalidArgument, sectionLabel(*entry) + " is float32, not CPCA");
+    return Status::error(StatusCode::kInvalidArgument,
+                         sectionLabel(*entry) + (entry->type == kTypeEncodedMatrixTransfer ? " holds matrices: use decodeAssetPassCpcaMatrix"
+                                                                                          : " is float32, not CPCA"));
   }
   CpcaTransfer cpca;
   if (Status s = checkEncodedTransfer(payloadOf(file, *entry), *entry, p, bands, nullptr, nullptr, &cpca); !s.isOk()) return s;
   *info = passHeader(*entry);
   *out = std::move(cpca);
+  return Status::ok();
+}
+
+}  // namespace prt
+
+namespace prt {
+
+Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, int bands, CpcaMatrixTransfer* out,
+                                 TransferPass* info) {
+  if (out == nullptr || info == nullptr) {
+    return Status::error(StatusCode::kInvalidArgument, "decodeAssetPassCpcaMatrix: out or info is null");
+  }
+  Parsed p;
+  const Entry* entry = nullptr;
+  if (Status s = locatePass(file, pass, bands, "decodeAssetPassCpcaMatrix", &p, &entry); !s.isOk()) return s;
+  if (entry->type != kTypeEncodedMatrixTransfer) {
+    return Status::error(StatusCode::kInvalidArgument, sectionLabel(*entry) + " is not an encoded matrix pass");
+  }
+  LightingInfo lighting;
+  if (Status s = progressiveLighting(file, p, &lighting); !s.isOk()) return s;
+  CpcaMatrixTransfer cpca;
+  if (Status s = checkEncodedTransfer(payloadOf(file, *entry), *entry, p, bands, nullptr, nullptr, nullptr, &lighting, &cpca);
+      !s.isOk()) {
+    return s;
+  }
+  *info = passHeader(*entry);
+  *out = std::move(cpca);
+  return Status::ok();
+}
+
+Status decodeAssetSpecular(std::span<const std::uint8_t> file, std::vector<SpecularMaterial>* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetSpecular: out is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  std::vector<SpecularMaterial> specular;
+  if (p.specular >= 0) {
+    const Entry& e = p.entries[static_cast<std::size_t>(p.specular)];
+    if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
+    if (Status s = checkSpecularPayload(payloadOf(file, e), e); !s.isOk()) return s;
+    readSpecular(payloadOf(file, e), &specular);
+  }
+  *out = std::move(specular);
   return Status::ok();
 }
 

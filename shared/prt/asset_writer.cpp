@@ -59,6 +59,40 @@ Status checkTriples(const std::vector<T>& v, const char* what) {
   return Status::ok();
 }
 
+// One material per vertex exactly when a matrix pass needs it (prt/asset.h).
+Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyMatrix, std::size_t vertexCount) {
+  if (!anyMatrix) {
+    if (specular.empty()) return Status::ok();
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(specular.size()) +
+                                                           " specular materials but no matrix pass; they are kept only with one");
+  }
+  if (specular.size() != vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(specular.size()) + " specular materials for " +
+                                                        std::to_string(vertexCount) + " vertices; a matrix pass needs one per vertex");
+  }
+  for (std::size_t i = 0; i < specular.size(); ++i) {
+    const SpecularMaterial& m = specular[i];
+    const float f0[3] = {m.f0.r, m.f0.g, m.f0.b};
+    for (float f : f0) {
+      if (!std::isfinite(f)) {
+        return Status::error(StatusCode::kNotFinite, "specular material " + std::to_string(i) + " has a non-finite f0");
+      }
+      if (f < 0.0f || f > 1.0f) {
+        return Status::error(StatusCode::kInvalidArgument, "specular material " + std::to_string(i) + " has f0 " +
+                                                               std::to_string(f) + ", outside [0, 1]");
+      }
+    }
+    if (!std::isfinite(m.exponent)) {
+      return Status::error(StatusCode::kNotFinite, "specular material " + std::to_string(i) + " has a non-finite exponent");
+    }
+    if (m.exponent < 0.0f) {
+      return Status::error(StatusCode::kInvalidArgument, "specular material " + std::to_string(i) + " has exponent " +
+                                                             std::to_string(m.exponent) + "; it must be >= 0");
+    }
+  }
+  return Status::ok();
+}
+
 bool isKnownKind(TransferKind kind) { return static_cast<std::uint32_t>(kind) <= 2; }
 
 // One section as laid out: table entry fields plus where its payload comes from.
@@ -82,14 +116,6 @@ Status checkAsset(const BakedAsset& asset) {
     return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(vertexCount) +
                                                            " vertices; 1 to " + std::to_string(kMaxAssetVertices) + " are allowed");
   }
-  for (const TransferPass& pass : asset.passes) {
-    if (pass.form != TransferForm::kVector) {
-      return Status::error(StatusCode::kInvalidArgument, "asset: matrix passes are not written yet");
-    }
-  }
-  if (!asset.specular.empty()) {
-    return Status::error(StatusCode::kInvalidArgument, "asset: specular materials are not written yet");
-  }
   if (asset.normals.size() != vertexCount || asset.albedo.size() != vertexCount) {
     return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(vertexCount) + " positions, " +
                                                         std::to_string(asset.normals.size()) + " normals and " +
@@ -110,10 +136,11 @@ Status checkAsset(const BakedAsset& asset) {
   if (Status s = checkTriples(asset.normals, "normal"); !s.isOk()) return s;
   if (Status s = checkTriples(asset.albedo, "albedo"); !s.isOk()) return s;
 
-  if (asset.passes.empty() || asset.passes.size() > 3) {
+  if (asset.passes.empty() || asset.passes.size() > 6) {
     return Status::error(StatusCode::kInvalidArgument,
-                         "asset has " + std::to_string(asset.passes.size()) + " transfer passes; 1 to 3 are needed");
+                         "asset has " + std::to_string(asset.passes.size()) + " transfer passes; 1 to 6 are needed");
   }
+  bool anyMatrix = false;
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
   for (std::size_t p = 0; p < asset.passes.size(); ++p) {
     const TransferPass& pass = asset.passes[p];
@@ -122,17 +149,38 @@ Status checkAsset(const BakedAsset& asset) {
       return Status::error(StatusCode::kInvalidArgument,
                            label + " has unknown kind " + std::to_string(static_cast<std::uint32_t>(pass.kind)));
     }
-    const std::string named = label + " (" + transferKindName(pass.kind) + ")";
+    if (pass.form != TransferForm::kVector && pass.form != TransferForm::kMatrix) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           label + " has unknown form " + std::to_string(static_cast<std::uint32_t>(pass.form)));
+    }
+    const bool matrix = pass.form == TransferForm::kMatrix;
+    anyMatrix = anyMatrix || matrix;
+    const std::string named = label + " (" + (matrix ? "matrix " : "") + transferKindName(pass.kind) + ")";
     for (std::size_t q = 0; q < p; ++q) {
-      if (asset.passes[q].kind == pass.kind) {
+      if (asset.passes[q].kind == pass.kind && asset.passes[q].form == pass.form) {
         return Status::error(StatusCode::kInvalidArgument,
-                             named + " repeats the kind of pass " + std::to_string(q) + "; at most one per kind");
+                             named + " repeats the kind of pass " + std::to_string(q) + "; at most one per kind and form");
       }
     }
     if (pass.channels != 1 && pass.channels != 3) {
       return Status::error(StatusCode::kInvalidArgument,
                            named + " has " + std::to_string(pass.channels) + " channels; 1 or 3 are allowed");
     }
+    if (matrix) {
+      // Visibility has no colour; bounces carry the senders' colours (prt/asset.h).
+      const int wanted = pass.kind == TransferKind::kInterreflected ? 3 : 1;
+      if (pass.channels != wanted) {
+        return Status::error(StatusCode::kInvalidArgument, named + " has " + std::to_string(pass.channels) + " channels; a " +
+                                                               transferKindName(pass.kind) + " matrix pass has " +
+                                                               std::to_string(wanted));
+      }
+      if (asset.shOrder > kMaxMatrixOrder) {
+        return Status::error(StatusCode::kInvalidArgument, named + ": matrix passes need order <= " +
+                                                               std::to_string(kMaxMatrixOrder) + ", the asset is order " +
+                                                               std::to_string(asset.shOrder));
+      }
+    }
+    const MatrixPacking packing = matrixPackingFor(pass.kind, asset.lighting.model);
     const bool interreflected = pass.kind == TransferKind::kInterreflected;
     if (interreflected ? (pass.bounces < 0 || pass.bounces > static_cast<int>(kMaxAssetBounces)) : pass.bounces != 0) {
       return Status::error(StatusCode::kInvalidArgument,
@@ -147,6 +195,11 @@ Status checkAsset(const BakedAsset& asset) {
       if (Status s = readTransferBlobInfo(pass.encoded, &info); !s.isOk()) {
         return Status::error(StatusCode::kInvalidArgument, named + " encoded blob: " + s.message());
       }
+      if (info.matrix != matrix || (matrix && info.packing != packing)) {
+        return Status::error(StatusCode::kInvalidArgument,
+                             named + " encoded blob holds " + (info.matrix ? std::string(matrixPackingName(info.packing)) + " matrices" : "vectors") +
+                                 "; the pass needs " + (matrix ? std::string(matrixPackingName(packing)) + " matrices" : "vectors"));
+      }
       if (info.order != asset.shOrder || info.channels != pass.channels || info.vertexCount != vertexCount ||
           info.blobSize != pass.encoded.size()) {
         return Status::error(StatusCode::kSizeMismatch,
@@ -159,10 +212,14 @@ Status checkAsset(const BakedAsset& asset) {
       }
       continue;
     }
-    const std::uint64_t expected = static_cast<std::uint64_t>(vertexCount) * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel;
+    const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, packing) : coeffsPerChannel;
+    const std::uint64_t expected = static_cast<std::uint64_t>(vertexCount) * static_cast<std::uint64_t>(pass.channels) * perChannel;
     if (pass.coeffs.size() != expected) {
-      return Status::error(StatusCode::kSizeMismatch, named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " +
-                                                          std::to_string(expected) + " expected (vertices * channels * order^2)");
+      return Status::error(StatusCode::kSizeMismatch,
+                           named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " + std::to_string(expected) +
+                               (matrix ? " expected (vertices * channels * " + std::to_string(perChannel) + " " +
+                                             matrixPackingName(packing) + " packed entries)"
+                                       : std::string(" expected (vertices * channels * order^2)")));
     }
     for (std::size_t i = 0; i < pass.coeffs.size(); ++i) {
       if (!std::isfinite(pass.coeffs[i])) {
@@ -174,6 +231,7 @@ Status checkAsset(const BakedAsset& asset) {
       }
     }
   }
+  if (Status st = checkSpecular(asset.specular, anyMatrix, vertexCount); !st.isOk()) return st;
   if (!isValidAssetName(asset.name)) {
     return Status::error(StatusCode::kInvalidArgument,
                          "asset name must be at most " + std::to_string(kMaxAssetNameBytes) +
@@ -205,16 +263,26 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
   sections.push_back({AssetSectionType::kNormals, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
   sections.push_back({AssetSectionType::kIndices, AssetElementFormat::kUint32, 0, 0, 0, triangleCount * 12, 0, nullptr});
   sections.push_back({AssetSectionType::kAlbedo, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
+  // The specular materials before the passes: a progressive client needs them with the
+  // first glossy shell. Only glossy assets have them, so other files keep their layout.
+  if (!asset.specular.empty()) {
+    sections.push_back({AssetSectionType::kSpecular, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 16, 0, nullptr});
+  }
   for (const TransferPass& pass : asset.passes) {
+    const bool matrix = pass.form == TransferForm::kMatrix;
     if (!pass.encoded.empty()) {
-      sections.push_back({AssetSectionType::kEncodedTransfer, AssetElementFormat::kBytes, static_cast<std::uint32_t>(pass.kind),
+      sections.push_back({matrix ? AssetSectionType::kEncodedMatrixTransfer : AssetSectionType::kEncodedTransfer,
+                          AssetElementFormat::kBytes, static_cast<std::uint32_t>(pass.kind),
                           static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
                           pass.encoded.size(), 0, &pass});
       continue;
     }
-    sections.push_back({AssetSectionType::kTransfer, AssetElementFormat::kFloat32, static_cast<std::uint32_t>(pass.kind),
-                        static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
-                        vertexCount * static_cast<std::uint64_t>(pass.channels) * coeffsPerChannel * 4, 0, &pass});
+    const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, matrixPackingFor(pass.kind, asset.lighting.model))
+                                            : coeffsPerChannel;
+    sections.push_back({matrix ? AssetSectionType::kMatrixTransfer : AssetSectionType::kTransfer, AssetElementFormat::kFloat32,
+                        static_cast<std::uint32_t>(pass.kind), static_cast<std::uint32_t>(pass.channels),
+                        static_cast<std::uint32_t>(pass.bounces),
+                        vertexCount * static_cast<std::uint64_t>(pass.channels) * perChannel * 4, 0, &pass});
   }
 
   const std::uint64_t tableEnd = kAssetHeaderSize + sections.size() * kAssetSectionEntrySize;
@@ -264,13 +332,17 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
           for (std::size_t k = 0; k < asset.indices.size(); ++k) writeLe32(p + 4 * k, asset.indices[k]);
         }
         break;
-      case AssetSectionType::kTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
-      case AssetSectionType::kEncodedTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
-      // Not planned yet: checkAsset refuses matrix passes and specular materials until the
-      // glossy sections are written (docs/asset-format.md, 1.3).
-      case AssetSectionType::kMatrixTransfer:
-      case AssetSectionType::kEncodedMatrixTransfer:
-      case AssetSectionType::kSpecular: break;
+      case AssetSectionType::kTransfer:
+      case AssetSectionType::kMatrixTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
+      case AssetSectionType::kEncodedTransfer:
+      case AssetSectionType::kEncodedMatrixTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
+      case AssetSectionType::kSpecular:
+        for (std::size_t v = 0; v < asset.specular.size(); ++v) {
+          const SpecularMaterial& m = asset.specular[v];
+          const float f[4] = {m.f0.r, m.f0.g, m.f0.b, m.exponent};
+          putFloats(p + 16 * v, f, 4);
+        }
+        break;
     }
     std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
     writeLe32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
@@ -285,11 +357,9 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
 
   std::memcpy(base + L::kMagic, kAssetMagic, 4);
   writeLe16(base + L::kVersionMajor, kAssetVersionMajor);
-  // The lowest minor version that has every section written: a file without encoded
-  // transfer stays readable, and byte-identical, for 1.1 readers.
-  bool anyEncoded = false;
-  for (const TransferPass& pass : asset.passes) anyEncoded = anyEncoded || !pass.encoded.empty();
-  writeLe16(base + L::kVersionMinor, anyEncoded ? kAssetVersionMinor : std::uint16_t{1});
+  // Always the current minor version (1.3): older readers skip the section types they do
+  // not know, so a glossy file still shows them its diffuse passes.
+  writeLe16(base + L::kVersionMinor, kAssetVersionMinor);
   writeLe32(base + L::kFlags, 0);
   writeLe32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));
   writeLe32(base + L::kVertexCount, static_cast<std::uint32_t>(vertexCount));

@@ -30,7 +30,8 @@ struct SpecularMaterial {
 };
 
 // g_l(s) for l = 0..order-1 into out[0..order) (out.size() >= order). s finite, >= 0.
-// g_0 = 1 for every s; s = 0 is the cosine lobe about R. Safe on untrusted input.
+// g_0 = 1 for every s; s = 0 is the uniform hemisphere about R, s = 1 the cosine lobe.
+// Safe on untrusted input.
 Status phongLobeBandScales(int order, double s, std::span<double> out);
 
 // Unchecked float variant for trusted fast paths (order 1..16, s >= 0 finite): out[l] = g_l(s).

@@ -9,13 +9,27 @@
 namespace prt {
 namespace {
 
-// out = M v over the leading `rows` rows and columns, accumulated in Acc.
+// out = M v over the leading `rows` rows and columns, accumulated in Acc, walking the packed
+// array in storage order (prt/transfer_matrix.h) rather than indexing entry by entry.
 template <typename Acc>
 void applyPacked(const float* packed, MatrixPacking packing, std::size_t rows, const Acc* v, Acc* out) {
-  for (std::size_t i = 0; i < rows; ++i) {
-    Acc acc = 0;
-    for (std::size_t j = 0; j < rows; ++j) acc += static_cast<Acc>(packed[matrixEntryIndex(i, j, packing)]) * v[j];
-    out[i] = acc;
+  for (std::size_t i = 0; i < rows; ++i) out[i] = 0;
+  if (packing == MatrixPacking::kSymmetric) {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const float* row = packed + i * (i + 1) / 2;
+      for (std::size_t j = 0; j < i; ++j) {
+        out[i] += static_cast<Acc>(row[j]) * v[j];
+        out[j] += static_cast<Acc>(row[j]) * v[i];
+      }
+      out[i] += static_cast<Acc>(row[i]) * v[i];
+    }
+    return;
+  }
+  for (std::size_t k = 0; k < rows; ++k) {
+    const float* shell = packed + k * k;
+    for (std::size_t j = 0; j < k; ++j) out[k] += static_cast<Acc>(shell[j]) * v[j];
+    for (std::size_t i = 0; i < k; ++i) out[i] += static_cast<Acc>(shell[k + i]) * v[k];
+    out[k] += static_cast<Acc>(shell[2 * k]) * v[k];
   }
 }
 

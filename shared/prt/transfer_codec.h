@@ -95,11 +95,12 @@ Status encodeTransfer(std::span<const float> transfer, int order, int channels, 
 inline constexpr std::uint32_t kMaxTransferVertices = 1u << 28;
 inline constexpr std::uint32_t kMaxTransferClusters = 65536;
 inline constexpr std::uint16_t kTransferCodecVersionMajor = 1;
-inline constexpr std::uint16_t kTransferCodecVersionMinor = 0;
+inline constexpr std::uint16_t kTransferCodecVersionMinor = 1;  // 1: matrix layout (header bytes 36..39); vector blobs are still written as 1.0
 
 enum class TransferPartType : std::uint16_t {
   kClusters = 1,  // CPCA: the cluster id of every vertex
-  kBand = 2,      // one SH band of every vertex
+  kBand = 2,      // one SH band of every vertex (matrix layout: one shell)
+  kWeights = 3,   // matrix CPCA: the step per cluster and the weights of every vertex (since 1.1)
 };
 
 struct TransferPartInfo {

@@ -10,3 +10,10 @@ add_executable(prt_local_lighting_tests ${CMAKE_CURRENT_LIST_DIR}/local_lighting
 target_include_directories(prt_local_lighting_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
 target_link_libraries(prt_local_lighting_tests PRIVATE prt_transfer GTest::gtest_main)
 add_test(NAME local_lighting_tests COMMAND prt_local_lighting_tests)
+
+# Glossy transfer matrices (docs/glossy.md): closed forms, exact quadratures and the
+# brute-force glossy reference.
+add_executable(prt_glossy_bake_tests ${CMAKE_CURRENT_LIST_DIR}/glossy_test.cpp)
+target_include_directories(prt_glossy_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_glossy_bake_tests PRIVATE prt_transfer prt_test_support GTest::gtest_main)
+add_test(NAME glossy_bake_tests COMMAND prt_glossy_bake_tests)

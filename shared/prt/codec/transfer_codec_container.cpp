@@ -45,6 +45,26 @@ std::uint64_t cpcaBandPartBytes(std::uint32_t clusters, int dims, int vectors, s
   return 4 + 4 * k + 4 * k * d + 2 * k * n * d + streamGroupBytes(n, vertices, weightBytes);
 }
 
+std::uint64_t shellEntries(int band, MatrixPacking packing) {
+  return matrixEntryCount(band + 1, packing) - matrixEntryCount(band, packing);
+}
+
+std::uint64_t matrixShellPartBytes(TransferEncoding encoding, int channels, int band, MatrixPacking packing,
+                                   std::uint64_t vertices) {
+  const std::uint64_t streams = static_cast<std::uint64_t>(channels) * shellEntries(band, packing);
+  const bool quantised = encoding == TransferEncoding::kQuant16 || encoding == TransferEncoding::kQuant8;
+  return (quantised ? 4 * streams : 0) + streamGroupBytes(streams, vertices, valueBytes(encoding));
+}
+
+std::uint64_t matrixWeightsPartBytes(std::uint32_t clusters, int vectors, std::uint64_t vertices, int weightBytes) {
+  return 4 * std::uint64_t{clusters} + streamGroupBytes(static_cast<std::uint64_t>(vectors), vertices, weightBytes);
+}
+
+std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing) {
+  const std::uint64_t perMatrix = static_cast<std::uint64_t>(channels) * shellEntries(band, packing);
+  return std::uint64_t{clusters} * perMatrix * (4 + 2 * static_cast<std::uint64_t>(vectors));
+}
+
 void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::vector<std::uint8_t>* out) {
   const std::size_t tableEnd = kHeaderBytes + kPartEntryBytes * parts.size();
   std::size_t total = tableEnd;
@@ -54,7 +74,8 @@ void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::
   blob.reserve(total);
   for (std::uint8_t m : kMagic) putU8(blob, m);
   putU16(blob, kTransferCodecVersionMajor);
-  putU16(blob, kTransferCodecVersionMinor);
+  // Vector blobs stay version 1.0, byte for byte: only matrix blobs need 1.1's fields.
+  putU16(blob, h.matrix ? kTransferCodecVersionMinor : std::uint16_t{0});
   putU8(blob, static_cast<std::uint8_t>(h.encoding));
   putU8(blob, static_cast<std::uint8_t>(h.weightBits));
   putU8(blob, static_cast<std::uint8_t>(h.order));
@@ -64,7 +85,10 @@ void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::
   putU32(blob, static_cast<std::uint32_t>(parts.size()));
   putU64(blob, total);
   putU32(blob, 0);  // table CRC, below
-  putU64(blob, 0);  // reserved
+  putU8(blob, h.matrix ? 1 : 0);
+  putU8(blob, h.matrix ? static_cast<std::uint8_t>(h.packing) : 0);
+  putU16(blob, static_cast<std::uint16_t>(h.vectors));
+  putU32(blob, 0);  // reserved
   putU32(blob, 0);  // header CRC, below
 
   std::uint64_t offset = tableEnd;
@@ -97,7 +121,9 @@ std::string num(std::uint64_t v) { return std::to_string(v); }
 Status corrupt(std::string message) { return Status::error(StatusCode::kCorrupt, std::move(message)); }
 
 std::string partLabel(std::size_t index, const TransferPartInfo& p) {
-  return "part " + num(index) + (p.type == TransferPartType::kClusters ? " (clusters)" : " (band " + num(static_cast<std::uint64_t>(p.band)) + ")");
+  return "part " + num(index) + (p.type == TransferPartType::kClusters ? " (clusters)"
+                                 : p.type == TransferPartType::kWeights ? " (weights)"
+                                                                        : " (band " + num(static_cast<std::uint64_t>(p.band)) + ")");
 }
 
 // Magic, version, checksum and fields of the 48-byte header.
@@ -137,9 +163,29 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
     return corrupt("weight bits " + num(static_cast<std::uint64_t>(info->weightBits)) + " (expected " + (cpca ? "8 or 16" : "0") +
                    " for " + transferEncodingName(info->encoding) + ")");
   }
+  // In 1.0 bytes 36..43 were all reserved; 1.1 gave 36..39 a meaning.
+  if (info->versionMinor < 1) {
+    for (std::size_t i = layout::kLayout; i < layout::kReserved; ++i) {
+      if (b[i] != 0) return corrupt("reserved header byte " + num(i) + " is not zero (version 1.0)");
+    }
+  }
+  const std::uint8_t layoutByte = b[layout::kLayout], packingByte = b[layout::kPacking];
+  const std::uint16_t vectors = readLe16(b + layout::kVectors);
+  if (layoutByte > 1 || (layoutByte == 1 && info->versionMinor < 1)) {
+    return corrupt("layout " + num(layoutByte) + " (expected 0 for vector transfer, or 1 for matrix transfer since version 1.1)");
+  }
+  info->matrix = layoutByte == 1;
+  if (info->matrix ? (packingByte != static_cast<std::uint8_t>(MatrixPacking::kSymmetric) &&
+                      packingByte != static_cast<std::uint8_t>(MatrixPacking::kFull))
+                   : packingByte != 0) {
+    return corrupt("matrix packing " + num(packingByte) + (info->matrix ? " (expected 1 symmetric or 2 full)" : " (expected 0 for vector transfer)"));
+  }
+  info->packing = info->matrix ? static_cast<MatrixPacking>(packingByte) : MatrixPacking{};
   info->order = b[layout::kOrder];
-  if (info->order < kMinShOrder || info->order > kMaxShOrder) {
-    return corrupt("order " + num(static_cast<std::uint64_t>(info->order)) + " is outside 1.." + num(kMaxShOrder));
+  const int maxOrder = info->matrix ? kMaxMatrixOrder : kMaxShOrder;
+  if (info->order < kMinShOrder || info->order > maxOrder) {
+    return corrupt("order " + num(static_cast<std::uint64_t>(info->order)) + " is outside 1.." + num(static_cast<std::uint64_t>(maxOrder)) +
+                   (info->matrix ? " for matrix transfer" : ""));
   }
   info->channels = b[layout::kChannels];
   if (info->channels != 1 && info->channels != 3) {
@@ -158,11 +204,18 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
   } else if (info->clusterCount != 0) {
     return corrupt("cluster count " + num(info->clusterCount) + " (expected 0 for " + transferEncodingName(info->encoding) + ")");
   }
+  const std::uint64_t dims = info->matrix ? static_cast<std::uint64_t>(info->channels) * matrixEntryCount(info->order, info->packing) : 0;
+  if (info->matrix && cpca ? vectors > dims : vectors != 0) {
+    return corrupt("vector count " + num(vectors) + (info->matrix && cpca ? " exceeds the matrix's " + num(dims) + " values"
+                                                                          : " (expected 0 unless matrix CPCA)"));
+  }
+  info->vectors = vectors;
   *partCount = readLe32(b + layout::kPartCount);
-  const std::uint32_t expectedParts = static_cast<std::uint32_t>(info->order) + (cpca ? 1u : 0u);
+  const std::uint32_t expectedParts = static_cast<std::uint32_t>(info->order) + (cpca ? (info->matrix ? 2u : 1u) : 0u);
   if (*partCount != expectedParts) {
     return corrupt("part count " + num(*partCount) + " (expected " + num(expectedParts) + " for order " +
-                   num(static_cast<std::uint64_t>(info->order)) + (cpca ? " with clusters)" : ")"));
+                   num(static_cast<std::uint64_t>(info->order)) +
+                   (cpca ? (info->matrix ? " with clusters and weights)" : " with clusters)") : ")"));
   }
   for (std::size_t i = layout::kReserved; i < layout::kHeaderCrc; ++i) {
     if (b[i] != 0) return corrupt("reserved header byte " + num(i) + " is not zero");
@@ -208,11 +261,17 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
     TransferPartInfo& p = info.parts[i];
     const std::uint16_t type = readLe16(e + layout::kPartType), band = readLe16(e + layout::kPartBand);
     const bool clusters = cpca && i == 0;
-    const std::uint16_t wantType = static_cast<std::uint16_t>(clusters ? TransferPartType::kClusters : TransferPartType::kBand);
-    const std::uint32_t wantBand = clusters ? 0u : i - (cpca ? 1u : 0u);
+    const bool weights = cpca && info.matrix && i == 1;
+    const std::uint32_t leading = cpca ? (info.matrix ? 2u : 1u) : 0u;
+    const std::uint16_t wantType = static_cast<std::uint16_t>(clusters  ? TransferPartType::kClusters
+                                                              : weights ? TransferPartType::kWeights
+                                                                        : TransferPartType::kBand);
+    const std::uint32_t wantBand = clusters || weights ? 0u : i - leading;
     if (type != wantType || band != wantBand) {
       return corrupt("part " + num(i) + " is type " + num(type) + " band " + num(band) + ", expected " +
-                     (clusters ? std::string("the clusters part (type 1, band 0)") : "band " + num(wantBand) + " (type 2)"));
+                     (clusters  ? std::string("the clusters part (type 1, band 0)")
+                      : weights ? std::string("the weights part (type 3, band 0)")
+                                : "band " + num(wantBand) + " (type 2)"));
     }
     p.type = static_cast<TransferPartType>(type);
     p.band = band;
@@ -231,6 +290,11 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
     bool fixed = true;
     if (clusters) {
       want = clusterPartBytes(info.clusterCount, info.vertexCount);
+    } else if (weights) {
+      want = matrixWeightsPartBytes(info.clusterCount, info.vectors, info.vertexCount, info.weightBits / 8);
+    } else if (info.matrix) {
+      want = cpca ? matrixCpcaShellPartBytes(info.clusterCount, info.vectors, info.channels, p.band, info.packing)
+                  : matrixShellPartBytes(info.encoding, info.channels, p.band, info.packing, info.vertexCount);
     } else if (!cpca) {
       want = bandPartBytes(info.encoding, info.channels, p.band, info.vertexCount);
     } else {

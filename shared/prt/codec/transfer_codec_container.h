@@ -26,10 +26,13 @@ inline constexpr std::size_t kOrder = 10;        // u8, 1..16
 inline constexpr std::size_t kChannels = 11;     // u8, 1 or 3
 inline constexpr std::size_t kVertexCount = 12;  // u32
 inline constexpr std::size_t kClusterCount = 16; // u32: CPCA 1..min(V, 65536), else 0
-inline constexpr std::size_t kPartCount = 20;    // u32: order (+1 for CPCA)
+inline constexpr std::size_t kPartCount = 20;    // u32: order (+1 for CPCA, +2 for matrix CPCA)
 inline constexpr std::size_t kBlobSize = 24;     // u64
 inline constexpr std::size_t kTableCrc = 32;     // u32, CRC-32C of the part table
-inline constexpr std::size_t kReserved = 36;     // 8 bytes, zero
+inline constexpr std::size_t kLayout = 36;       // u8 (since 1.1): 0 vector transfer, 1 matrix transfer
+inline constexpr std::size_t kPacking = 37;      // u8 (since 1.1): matrix MatrixPacking (1 symmetric, 2 full), else 0
+inline constexpr std::size_t kVectors = 38;      // u16 (since 1.1): matrix CPCA basis matrices per cluster, else 0
+inline constexpr std::size_t kReserved = 40;     // 4 bytes, zero (36..43 were all reserved in 1.0)
 inline constexpr std::size_t kHeaderCrc = 44;    // u32, CRC-32C of header bytes 0..43
 
 inline constexpr std::size_t kPartType = 0;    // u16 TransferPartType
@@ -55,8 +58,24 @@ std::uint64_t clusterPartBytes(std::uint32_t clusters, std::uint64_t vertices);
 std::uint64_t cpcaBandPartBytes(std::uint32_t clusters, int dims, int vectors, std::uint64_t vertices,
                                 int weightBytes);
 
+// Matrix transfer (docs/transfer-codec.md "Matrices"): entries of shell b, the packed
+// entries from matrixEntryCount(b) to matrixEntryCount(b + 1).
+std::uint64_t shellEntries(int band, MatrixPacking packing);
+// Payload size of shell `band` of a non-CPCA matrix encoding: as a vector band with
+// channels * shellEntries streams.
+std::uint64_t matrixShellPartBytes(TransferEncoding encoding, int channels, int band, MatrixPacking packing,
+                                   std::uint64_t vertices);
+// Payload size of the matrix CPCA weights part: a step per cluster, `vectors` streams.
+std::uint64_t matrixWeightsPartBytes(std::uint32_t clusters, int vectors, std::uint64_t vertices, int weightBytes);
+// Payload size of matrix CPCA shell `band`: every cluster's mean (float32) and basis
+// matrices (binary16) restricted to that shell.
+std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing);
+
 struct BlobHeader {
   TransferEncoding encoding = TransferEncoding::kFloat32;
+  bool matrix = false;  // matrix layout: written as version 1.1 with packing and vectors
+  MatrixPacking packing = MatrixPacking::kFull;
+  int vectors = 0;
   int weightBits = 0;
   int order = 0;
   int channels = 0;

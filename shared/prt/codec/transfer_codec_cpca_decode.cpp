@@ -135,6 +135,9 @@ Status decodeCpcaTransfer(std::span<const std::uint8_t> bytes, int bands, CpcaTr
     return Status::error(StatusCode::kInvalidArgument,
                          std::string("the transfer blob is ") + transferEncodingName(info.encoding) + ", not CPCA");
   }
+  if (info.matrix) {
+    return Status::error(StatusCode::kInvalidArgument, "the transfer blob holds matrices: decode it with decodeCpcaMatrixTransfer");
+  }
   if (Status s = checkBandRequest(info, bands); !s.isOk()) return s;
   CpcaTransfer cpca;
   cpca.order = info.order;

@@ -83,6 +83,9 @@ Status decodeBand(std::span<const std::uint8_t> bytes, const TransferBlobInfo& i
 Status decodeTransfer(std::span<const std::uint8_t> bytes, int bands, std::span<float> out) {
   TransferBlobInfo info;
   if (Status s = readTransferBlobInfo(bytes, &info); !s.isOk()) return s;
+  if (info.matrix) {
+    return Status::error(StatusCode::kInvalidArgument, "the transfer blob holds matrices: decode it with decodeTransferMatrix");
+  }
   if (Status s = checkBandRequest(info, bands); !s.isOk()) return s;
   const std::uint64_t want = std::uint64_t{info.vertexCount} * static_cast<std::uint64_t>(info.channels * bands * bands);
   if (out.size() != want) {
@@ -103,6 +106,9 @@ Status decodeTransfer(std::span<const std::uint8_t> bytes, int bands, std::span<
 Status decodeTransfer(std::span<const std::uint8_t> bytes, int bands, std::vector<float>* out) {
   TransferBlobInfo info;
   if (Status s = readTransferBlobInfo(bytes, &info); !s.isOk()) return s;
+  if (info.matrix) {
+    return Status::error(StatusCode::kInvalidArgument, "the transfer blob holds matrices: decode it with decodeTransferMatrix");
+  }
   if (Status s = checkBandRequest(info, bands); !s.isOk()) return s;
   const std::uint64_t floats = std::uint64_t{info.vertexCount} * static_cast<std::uint64_t>(info.channels * bands * bands);
   if (floats > std::numeric_limits<std::size_t>::max() / sizeof(float)) {  // wasm: 32-bit size_t

@@ -10,7 +10,9 @@ namespace transfer_codec {
 
 std::string partName(std::size_t index, const TransferPartInfo& p) {
   return "part " + std::to_string(index) +
-         (p.type == TransferPartType::kClusters ? std::string(" (clusters)") : " (band " + std::to_string(p.band) + ")");
+         (p.type == TransferPartType::kClusters  ? std::string(" (clusters)")
+          : p.type == TransferPartType::kWeights ? std::string(" (weights)")
+                                                 : " (band " + std::to_string(p.band) + ")");
 }
 
 Status checkBandRequest(const TransferBlobInfo& info, int bands) {

@@ -1,0 +1,225 @@
+#include "baker/transfer/glossy_bake.h"
+
+#include <cblas.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <mutex>
+#include <string>
+
+#include "baker/transfer/parallel_for.h"
+#include "prt/glossy_lobe.h"
+#include "prt/sh_basis.h"
+
+// Declared by OpenBLAS's cblas.h too; repeated so that the build does not depend on which
+// cblas.h alternative (netlib or OpenBLAS) /usr/include points at.
+extern "C" void openblas_set_num_threads(int num_threads);
+
+namespace prt::bake {
+namespace {
+
+// Rows of one BLAS call: bounds the scratch (chunk x order^2 floats) for any sample count,
+// and is large enough that the call runs at the kernel's block rate.
+constexpr std::size_t kChunkRows = 512;
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// packedIndex[i * n2 + j] = matrixEntryIndex(i, j, packing).
+std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
+  std::vector<std::uint32_t> t(static_cast<std::size_t>(n2) * n2);
+  for (int i = 0; i < n2; ++i) {
+    for (int j = 0; j < n2; ++j) {
+      t[static_cast<std::size_t>(i) * n2 + j] = static_cast<std::uint32_t>(matrixEntryIndex(i, j, packing));
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+void useSingleThreadedBlas() { openblas_set_num_threads(1); }
+
+GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays)
+    : order_(order), n2_(shCoeffCount(order)) {
+  a_.resize(std::min(maxRays, kChunkRows) * static_cast<std::size_t>(n2_) + 1);
+  dense_.resize(static_cast<std::size_t>(n2_) * n2_);
+}
+
+void GlossyShadowedKernel::distant(const float* sampleMajor, const std::uint32_t* visible, std::size_t count,
+                                   float weight, float* packed, GlossyKernelStats* stats) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n2 = static_cast<std::size_t>(n2_);
+  std::fill(dense_.begin(), dense_.end(), 0.0f);
+  for (std::size_t r0 = 0; r0 < count; r0 += kChunkRows) {
+    const std::size_t kc = std::min(kChunkRows, count - r0);
+    for (std::size_t r = 0; r < kc; ++r) {
+      std::memcpy(&a_[r * n2], sampleMajor + static_cast<std::size_t>(visible[r0 + r]) * n2, n2 * sizeof(float));
+    }
+    // C = w A^T A + C, A = [ray][coefficient]: the lower triangle of the Gram matrix.
+    cblas_ssyrk(CblasRowMajor, CblasLower, CblasTrans, n2_, static_cast<int>(kc), weight, a_.data(), n2_, 1.0f,
+                dense_.data(), n2_);
+  }
+  for (std::size_t i = 0; i < n2; ++i) {
+    for (std::size_t j = 0; j <= i; ++j) packed[i * (i + 1) / 2 + j] = dense_[i * n2 + j];
+  }
+  stats->flops += static_cast<std::uint64_t>(count) * n2 * (n2 + 1);
+  stats->threadSeconds += secondsSince(t0);
+}
+
+void GlossyShadowedKernel::local(const float* sampleMajor, const std::uint32_t* sample, const float* rayWeight,
+                                 std::size_t count, const float* remapped, float* packed, GlossyKernelStats* stats) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n2 = static_cast<std::size_t>(n2_);
+  std::fill(dense_.begin(), dense_.end(), 0.0f);
+  for (std::size_t r0 = 0; r0 < count; r0 += kChunkRows) {
+    const std::size_t kc = std::min(kChunkRows, count - r0);
+    // A = [coefficient][ray] of weighted receiver directions y_i(w_r) w q_r.
+    for (std::size_t i = 0; i < n2; ++i) {
+      for (std::size_t r = 0; r < kc; ++r) {
+        a_[i * kc + r] = sampleMajor[static_cast<std::size_t>(sample[r0 + r]) * n2 + i] * rayWeight[r0 + r];
+      }
+    }
+    // C_ij += sum_r A_ir y_j(w'_r): rows receive, columns index the lighting on S.
+    cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, n2_, n2_, static_cast<int>(kc), 1.0f, a_.data(),
+                static_cast<int>(kc), remapped + r0, static_cast<int>(count), 1.0f, dense_.data(), n2_);
+  }
+  for (std::size_t i = 0; i < n2; ++i) {
+    for (std::size_t j = 0; j < n2; ++j) packed[matrixEntryIndex(i, j, MatrixPacking::kFull)] = dense_[i * n2 + j];
+  }
+  stats->flops += 2ull * count * n2 * n2;
+  stats->threadSeconds += secondsSince(t0);
+}
+
+PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene& scene = *job.scene;
+  const std::size_t vertexCount = scene.positions.size();
+  const int order = job.order;
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order)), row3 = 3 * n2, full = n2 * n2;
+  const std::size_t blockCount = job.blocks->size();
+  const std::vector<std::int32_t>& senderIndex = *job.senderIndex;
+  const bool firstBounce = job.bounce == 1;
+  const MatrixPacking prevPacking = firstBounce ? job.previousPacking : MatrixPacking::kFull;
+  const std::size_t prevStride = firstBounce ? matrixEntryCount(order, prevPacking) : 3 * full;
+  const std::vector<std::uint32_t> prevIndex = packedIndexTable(static_cast<int>(n2), prevPacking);
+  const std::vector<std::uint32_t> fullIndex = packedIndexTable(static_cast<int>(n2), MatrixPacking::kFull);
+
+  // Band scale of each coefficient for each sender (its own exponent).
+  std::vector<int> bandOf(n2);
+  for (std::size_t k = 0; k < n2; ++k) bandOf[k] = shBandOf(static_cast<int>(k));
+  std::size_t senders = 0;
+  for (std::int32_t s : senderIndex) senders += s >= 0;
+  std::vector<float> senderScale(senders * n2);
+  {
+    std::vector<float> g(static_cast<std::size_t>(order));
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      if (senderIndex[v] < 0) continue;
+      phongLobeBandScalesUnchecked(order, scene.specular[v].exponent, g.data());
+      for (std::size_t k = 0; k < n2; ++k) senderScale[senderIndex[v] * n2 + k] = g[bandOf[k]];
+    }
+  }
+
+  struct Scratch {
+    std::vector<float> a, rows, dense, yR, t, tmp;
+  };
+  const unsigned threads = std::max(1u, job.threads);
+  std::vector<Scratch> scratch(threads);
+  for (auto& s : scratch) {
+    s.a.resize(kChunkRows * n2);
+    s.rows.resize(kChunkRows * row3);
+    s.dense.resize(n2 * row3);
+    s.yR.resize(n2);
+    s.t.resize(n2);
+    s.tmp.resize(n2);
+  }
+  const std::string name = "glossy bounce " + std::to_string(job.bounce);
+  std::atomic<std::size_t> done{0};
+  std::mutex progressMutex;
+
+  parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
+    Scratch& s = scratch[thread];
+    const HitBlock& rec = (*job.blocks)[block];
+    const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::size_t local = v - begin;
+      const std::uint32_t h0 = rec.hitStart[local], h1 = rec.hitStart[local + 1];
+      std::fill(s.dense.begin(), s.dense.end(), 0.0f);
+      for (std::uint32_t c0 = h0; c0 < h1; c0 += static_cast<std::uint32_t>(kChunkRows)) {
+        const std::size_t kc = std::min<std::size_t>(kChunkRows, h1 - c0);
+        std::fill(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>(kc * row3), 0.0f);
+        for (std::size_t r = 0; r < kc; ++r) {
+          const Hit& hit = rec.hits[c0 + r];
+          const std::uint32_t k = rec.hitSample[c0 + r];
+          const float* yw = job.sampleMajor + static_cast<std::size_t>(k) * n2;
+          std::memcpy(&s.a[r * n2], yw, n2 * sizeof(float));
+          const Vec3 w = job.dirs->at(k);
+          const Vec3 toReceiver = w * -1.0f;
+          const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
+          const float bary[3] = {1.0f - b1 - b2, b1, b2};
+          float* row = &s.rows[r * row3];
+          for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t u = scene.indices[3 * static_cast<std::size_t>(hit.triangle) + corner];
+            const float bc = bary[corner];
+            const float* diffuse = job.diffusePrevious + static_cast<std::size_t>(u) * row3;
+            for (std::size_t i = 0; i < row3; ++i) row[i] += bc * diffuse[i];
+            const std::int32_t sender = senderIndex[u];
+            if (sender < 0) continue;
+            const Vec3 nu = scene.normals[u];
+            const Vec3 R = reflectView(toReceiver, nu);
+            const Rgb F = schlickFresnel(scene.specular[u].f0, dot(nu, toReceiver));
+            const float Fc[3] = {F.r, F.g, F.b};
+            evalShBasisUnchecked(order, R, s.yR.data());
+            const float* g = &senderScale[static_cast<std::size_t>(sender) * n2];
+            for (std::size_t q = 0; q < n2; ++q) s.t[q] = g[q] * s.yR[q];
+            const float* M = job.glossyPrevious + (firstBounce ? static_cast<std::size_t>(u) : static_cast<std::size_t>(sender)) * prevStride;
+            const int channels = firstBounce ? 1 : 3;
+            for (int pc = 0; pc < channels; ++pc) {
+              const float* Mc = M + static_cast<std::size_t>(pc) * full;
+              // tmp_j = sum_q t_q M_qj: the sender's outgoing radiance per lighting coefficient.
+              std::fill(s.tmp.begin(), s.tmp.end(), 0.0f);
+              for (std::size_t q = 0; q < n2; ++q) {
+                const float tq = s.t[q];
+                const std::uint32_t* idx = &prevIndex[q * n2];
+                for (std::size_t j = 0; j < n2; ++j) s.tmp[j] += tq * Mc[idx[j]];
+              }
+              for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
+                const float f = bc * Fc[c];
+                for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];
+              }
+            }
+          }
+        }
+        // dense (n2 x 3n2) += w A^T rows: the rank-kc update over this chunk of hits.
+        cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, static_cast<int>(n2), static_cast<int>(row3),
+                    static_cast<int>(kc), job.sampleWeight, s.a.data(), static_cast<int>(n2), s.rows.data(),
+                    static_cast<int>(row3), 1.0f, s.dense.data(), static_cast<int>(row3));
+      }
+      float* dst = job.interreflected + v * 3 * full;
+      float* keep = (job.glossyCurrent && senderIndex[v] >= 0)
+                        ? job.glossyCurrent + static_cast<std::size_t>(senderIndex[v]) * 3 * full
+                        : nullptr;
+      for (std::size_t c = 0; c < 3; ++c) {
+        for (std::size_t i = 0; i < n2; ++i) {
+          for (std::size_t j = 0; j < n2; ++j) {
+            const float value = s.dense[i * row3 + c * n2 + j];
+            const std::size_t p = c * full + fullIndex[i * n2 + j];
+            dst[p] += value;
+            if (keep) keep[p] = value;
+          }
+        }
+      }
+    }
+    const std::size_t d = done.fetch_add(end - begin) + (end - begin);
+    if (job.options && job.options->progress) {
+      std::lock_guard<std::mutex> lock(progressMutex);
+      job.options->progress({name.c_str(), d, vertexCount, 0});
+    }
+  });
+  return {name, secondsSince(t0), 0};
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,93 @@
+// Glossy transfer matrices (docs/glossy.md; Fujita & Kanai 2004 §2.2, Sloan et al. 2002):
+// the kernels bakeTransfer runs when BakeOptions::glossy is set. Internal to prt_transfer.
+//
+// Shadowed matrix, accumulated in the direct pass from the same rays (w = 4pi/N):
+//   distant  (M_x)_ij = w sum_{k visible, n.w_k > 0} y_i(w_k) y_j(w_k)
+//            = a rank-K update M = w Y^T Y over the K visible samples (BLAS ssyrk, lower
+//            triangle only; stored kSymmetric);
+//   local    (M_x)_ij = w sum_k V_k [n.w_k > 0] q_k y_i(w_k) y_j(w'_k), q_k the remap weight
+//            of the diffuse local transfer (1 area form, 1/cos theta' paper form), with no
+//            cosine: the matrix maps lighting to incident radiance. Not symmetric: a gemm,
+//            stored kFull.
+// Interreflected matrix, bounce b >= 1 (3 channels, kFull), gathered over the direct pass's
+// front-face hits h (direction w_h, hit point q_h on triangle t_h with barycentrics):
+//   (M_x)^b_ij = w sum_h y_i(w_h) row^{b-1}_j(q_h),  row(q) = sum_corners bary * row(corner),
+//   row^{b-1}_{c,j}(u) = B^{b-1}_{c,j}(u)                                   (diffuse sender)
+//                      + F_c(n_u.v) sum_k g_l(k)(s_u) (M^{b-1}_{u,c})_kj y_k(R_u)  (glossy sender, f0 > 0)
+// with v = -w_h (from q toward x), R_u = reflectView(v, n_u), F Schlick with the sender's f0,
+// g the Phong band scales, B^{b-1} the diffuse bounce vector of the interreflection pass
+// (B^0 = albedo x shadowed; albedo folded in) and M^0 the shadowed matrix. Evaluating each
+// corner's outgoing radiance with its own normal and material, then interpolating, is how
+// the diffuse bounces interpolate B.
+// What is NOT gathered: the diffuse transfer's own bounces (BakeResult::interreflected) do
+// not gather glossy senders (a diffuse receiver sees only diffuse interreflection); glossy
+// bounces gather light that reached the sender directly or by earlier bounces of the two
+// series above, but the diffuse series it reads never contains glossy-to-diffuse paths.
+// Caustic-like paths diffuse <- glossy <- light are thus missing from the diffuse transfer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prt/sampling.h"
+#include "prt/transfer_matrix.h"
+#include "baker/scene/scene.h"
+#include "baker/transfer/hit_record.h"
+#include "baker/transfer/transfer_bake.h"
+
+namespace prt::bake {
+
+// Makes the BLAS single-threaded: the baker's own threads split the vertices, and a
+// single-threaded kernel on a fixed shape gives the same bits whatever options.threads.
+void useSingleThreadedBlas();
+
+// Per-thread accumulator of the shadowed matrix of one vertex at a time (scratch reused).
+class GlossyShadowedKernel {
+ public:
+  // order 2..8; maxRays bounds the rays of one vertex (the sample count).
+  GlossyShadowedKernel(int order, std::size_t maxRays);
+
+  // Distant lighting: `visible` lists the count sample indices of unoccluded rays above the
+  // tangent plane; sampleMajor is the [sample][coefficient] basis table; weight = 4pi/N.
+  // Writes the kSymmetric packed matrix (matrixEntryCount(order, kSymmetric) floats).
+  void distant(const float* sampleMajor, const std::uint32_t* visible, std::size_t count, float weight, float* packed,
+               GlossyKernelStats* stats);
+
+  // Local lighting over `count` rays: rayWeight[r] = w q_r (0 when occluded or the ray never
+  // reaches S), sample[r] its sample index, remapped[i * count + r] = y_i(w'_r).
+  // Writes the kFull packed matrix (order^4 floats).
+  void local(const float* sampleMajor, const std::uint32_t* sample, const float* rayWeight, std::size_t count,
+             const float* remapped, float* packed, GlossyKernelStats* stats);
+
+ private:
+  int order_, n2_;
+  std::vector<float> a_, dense_;
+};
+
+// Everything one glossy bounce reads and writes.
+struct GlossyBounceJob {
+  const Scene* scene = nullptr;
+  int order = 0;
+  int bounce = 0;                                  // b >= 1
+  const std::vector<HitBlock>* blocks = nullptr;  // the direct pass's hits, kBlockVertices per block
+  const DirectionSet* dirs = nullptr;              // the sample directions w_k
+  const float* sampleMajor = nullptr;              // [sample][coefficient]
+  float sampleWeight = 0.0f;                       // 4pi/N
+  const float* diffusePrevious = nullptr;          // B^{b-1}: [vertex][channel][coefficient]
+  // Glossy senders: senderIndex[v] >= 0 for vertices with f0 > 0 in some channel.
+  const std::vector<std::int32_t>* senderIndex = nullptr;
+  const float* glossyPrevious = nullptr;  // M^{b-1}: b = 1: [vertex][packed] (previousPacking,
+                                          // 1 channel, all vertices); b >= 2: [sender][channel][full]
+  MatrixPacking previousPacking = MatrixPacking::kFull;
+  float* glossyCurrent = nullptr;          // M^b at senders, [sender][channel][full]; null: not kept
+  float* interreflected = nullptr;         // += M^b, [vertex][channel][full]
+  unsigned threads = 1;
+  const BakeOptions* options = nullptr;    // for progress
+};
+
+// Gathers bounce `job.bounce` for every vertex (deterministic whatever job.threads).
+// Returns the stats entry "glossy bounce N".
+PassStats gatherGlossyBounce(const GlossyBounceJob& job);
+
+}  // namespace prt::bake
