@@ -1,7 +1,7 @@
 // The glossy renderer's arithmetic in the client's wasm core under Node (web/src/glossy_texture.h):
 // glossy_table.vert and glossy.vert emulated on the CPU from the packed textures (per-cluster
 // matrices times the lighting, then per vertex the weighted sum, the lobe's band scales, Schlick
-// and y_i(R)) must equal prt::glossyExitRadiance on the expanded matrices, for synthetic CPCA
+// and y_i(R)) must equal prt::glossyExitRadiance on the matrices prt::cpcaMatrixReconstruct expands, for synthetic CPCA
 // matrix passes (both packings, 1 and 3 channels, 8- and 16-bit weights, every order the
 // shaders take, cut to fewer bands), and the shaders' SH evaluation must equal the shared one.
 // Needs no codec and no baker. Usage: node glossy_core_node_test.mjs PRT_CORE_NODE_JS
@@ -55,6 +55,7 @@ for (const spec of cases) {
       if (!check(r && typeof r === 'object', `${name}: ${r}`)) continue;
       check(r.emulated.length === 600 && r.reference.length === 600, `${name}: ${r.emulated.length} emulated values`);
       check(r.basisExact, `${name}: the shaders' SH basis differs from prt::evalShBasisUnchecked`);
+      check(r.expansionsAgree, `${name}: glossy_synthetic's expansion differs from prt::cpcaMatrixReconstruct`);
       const eEm = worstError(r.emulated, r.referenceDouble), eRef = worstError(r.reference, r.referenceDouble);
       check(eEm < 1e-4, `${name}: emulated shaders differ from the double reference by ${eEm} (float reference: ${eRef})`);
       check(eRef < 1e-4, `${name}: float reference differs from double by ${eRef}`);

@@ -188,8 +188,8 @@ std::vector<float> ClientApp::glossyReference(ShadingMode kind) {
   if (!ok() || !isPassKind(kind)) return {};
   const CpcaMatrixTransfer& cpca = glossyCpu_[static_cast<std::size_t>(kind)];
   if (cpca.bands == 0 || renderer_.glossyOrder(kind) == 0) return {};
-  std::vector<float> expanded;
-  if (!expandCpcaMatrix(cpca, &expanded).isOk()) return {};
+  std::vector<float> expanded(asset_.positions.size() * static_cast<std::size_t>(cpca.channels) * matrixEntryCount(cpca.bands, cpca.packing));
+  if (!cpcaMatrixReconstruct(cpca, expanded).isOk()) return {};
   // The lighting the GPU drew with: the block (light cube + environment) at the display order.
   const int bands = std::clamp(displayOrder_, 1, cpca.bands);
   const std::vector<float> flat = lights_.lightSH();

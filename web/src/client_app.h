@@ -94,7 +94,7 @@ class ClientApp {
   // Glossy radiance of every vertex in the last frame, flat RGB before exposure (GPU read-back).
   std::vector<float> vertexGlossy() const;
   // The CPU reference of the last frame's glossy term for pass `kind`: prt::glossyExitRadiance
-  // on the expanded matrices, with the last frame's lighting (read back from the GPU) and eye,
+  // on the matrices prt::cpcaMatrixReconstruct expands, with the last frame's lighting (read back from the GPU) and eye,
   // at the bands drawn; flat RGB per vertex, empty when the pass is absent.
   std::vector<float> glossyReference(ShadingMode kind);
   // Tests: replaces the glossy pass of `kind` by a synthetic CPCA matrix pass (glossy_synthetic.h:

@@ -5,6 +5,7 @@
 #include <emscripten/val.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -195,8 +196,10 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
   const prt::Vec3 eyePoint{e[0], e[1], e[2]};
   const std::vector<float> table = prt::web::glossyTableCpu(packed, light.data(), activeBands);
   const std::vector<float> emulated = prt::web::glossyRadianceCpu(packed, table, activeBands, positions, normals, eyePoint, fresnel);
-  std::vector<float> expanded;
-  if (prt::Status st = prt::web::expandCpcaMatrix(cpca, &expanded); !st.isOk()) return val(st.toString());
+  std::vector<float> expanded(static_cast<std::size_t>(vertices) * static_cast<std::size_t>(s.channels) * prt::matrixEntryCount(s.bands, s.packing));
+  if (prt::Status st = prt::cpcaMatrixReconstruct(cpca, expanded); !st.isOk()) return val(st.toString());
+  std::vector<float> local;
+  if (prt::Status st = prt::web::expandCpcaMatrix(cpca, &local); !st.isOk()) return val(st.toString());
   std::vector<prt::Rgb> rgb(static_cast<std::size_t>(activeBands * activeBands));
   for (std::size_t i = 0; i < rgb.size(); ++i) {
     rgb[i] = {light[i], light[prt::web::kMaxClientCoeffs + i], light[2 * prt::web::kMaxClientCoeffs + i]};
@@ -226,7 +229,70 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
   out.set("reference", val::array(reference));
   out.set("referenceDouble", val::array(std::vector<float>(referenceDouble.begin(), referenceDouble.end())));
   out.set("basisExact", basisExact);
+  out.set("expansionsAgree", local == expanded);  // glossy_synthetic's expansion is the codec's, bit for bit
   out.set("tableTexels", packed.tableTexels);
+  return out;
+}
+
+// Glossy exit radiance of an asset's matrix pass `kind` toward eye [x, y, z] under `lighting`
+// (flat RGB per coefficient, bands^2 rows, bands <= the baked order): {reference} from
+// prt::glossyExitRadiance on the pass's full decode (decodeAsset), and for a CPCA pass
+// {emulated} from the client's packed textures (glossy_texture.h, the shaders' arithmetic) and
+// {reconstructed} from glossyExitRadiance on cpcaMatrixReconstruct; flat RGB per vertex, or a
+// string naming the error.
+val glossyAssetCheck(const val& bytes, const std::string& kind, const val& lighting, const val& eye, bool fresnel) {
+  const std::vector<std::uint8_t> data = bytesFrom(bytes);
+  const std::vector<float> flat = emscripten::convertJSArrayToNumberVector<float>(lighting);
+  const std::vector<float> e = emscripten::convertJSArrayToNumberVector<float>(eye);
+  if (e.size() != 3 || flat.empty() || flat.size() % 3 != 0) return val(std::string("eye must hold 3 numbers, lighting RGB rows"));
+  prt::BakedAsset asset;
+  if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
+  const prt::TransferPass* p = nullptr;
+  for (const prt::TransferPass& q : asset.passes)
+    if (q.form == prt::TransferForm::kMatrix && kind == prt::transferKindName(q.kind)) p = &q;
+  if (!p) return val("the asset has no " + kind + " matrix pass");
+  std::vector<prt::Rgb> rgb(flat.size() / 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+  const int bands = static_cast<int>(std::lround(std::sqrt(static_cast<double>(rgb.size()))));
+  const prt::MatrixPacking packing = prt::matrixPackingFor(p->kind, asset.lighting.model);
+  const prt::GlossyView view{{e[0], e[1], e[2]}, fresnel};
+  std::vector<float> reference(3 * asset.positions.size());
+  if (prt::Status s = prt::glossyExitRadiance(p->coeffs, asset.shOrder, packing, p->channels, asset.positions, asset.normals, asset.specular,
+                                              view, rgb, reference);
+      !s.isOk()) {
+    return val(s.toString());
+  }
+  val out = val::object();
+  out.set("reference", val::array(reference));
+  prt::TransferBlobInfo info;
+  if (!p->encoded.empty() && prt::readTransferBlobInfo(p->encoded, &info).isOk() && info.encoding == prt::TransferEncoding::kCpca) {
+    prt::CpcaMatrixTransfer cpca;
+    if (prt::Status s = prt::decodeCpcaMatrixTransfer(p->encoded, bands, &cpca); !s.isOk()) return val(s.toString());
+    prt::web::GlossyTextures packed;
+    if (prt::Status s = prt::web::packGlossy(cpca, asset.specular, 16384, &packed); !s.isOk()) return val(s.toString());
+    float light[prt::web::kPackedLightingFloats] = {};
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+      light[i] = rgb[i].r;
+      light[prt::web::kMaxClientCoeffs + i] = rgb[i].g;
+      light[2 * prt::web::kMaxClientCoeffs + i] = rgb[i].b;
+    }
+    const std::vector<float> table = prt::web::glossyTableCpu(packed, light, bands);
+    out.set("emulated", val::array(prt::web::glossyRadianceCpu(packed, table, bands, asset.positions, asset.normals, view.eye, fresnel)));
+    std::vector<float> expanded(asset.positions.size() * static_cast<std::size_t>(cpca.channels) * prt::matrixEntryCount(bands, packing));
+    if (prt::Status s = prt::cpcaMatrixReconstruct(cpca, expanded); !s.isOk()) return val(s.toString());
+    std::vector<float> local;
+    if (prt::Status s = prt::web::expandCpcaMatrix(cpca, &local); !s.isOk()) return val(s.toString());
+    out.set("expansionsAgree", local == expanded);
+    std::vector<float> reconstructed(3 * asset.positions.size());
+    if (prt::Status s = prt::glossyExitRadiance(expanded, bands, packing, cpca.channels, asset.positions, asset.normals, asset.specular, view,
+                                                rgb, reconstructed);
+        !s.isOk()) {
+      return val(s.toString());
+    }
+    out.set("reconstructed", val::array(reconstructed));
+    out.set("clusters", static_cast<int>(cpca.clusterCount));
+    out.set("vectors", cpca.vectors);
+  }
   return out;
 }
 
@@ -358,6 +424,7 @@ EMSCRIPTEN_BINDINGS(prt_core) {
   emscripten::function("cpcaRadianceCheck", &cpcaRadianceCheck);
   emscripten::function("timeTransferDecode", &timeTransferDecode);
   emscripten::function("glossySyntheticCheck", &glossySyntheticCheck);
+  emscripten::function("glossyAssetCheck", &glossyAssetCheck);
   emscripten::constant("kMaxGlossyOrder", prt::web::kMaxGlossyOrder);
   emscripten::function("evalBasis", &evalBasis);
   emscripten::function("rotateCoefficients", &rotateCoefficients);
