@@ -5,19 +5,21 @@
 // object while the diffuse floor (f0 = 0) stays as it was, and the diffuse / glossy / both
 // switch draws what it says. The glossy passes are synthetic CPCA matrix passes
 // (web/src/glossy_synthetic.h, through prtApp.useSyntheticGlossy) on a baked diffuse scene, so
-// these cases need neither the matrix codec nor the glossy baker; the real-asset case
-// (glossy_asset_gpu_matches_reference) runs once prt-bake --glossy exists.
-// Usage: node browser_glossy_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR ENV_EXR
+// these cases need neither the matrix codec nor the glossy baker. glossy_asset_gpu_matches_reference
+// streams a real glossy bake (prt-bake --default --glossy --compress cpca8) shell by shell and
+// compares the GPU with the wasm core's reference computed here from the same bytes.
+// Usage: node browser_glossy_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR ENV_EXR PRT_CORE_NODE_JS
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
+import { createRequire } from 'node:module';
 import path from 'node:path';
 import { makeChecks, startServer, openPage, capture, windowLuminance, runCase } from './browser_harness.mjs';
 import { floorSceneGltf } from './floor_scene_gltf.mjs';
 
-const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
+const [caseName, prtServe, prtBake, webDist, workDir, envExr, coreJs] = process.argv.slice(2);
 const checks = makeChecks();
 const { check } = checks;
-for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]) {
+for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr], ['wasm core', coreJs]]) {
   if (!p || !fs.existsSync(p)) {
     console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
     process.exit(1);
@@ -32,7 +34,12 @@ fs.rmSync(workDir, { recursive: true, force: true });
 fs.mkdirSync(root, { recursive: true });
 const gltf = path.join(workDir, 'floor.gltf');
 fs.writeFileSync(gltf, floorSceneGltf());
-execFileSync(prtBake, [gltf, '-o', path.join(root, 'floor.prt'), '--samples', '256', '--order', '5', '--quiet']);
+if (caseName === 'glossy_asset_gpu_matches_reference') {
+  // The default room with its glossy sphere and torus, glossy matrices CPCA-compressed.
+  execFileSync(prtBake, ['--default', '--glossy', '-o', path.join(root, 'room-glossy.prt'), '--samples', '32', '--order', '4', '--compress', 'cpca8', '--quiet']);
+} else {
+  execFileSync(prtBake, [gltf, '-o', path.join(root, 'floor.prt'), '--samples', '256', '--order', '5', '--quiet']);
+}
 fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
 
 // GPU against CPU: float32 on both sides, in a different order (the GPU takes the matrix
@@ -47,15 +54,15 @@ function compare(gpu, cpu) {
   return { error: worst / Math.max(peak, 1e-30), peak };
 }
 
-async function openScene(browser) {
+async function openScene(browser, file = 'floor.prt') {
   const server = await startServer(prtServe, root, webDist);
   const scenes = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes;
-  const entry = scenes.find((s) => s.file === 'floor.prt');
-  if (!entry || !entry.usable) throw new Error(`floor.prt missing from the catalogue: ${JSON.stringify(scenes)}`);
+  const entry = scenes.find((s) => s.file === file);
+  if (!entry || !entry.usable) throw new Error(`${file} missing from the catalogue: ${JSON.stringify(scenes)}`);
   const { page, consoleErrors } = await openPage(browser, `${server.base}/?scene=${encodeURIComponent(entry.name)}`);
   const error = await page.evaluate(() => window.prtApp.error);
   if (error) throw new Error(`page error: ${error}`);
-  return { server, page, consoleErrors };
+  return { server, page, consoleErrors, entry };
 }
 
 const readBack = (page) => page.evaluate(() => ({
@@ -102,6 +109,42 @@ const cases = {
             }
             check(zeros > 100 && zeroed === zeros, `${name}: ${zeroed} of ${zeros} non-glossy vertices have zero GPU glossy radiance`);
           }
+        }
+      }
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // A real glossy asset, streamed in parts: every glossy shell arrives (the server lists matrix
+  // parts with form "matrix"), and the GPU's glossy radiance for both matrix passes equals the
+  // wasm core's reference (prt::glossyExitRadiance on the pass's full decode), computed here
+  // from the same file with the page's lighting and eye; orbiting changes it.
+  async glossy_asset_gpu_matches_reference(browser) {
+    const { server, page, consoleErrors, entry } = await openScene(browser, 'room-glossy.prt');
+    try {
+      const bytes = fs.readFileSync(path.join(root, 'room-glossy.prt'));
+      const core = await createRequire(import.meta.url)(path.resolve(coreJs))({ wasmBinary: fs.readFileSync(coreJs.replace(/\.js$/, '.wasm')) });
+      const matrixBands = (entry.parts || []).filter((p) => p.form === 'matrix' && p.kind === 'transfer-band');
+      check(matrixBands.length === 8, `the catalogue lists ${matrixBands.length} glossy shell parts, expected 4 per matrix pass`);
+      await page.waitForFunction(() => window.prtApp.glossyBands.shadowed === 4 && window.prtApp.glossyBands.interreflected === 4, null, { timeout: 60000 });
+      for (const mode of ['shadowed', 'interreflected']) {
+        for (const orbit of [0, 0.6]) {
+          await page.evaluate((o) => window.prtApp.orbit(o, 0), orbit);
+          await capture(page, { mode, order: 4, environment: 'forest', envRotation: [0.5, 0.2], glossy: { [mode]: 'both' } });
+          const gpu = await page.evaluate(() => Array.from(window.prtApp.vertexGlossy()));
+          const lighting = (await page.evaluate(() => window.prtApp.lightSH())).flat();
+          const eye = await page.evaluate(() => window.prtApp.eye);
+          const r = core.glossyAssetCheck(bytes, mode, lighting, eye, true);
+          if (!check(typeof r === 'object', `${mode}: ${r}`)) continue;
+          const { error, peak } = compare(gpu, r.reference);
+          const pageReference = await page.evaluate(() => Array.from(window.prtApp.glossyReference()));
+          const { error: pageError } = compare(pageReference, r.reference);
+          console.log(`  ${mode} orbit ${orbit}: GPU vs wasm reference ${error.toExponential(2)} of the peak (${peak.toFixed(4)}); page reference ${pageError.toExponential(2)}`);
+          check(peak > 1e-3, `${mode}: reference glossy radiance peaks at ${peak}`);
+          check(error <= TOLERANCE, `${mode} orbit ${orbit}: GPU and wasm reference differ by ${error.toExponential(3)} of the peak, allowed ${TOLERANCE}`);
+          check(pageError <= 1e-5, `${mode} orbit ${orbit}: the page's reference differs from the wasm core's by ${pageError.toExponential(3)}`);
         }
       }
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);

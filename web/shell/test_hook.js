@@ -104,6 +104,8 @@ export function installTestHook(page) {
       if (!page.lightSet) throw new Error('addMesh: no scene is loaded yet');
       return page.lightSet.addMesh(positions, indices);
     },
+    // The last frame's eye position, world units ([x, y, z]; null before a scene is ready).
+    get eye() { return ready() ? Array.from(page.app.rayFromScreen(0, 0)).slice(0, 3) : null; },
     // Orbits the camera about its target by (dx, dy) radians, as a drag does.
     orbit(dx, dy) {
       if (ready()) page.app.orbit(dx, dy);
