@@ -5,7 +5,7 @@
 // glossy pass. Headless Chromium on SwiftShader (or a real GPU with --gpu); interleaved
 // rounds, best round per setting. Writes JSON (and prints a Markdown table).
 // Usage: node web_glossy_bench.mjs BASE_URL SCENE OUT_JSON [--mode shadowed|interreflected]
-//          [--order N] [--gpu] [--synthetic BANDS,CHANNELS,CLUSTERS,VECTORS]
+//          [--order N] [--gpu] [--synthetic BANDS,CHANNELS,CLUSTERS,VECTORS] [--rounds R (default 5)]
 // SCENE is the catalogue name of a scene with a glossy matrix pass; --synthetic puts a
 // synthetic CPCA matrix pass of that shape on it instead (any baked scene; stated in the JSON).
 import fs from 'node:fs';
@@ -26,7 +26,7 @@ const gpu = argv.includes('--gpu');
 const mode = option('--mode') || 'interreflected';
 const order = Number(option('--order') || 5);
 const synthetic = option('--synthetic');
-const ROUNDS = 5, FRAMES = 10;
+const ROUNDS = Number(option('--rounds') || 5), FRAMES = 10;
 
 const args = ['--no-sandbox', '--disable-background-networking', '--disable-component-update', '--no-first-run'];
 if (!gpu) args.push('--use-angle=swiftshader', '--enable-unsafe-swiftshader');

@@ -171,6 +171,12 @@ class ClientApp {
   // Benchmarks: the glossy work of the current mode alone (lighting updated first): the
   // per-cluster table and the per-vertex glossy pass, or with `tableOnly` the table alone.
   bool shadeGlossyVertices(bool tableOnly);
+  // Waits for the glossy passes queued so far (a 1-value read-back of what they write).
+  void finishGlossy(bool tableOnly) const {
+    if (!ok()) return;
+    makeCurrent();
+    renderer_.finishGlossy(mode_, tableOnly);
+  }
   void finishShading() const;  // waits for the PRT passes queued so far (a 1-vertex read-back)
   std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
   const std::string& projectionError() const { return lights_.projectionError(); }

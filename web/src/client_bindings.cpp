@@ -126,6 +126,7 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("glossyReference", &glossyReference)
       .function("useSyntheticGlossy", &ClientApp::useSyntheticGlossy)
       .function("shadeGlossyVertices", &ClientApp::shadeGlossyVertices)
+      .function("finishGlossy", &ClientApp::finishGlossy)
       .function("setEnvironment", &setEnvironment)
       .function("setWhiteFurnace", &ClientApp::setWhiteFurnace)
       .function("setEnvRotation", &ClientApp::setEnvRotation)

@@ -314,6 +314,14 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   return true;
 }
 
+void GlRenderer::finishGlossy(ShadingMode mode, bool tableOnly) const {
+  if (!isPassKind(mode) || glossy_[static_cast<std::size_t>(mode)].bands == 0) return;
+  float value = 0.0f;
+  glBindBuffer(GL_ARRAY_BUFFER, tableOnly ? glossy_[static_cast<std::size_t>(mode)].tableBuffer : glossyBuffer_);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float), &value);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 std::vector<float> GlRenderer::readGlossy(std::size_t vertices) const {
   std::vector<float> out(std::min(vertices, static_cast<std::size_t>(vertexCount_)) * 3);
   if (out.empty()) return out;

@@ -80,6 +80,9 @@ class GlRenderer {
   // buffer) for `mode` seen from `eye`, with the bound lighting block; false when absent.
   // `tableOnly`: stop after the per-cluster table (benchmarks of the per-frame cluster work).
   bool shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, bool fresnel = true, bool tableOnly = false);
+  // Waits for the glossy passes queued so far: a 1-value read-back of the table buffer of
+  // `mode` (tableOnly) or of the glossy radiance buffer (benchmarks).
+  void finishGlossy(ShadingMode mode, bool tableOnly) const;
   // The glossy radiance the last frame computed, RGB per vertex (synchronous read-back).
   std::vector<float> readGlossy(std::size_t vertices) const;
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
