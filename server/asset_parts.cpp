@@ -9,6 +9,8 @@ namespace {
 
 constexpr std::uint32_t kTypeTransfer = static_cast<std::uint32_t>(AssetSectionType::kTransfer);
 constexpr std::uint32_t kTypeEncodedTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer);
+constexpr std::uint32_t kTypeMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kMatrixTransfer);
+constexpr std::uint32_t kTypeEncodedMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer);
 
 AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind, int section,
                       const AssetSectionInfo& info) {
@@ -17,7 +19,8 @@ AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind
   p.size = end - begin;
   p.kind = kind;
   p.section = section;
-  p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer;
+  p.matrix = info.type == kTypeMatrixTransfer || info.type == kTypeEncodedMatrixTransfer;
+  p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer || p.matrix;
   p.pass = static_cast<TransferKind>(info.arg0);
   return p;
 }
@@ -48,7 +51,7 @@ bool cutEncodedTransfer(std::span<const std::uint8_t> file, const AssetSectionIn
     const bool last = i + 1 == blob.parts.size();
     // The padding after the blob goes with its last part, so the parts tile the file.
     const std::uint64_t next = last ? end : info.offset + tp.offset + tp.size;
-    if (tp.type == TransferPartType::kClusters) {
+    if (tp.type != TransferPartType::kBand) {  // cluster ids (and a matrix blob's weights): needed before any band
       add(next, AssetPartKind::kTransferClusters, -1);
     } else {
       add(next, AssetPartKind::kTransferBand, tp.band);
@@ -101,7 +104,10 @@ std::vector<AssetPart> cutAssetParts(std::span<const std::uint8_t> file, const A
     const AssetSectionInfo& s = sections[static_cast<std::size_t>(index)];
     const std::uint64_t end = k + 1 < order.size() ? sections[static_cast<std::size_t>(order[k + 1])].offset : fileSize;
     if (end == s.offset) continue;
-    if (s.type == kTypeEncodedTransfer && s.size > 0 && cutEncodedTransfer(file, s, index, end, &parts)) continue;
+    // A glossy matrix blob is cut like a vector one (its shells are its bands; the weights
+    // part goes with the clusters, as the client needs both before any shell).
+    const bool encoded = s.type == kTypeEncodedTransfer || s.type == kTypeEncodedMatrixTransfer;
+    if (encoded && s.size > 0 && cutEncodedTransfer(file, s, index, end, &parts)) continue;
     parts.push_back(sectionPart(s.offset, end, AssetPartKind::kSection, index, s));
   }
   return parts;

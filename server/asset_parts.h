@@ -28,8 +28,9 @@ struct AssetPart {
   std::uint64_t size = 0;    // > 0
   AssetPartKind kind = AssetPartKind::kHead;
   int section = -1;          // index in the section table; -1 for the head
-  bool hasPass = false;      // a part of a transfer section (type 5 or 8)...
+  bool hasPass = false;      // a part of a transfer section (type 5, 8, or matrix 9, 10)...
   TransferKind pass = TransferKind::kUnshadowed;  // ...of this pass (the section's arg0)
+  bool matrix = false;       // ...a glossy matrix pass (types 9, 10): listed with "form":"matrix"
   int band = -1;             // kTransferBand: the SH band l; -1 otherwise
 };
 

@@ -143,6 +143,7 @@ std::string partJson(const ServedPart& p) {
                   ",\"url\":" + jsonString(p.url) + ",\"kind\":\"" + assetPartKindName(r.kind) + "\"";
   if (r.section >= 0) j += ",\"section\":" + std::to_string(r.section);
   if (r.hasPass) j += ",\"pass\":" + jsonString(transferKindName(r.pass));
+  if (r.matrix) j += ",\"form\":\"matrix\"";
   if (r.band >= 0) j += ",\"band\":" + std::to_string(r.band);
   return j + "}";
 }

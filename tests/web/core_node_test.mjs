@@ -235,6 +235,43 @@ const light = (shape, extra = {}) => {
   check(Math.abs(whole[0] - 2 * Math.sqrt(Math.PI)) < 1e-5 && whole.slice(1).every((v) => Math.abs(v) < 1e-5), `a full-sphere cap is constant: ${whole}`);
 }
 
+// Glossy rendering from a real glossy bake (web/src/glossy_texture.h): the glossy shaders'
+// arithmetic emulated from the packed CPCA matrix textures, and glossyExitRadiance on the
+// codec's cpcaMatrixReconstruct, against glossyExitRadiance on the pass's full decode; and the
+// wasm reference under constant light against native `prt-bake shade --glossy-only`.
+{
+  const glossyAsset = path.join(workDir, 'room-glossy.prt');
+  execFileSync(prtBake, ['--default', '--glossy', '-o', glossyAsset, '--samples', '32', '--order', '3', '--compress', 'cpca8', '--quiet']);
+  const glossyBytes = fs.readFileSync(glossyAsset);
+  const eye = [0.5, 1.2, 3];
+  for (const kind of ['shadowed', 'interreflected']) {
+    const lighting = [];
+    for (let i = 0; i < 9; i++) lighting.push(i === 0 ? 3 : Math.sin(1.3 * i), i === 0 ? 2.5 : Math.cos(0.7 * i), i === 0 ? 2 : 0.3);
+    const r = core.glossyAssetCheck(glossyBytes, kind, lighting, eye, true);
+    if (!check(r && typeof r === 'object' && r.emulated, `glossy ${kind}: ${r}`)) continue;
+    let peak = 0, emulated = 0, reconstructed = 0;
+    for (let i = 0; i < r.reference.length; i++) peak = Math.max(peak, Math.abs(r.reference[i]));
+    for (let i = 0; i < r.reference.length; i++) {
+      emulated = Math.max(emulated, Math.abs(r.emulated[i] - r.reference[i]));
+      reconstructed = Math.max(reconstructed, Math.abs(r.reconstructed[i] - r.reference[i]));
+    }
+    check(peak > 1e-3, `glossy ${kind}: the reference glossy radiance peaks at ${peak}`);
+    check(emulated <= 1e-4 * peak, `glossy ${kind}: emulated shaders differ from the reference by ${emulated / peak} of the peak (allowed 1e-4)`);
+    check(reconstructed === 0, `glossy ${kind}: cpcaMatrixReconstruct's radiance differs from the full decode's by ${reconstructed}`);
+    check(r.expansionsAgree, `glossy ${kind}: the client's expansion differs from cpcaMatrixReconstruct`);
+    // Constant radiance 1: L_00 = 2 sqrt(pi), as prt-bake shade --light constant.
+    const l0 = 2 * Math.sqrt(Math.PI);
+    const constant = core.glossyAssetCheck(glossyBytes, kind, [l0, l0, l0], eye, true);
+    const native = JSON.parse(execFileSync(prtBake, ['shade', glossyAsset, '--light', 'constant', '--pass', `glossy-${kind}`, '--view', eye.join(','),
+      '--glossy-only', '--order', '1', '--json'], { encoding: 'utf8', maxBuffer: 256 << 20 })).vertices;
+    if (!check(typeof constant === 'object' && constant.reference.length === 3 * native.length, `glossy ${kind} constant: ${constant}`)) continue;
+    let worst = 0;
+    for (let v = 0; v < native.length; v++)
+      for (let c = 0; c < 3; c++) worst = Math.max(worst, Math.abs(constant.reference[3 * v + c] - native[v].radiance[c]) / Math.max(1e-3, Math.abs(native[v].radiance[c])));
+    check(worst < 1e-5, `glossy ${kind}: wasm and native glossy radiance under constant light differ by ${worst} (relative)`);
+  }
+}
+
 if (failures.length) {
   console.error(`${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
   process.exit(1);

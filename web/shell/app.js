@@ -34,7 +34,10 @@ const state = {
   background: true,
   // CPCA-compressed passes: rendered straight from the clusters, or expanded on load.
   cpca: ['expand', 'expanded'].includes(params.get('cpca')) ? 'expanded' : 'direct',
+  // Per pass, which terms are drawn: 'diffuse' (vector pass), 'glossy' (matrix pass) or 'both'.
+  glossyMix: { unshadowed: 'both', shadowed: 'both', interreflected: 'both' },
 };
+const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // The dynamic-light settings the Lights panel edits (docs/web-client.md).
 const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
@@ -44,7 +47,7 @@ let app = null;
 // enums (client_bindings.cpp) ShadingMode (unshadowed, shadowed, interreflected: also the
 // pass kinds; lambert) and PassForm (absent, expanded, cpca); modeNames, ShadingMode's
 // value names (the transfer choices); formName(form): 'expanded', 'cpca' or null (absent).
-const client = { maxOrder: 1, ShadingMode: null, PassForm: null, modeNames: [], formName: () => null };
+const client = { maxOrder: 1, ShadingMode: null, PassForm: null, GlossyMix: null, modeNames: [], formName: () => null };
 // The names of an embind enum's values, in value order (the enum object also holds `values`).
 const enumNames = (e) => Object.keys(e).filter((k) => k !== 'values').sort((a, b) => e[a].value - e[b].value);
 let scenes = [];
@@ -124,6 +127,22 @@ function applyState() {
   const k = state.intensity;
   app.setLightColor(k * ((c >> 16) & 255) / 255, k * ((c >> 8) & 255) / 255, k * (c & 255) / 255);
   app.setBackground(state.background);
+  for (const name of PASS_NAMES) app.setGlossyMix(ShadingMode[name], client.GlossyMix[state.glossyMix[name]]);
+  updateGlossyControl();
+}
+
+// The panel's "glossy" switch edits the displayed pass's mix; shown only when that pass has
+// a glossy matrix pass (the asset's matrix passes: shadowed, interreflected).
+let glossyControl = null;
+const glossyView = {
+  get mix() { return state.glossyMix[state.mode] || 'both'; },
+  set mix(v) { if (PASS_NAMES.includes(state.mode)) state.glossyMix[state.mode] = v; },
+};
+function updateGlossyControl() {
+  if (!glossyControl || !app) return;
+  const has = PASS_NAMES.includes(state.mode) && app.hasGlossy(client.ShadingMode[state.mode]);
+  glossyControl.show(has);
+  glossyControl.updateDisplay();
 }
 
 // Pushes the Lights panel's settings to the client; returns "" or why the GPU projection
@@ -226,6 +245,8 @@ function buildGui() {
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
+  glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
+  updateGlossyControl();
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
     .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
   gui.add(state, 'order', 1, client.maxOrder, 1).name('SH order').onChange(applyState);
@@ -327,6 +348,16 @@ function formText() {
   return ` (CPCA: ${clusters} clusters, ${weights} weights)`;
 }
 
+// " + glossy (order b, K clusters, N' matrices)" when the displayed pass draws a glossy term.
+function glossyText() {
+  if (!PASS_NAMES.includes(state.mode)) return '';
+  const kind = client.ShadingMode[state.mode];
+  const bands = app.glossyBands(kind);
+  if (!bands) return '';
+  const [clusters, vectors] = app.glossyShape(kind);
+  return ` · ${state.glossyMix[state.mode]}: glossy order ${Math.min(bands, stats.order)}/${bands} (${clusters} clusters, ${vectors} matrices)`;
+}
+
 function frame(now) {
   const dpr = Math.min(window.devicePixelRatio || 1, 2);
   const w = Math.max(1, Math.round(canvas.clientWidth * dpr));
@@ -342,7 +373,7 @@ function frame(now) {
     stats.frameMs = 0.9 * stats.frameMs + 0.1 * (performance.now() - t0 + (frame.last ? now - frame.last - (performance.now() - t0) : 0));
     stats.order = app.displayOrder();
     statsLine.textContent = `${stats.frameMs.toFixed(1)} ms/frame · ${stats.vertices.toLocaleString()} vertices · ` +
-      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode}${formText()} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
+      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode}${formText()}${glossyText()} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
       `${LIGHTING_MODELS[app.lightingModel()]} lighting · ${lightSet.lights.length} light${lightSet.lights.length === 1 ? '' : 's'} ` +
       `(${lightSettings.projection} ${lightSettings.cubeSize}²)${lightSettings.environmentOn ? ' + environment' : ''}`;
   }
@@ -363,11 +394,12 @@ async function main() {
     fail(`The client's WebAssembly module could not be loaded: ${e.message || e}`);
     return;
   }
-  const { ShadingMode, PassForm } = Module;
+  const { ShadingMode, PassForm, GlossyMix } = Module;
   Object.assign(client, {
     maxOrder: Module.kMaxClientOrder,
     ShadingMode,
     PassForm,
+    GlossyMix,
     modeNames: enumNames(ShadingMode),
     formName: (form) => (form === PassForm.absent ? null : enumNames(PassForm).find((n) => PassForm[n] === form)),
   });

@@ -26,6 +26,7 @@ export function checkParts(parts, bytes) {
     end = p.offset + p.size;
     if (p.kind === 'transfer-band' && !(Number.isInteger(p.band) && p.band >= 0)) throw new Error(`part ${i} has no valid band`);
     if (p.pass !== undefined && !PASS_NAMES.includes(p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
+    if (p.form !== undefined && p.form !== 'vector' && p.form !== 'matrix') throw new Error(`part ${i} names an unknown pass form '${p.form}'`);
   });
   if (end !== bytes) throw new Error(`the parts cover ${end} bytes, the file has ${bytes}`);
   if (parts[0].kind !== 'head') throw new Error('the first part is not the head');
@@ -55,7 +56,8 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
     transferBytesReceived: 0,
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
-  // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there.
+  // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there
+  // (the glossy passes': prtApp.glossyBands).
   Object.defineProperty(progress, 'loadedBands', { get: () => PASS_NAMES.map((n) => app.loadedBands(kinds[n])), configurable: true, enumerable: true });
   const generation = ++currentStream;
   const superseded = () => generation !== currentStream;
@@ -111,19 +113,37 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
     await fetchAll(entry.parts.filter((p) => p.pass === undefined), () => {});
     const geometryError = app.streamGeometry();
     if (geometryError) throw fail(geometryError);
-    // The displayed pass first, then the others in file order.
     const displayed = app.mode();
-    const passKinds = [...new Set(transferParts.map((p) => kinds[p.pass]))];
-    passKinds.sort((a, b) => (b === displayed) - (a === displayed));
-    const queue = passKinds.flatMap((k) => transferParts.filter((p) => kinds[p.pass] === k));
-    const arrived = new Array(queue.length).fill(false);
-    const applied = new Map();  // kind -> bands uploaded
     let shown = false;
+    // Glossy matrix passes the server did not cut into parts (no `form: matrix` parts: their
+    // sections came whole with the geometry's): uploaded whole now.
+    for (const name of PASS_NAMES) {
+      const k = kinds[name];
+      if (app.hasGlossy(k) && !transferParts.some((p) => p.pass === name && p.form === 'matrix')) {
+        const error = app.streamGlossyPass(k, 0);
+        if (error) throw fail(error);
+      }
+    }
+    if (app.hasAnyPass(displayed) && !transferParts.some((p) => kinds[p.pass] === displayed)) {
+      shown = true;  // a glossy-only displayed pass, whole already
+      onFirstPicture();
+    }
+    // The displayed pass first, then the others in file order; a pass is its kind and form
+    // ("shadowed" vector pass, "shadowed/matrix" glossy pass), each streamed band by band.
+    const keyOf = (p) => `${p.pass}/${p.form === 'matrix' ? 'matrix' : 'vector'}`;
+    const passKeys = [...new Set(transferParts.map(keyOf))];
+    const isDisplayed = (key) => kinds[key.split('/')[0]] === displayed;
+    passKeys.sort((a, b) => isDisplayed(b) - isDisplayed(a));
+    const queue = passKeys.flatMap((key) => transferParts.filter((p) => keyOf(p) === key));
+    const arrived = new Array(queue.length).fill(false);
+    const applied = new Map();  // pass key -> bands uploaded
     // Applies, per pass, the longest run of arrived parts from its start: a pass's bands go
     // up strictly in order whatever order the fetches finish in.
     const apply = () => {
-      for (const k of passKinds) {
-        const parts = queue.map((p, i) => [p, i]).filter(([p]) => kinds[p.pass] === k);
+      for (const key of passKeys) {
+        const [name, form] = key.split('/');
+        const k = kinds[name];
+        const parts = queue.map((p, i) => [p, i]).filter(([p]) => keyOf(p) === key);
         let bands = 0, whole = false;
         for (const [p, i] of parts) {
           if (!arrived[i]) break;
@@ -132,10 +152,10 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
         }
         if (!whole && bands === 0) continue;
         const request = whole ? 0 : bands;
-        if (applied.get(k) === (whole ? 'all' : bands)) continue;
-        const error = app.streamPass(k, request);
+        if (applied.get(key) === (whole ? 'all' : bands)) continue;
+        const error = form === 'matrix' ? app.streamGlossyPass(k, request) : app.streamPass(k, request);
         if (error) throw fail(error);
-        applied.set(k, whole ? 'all' : bands);
+        applied.set(key, whole ? 'all' : bands);
         if (k === displayed && !shown) {
           shown = true;
           onFirstPicture();

@@ -6,7 +6,8 @@
 import { normaliseLights } from './lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
-export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize'];
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy'];
+const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 
 const rows = (flat) => {
   const out = [];
@@ -58,11 +59,55 @@ export function installTestHook(page) {
     vertexRadiance() {
       return ready() ? Float32Array.from(page.app.vertexRadiance()) : null;
     },
+    // Glossy rendering (docs/web-client.md, "Glossy rendering"): per pass the glossy pass's
+    // bands on the GPU (0: none) and [clusters, basis matrices, channels].
+    get glossyBands() {
+      return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, page.app.glossyBands(client.ShadingMode[n])])) : null;
+    },
+    get glossyShapes() {
+      return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, Array.from(page.app.glossyShape(client.ShadingMode[n]))])) : null;
+    },
+    // The glossy radiance of every vertex in the last frame (flat RGB, GPU read-back), and the
+    // CPU reference of it (prt::glossyExitRadiance on the expanded matrices, the same lighting
+    // and eye) for the displayed pass.
+    vertexGlossy() {
+      return ready() ? Float32Array.from(page.app.vertexGlossy()) : null;
+    },
+    glossyReference() {
+      if (!ready() || !PASS_NAMES.includes(state.mode)) return null;
+      return Float32Array.from(page.app.glossyReference(client.ShadingMode[state.mode]));
+    },
+    // Tests: a synthetic glossy pass (web/src/glossy_synthetic.h) on pass `mode` of the loaded
+    // scene, material {f0, exponent} on the vertices whose albedo green >= minGreen (f0 = 0
+    // elsewhere). Throws on error.
+    useSyntheticGlossy({ mode, bands = 4, channels = 1, clusters = 8, vectors = 3, seed = 1, f0 = 1, exponent = 30, minGreen = 0 }) {
+      if (!ready()) throw new Error('useSyntheticGlossy: no scene is loaded yet');
+      if (!PASS_NAMES.includes(mode)) throw new Error(`useSyntheticGlossy: mode must be one of ${PASS_NAMES.join(', ')}`);
+      const error = page.app.useSyntheticGlossy(client.ShadingMode[mode], bands, channels, clusters, vectors, seed, f0, exponent, minGreen);
+      if (error) throw new Error(`useSyntheticGlossy: ${error}`);
+      page.applyState();
+      page.refreshGui();
+    },
+    // Benchmark: the glossy work of the displayed pass alone, n times back to back, ended by a
+    // read-back: the per-cluster table alone (`tableOnly`) or table plus per-vertex pass.
+    timeGlossy(n, tableOnly = false) {
+      if (!ready()) return NaN;
+      const t0 = performance.now();
+      for (let i = 0; i < n; i++) if (!page.app.shadeGlossyVertices(tableOnly)) return NaN;
+      page.app.finishGlossy(tableOnly);  // a read-back of what the last pass wrote
+      return (performance.now() - t0) / n;
+    },
     // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
     // indices); returns the id to use as {shape: 'mesh', mesh: id}. Throws on bad input.
     addMesh(positions, indices) {
       if (!page.lightSet) throw new Error('addMesh: no scene is loaded yet');
       return page.lightSet.addMesh(positions, indices);
+    },
+    // The last frame's eye position, world units ([x, y, z]; null before a scene is ready).
+    get eye() { return ready() ? Array.from(page.app.rayFromScreen(0, 0)).slice(0, 3) : null; },
+    // Orbits the camera about its target by (dx, dy) radians, as a drag does.
+    orbit(dx, dy) {
+      if (ready()) page.app.orbit(dx, dy);
     },
     // The last frame's view-projection matrix: 16 numbers, column-major, OpenGL clip space.
     viewProjection() {
@@ -150,6 +195,11 @@ export function installTestHook(page) {
       if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
         throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);
       }
+      if ('glossy' in options) {
+        const g = options.glossy;
+        const bad = g === null || typeof g !== 'object' || Object.entries(g).some(([k, v]) => !PASS_NAMES.includes(k) || !GLOSSY_MIXES.includes(v));
+        if (bad) throw new Error(`set: glossy must map pass names (${PASS_NAMES.join(', ')}) to one of ${GLOSSY_MIXES.join(', ')}; got ${JSON.stringify(g)}`);
+      }
       const environments = page.environmentNames();
       if ('environment' in options && options.environment !== null && !environments.includes(options.environment)) {
         throw new Error(`set: environment must be null (off) or one of ${environments.map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
@@ -161,6 +211,7 @@ export function installTestHook(page) {
         normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
       }
       for (const key of ['mode', 'order', 'exposure', 'intensity', 'background']) if (key in options) state[key] = options[key];
+      if ('glossy' in options) Object.assign(state.glossyMix, options.glossy);
       if ('envRotation' in options) {
         const r = options.envRotation;
         [state.envYaw, state.envPitch] = Array.isArray(r) ? r : [r, 0];

@@ -34,16 +34,38 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
   return Status::ok();
 }
 
-int AssetStream::passIndex(int kind) const {
+int AssetStream::passIndex(int kind, TransferForm form) const {
   for (std::size_t i = 0; i < summary_.passes.size(); ++i)
-    if (static_cast<int>(summary_.passes[i].kind) == kind) return static_cast<int>(i);
+    if (static_cast<int>(summary_.passes[i].kind) == kind && summary_.passes[i].form == form) return static_cast<int>(i);
   return -1;
 }
 
 bool AssetStream::hasKind(int kind) const { return passIndex(kind) >= 0; }
+bool AssetStream::hasMatrixKind(int kind) const { return passIndex(kind, TransferForm::kMatrix) >= 0; }
 
-bool AssetStream::isCpca(int kind) const {
-  const int i = passIndex(kind);
+Status AssetStream::decodeMatrixPassCpca(int kind, int bands, CpcaMatrixTransfer* out, TransferPass* info) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = passIndex(kind, TransferForm::kMatrix);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no matrix pass of kind " + std::to_string(kind));
+  return decodeAssetPassCpcaMatrix(file_, i, bands, out, info);
+}
+
+Status AssetStream::decodeSpecular(std::vector<SpecularMaterial>* out) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  return decodeAssetSpecular(file_, out);
+}
+
+bool AssetStream::isCpca(int kind) const { return isCpcaAt(passIndex(kind)); }
+bool AssetStream::isMatrixCpca(int kind) const { return isCpcaAt(passIndex(kind, TransferForm::kMatrix)); }
+
+Status AssetStream::decodeMatrixPass(int kind, int bands, TransferPass* out, int* order) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = passIndex(kind, TransferForm::kMatrix);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no matrix pass of kind " + std::to_string(kind));
+  return decodeAssetPass(file_, i, bands, out, order);
+}
+
+bool AssetStream::isCpcaAt(int i) const {
   if (!headerRead_ || i < 0 || !summary_.passes[static_cast<std::size_t>(i)].encoded) return false;
   const AssetSectionInfo& section = summary_.sections[summary_.passes[static_cast<std::size_t>(i)].section];
   // Offsets were checked against the file size by peekAssetHeader.

@@ -39,9 +39,21 @@ class AssetStream {
   // Whether pass `kind` is CPCA-encoded, read from its blob's header (which arrives with the
   // pass's first part): false before then, for other encodings and for float32 passes.
   bool isCpca(int kind) const;
+  // The same for the matrix pass of `kind`.
+  bool isMatrixCpca(int kind) const;
+  // The matrix pass of `kind` expanded (decodeAssetPass): *order its bands.
+  Status decodeMatrixPass(int kind, int bands, TransferPass* out, int* order);
 
-  // Whether the asset holds a pass of `kind`.
+  // Whether the asset holds a (vector) pass of `kind`.
   bool hasKind(int kind) const;
+
+  // Glossy: the matrix pass of `kind` unexpanded (decodeAssetPassCpcaMatrix) from its first
+  // `bands` shells (0: every shell that has arrived); kInvalidArgument when absent or not CPCA.
+  Status decodeMatrixPassCpca(int kind, int bands, CpcaMatrixTransfer* out, TransferPass* info);
+  // Whether the asset holds a matrix pass of `kind`.
+  bool hasMatrixKind(int kind) const;
+  // The specular materials (their section must have arrived; empty without a matrix pass).
+  Status decodeSpecular(std::vector<SpecularMaterial>* out);
   const AssetSummary& summary() const { return summary_; }
   void release();  // frees the buffer (the decoded arrays live elsewhere)
 
@@ -49,7 +61,9 @@ class AssetStream {
   std::vector<std::uint8_t> file_;
   AssetSummary summary_;
   bool headerRead_ = false;
-  int passIndex(int kind) const;  // index into summary_.passes, or -1
+  // Index into summary_.passes of the pass of `kind` and `form`, or -1.
+  int passIndex(int kind, TransferForm form = TransferForm::kVector) const;
+  bool isCpcaAt(int index) const;
 };
 
 }  // namespace prt::web

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <utility>
 
+#include "glossy_synthetic.h"
+#include "glossy_texture.h"
+#include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_rotation.h"
 #include "transfer_texture.h"
@@ -58,10 +61,38 @@ std::string ClientApp::loadAsset() {
   pending_.clear();
   pending_.shrink_to_fit();
   if (!s.isOk()) return s.toString();
-  // CPCA passes go up in their compressed form (when cpcaDirect_), the others expanded.
+  // CPCA passes go up in their compressed form (when cpcaDirect_), the others expanded;
+  // glossy matrix passes always as CPCA (a float32 one as one cluster per vertex).
   std::vector<std::pair<TransferKind, CpcaTransfer>> cpca;
+  std::vector<std::pair<TransferKind, CpcaMatrixTransfer>> glossy;
   std::vector<TransferPass> expanded;
+  const int glossyBands = std::min(decoded.shOrder, kMaxGlossyOrder);
   for (TransferPass& p : decoded.passes) {
+    if (p.form == TransferForm::kMatrix) {
+      CpcaMatrixTransfer m;
+      if (!p.encoded.empty()) {
+        TransferBlobInfo info;
+        if (Status st = readTransferBlobInfo(p.encoded, &info); !st.isOk()) return st.toString();
+        if (info.encoding == TransferEncoding::kCpca) {
+          if (Status st = decodeCpcaMatrixTransfer(p.encoded, glossyBands, &m); !st.isOk()) return st.toString();
+          glossy.emplace_back(p.kind, std::move(m));
+          continue;
+        }
+      }
+      // Expanded matrices (float32, or another encoding's full decode): their leading block.
+      const MatrixPacking packing = matrixPackingFor(p.kind, decoded.lighting.model);
+      const std::size_t full = matrixEntryCount(decoded.shOrder, packing), lead = matrixEntryCount(glossyBands, packing);
+      const std::size_t rows = decoded.positions.size() * static_cast<std::size_t>(p.channels);
+      if (p.coeffs.size() != rows * full) return "glossy pass: matrix count disagrees with the vertex count";
+      std::vector<float> block(rows * lead);
+      for (std::size_t r = 0; r < rows; ++r) std::copy_n(&p.coeffs[r * full], lead, &block[r * lead]);
+      if (Status st = cpcaFromPlainMatrices(block, glossyBands, packing, p.channels, static_cast<std::uint32_t>(decoded.positions.size()), &m);
+          !st.isOk()) {
+        return st.message();
+      }
+      glossy.emplace_back(p.kind, std::move(m));
+      continue;
+    }
     CpcaTransfer c;
     if (cpcaDirect_ && !p.encoded.empty() && decodeCpcaTransfer(p.encoded, decoded.shOrder, &c).isOk()) {
       cpca.emplace_back(p.kind, std::move(c));
@@ -75,15 +106,133 @@ std::string ClientApp::loadAsset() {
     if (Status u = renderer_.uploadCpcaPass(kind, c); !u.isOk()) return u.message();
   }
   adoptGeometry(std::move(decoded));
-  if (!renderer_.hasPass(mode_)) {
+  for (auto& [kind, m] : glossy) {
+    if (std::string e = uploadGlossy(kind, std::move(m)); !e.empty()) return e;
+  }
+  if (!hasAnyPass(mode_)) {
     for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
-      if (renderer_.hasPass(m)) mode_ = m;
+      if (hasAnyPass(m)) mode_ = m;
   }
   return "";
 }
 
+std::string ClientApp::uploadGlossy(TransferKind kind, CpcaMatrixTransfer cpca) {
+  const auto k = static_cast<std::size_t>(kind);
+  if (k > 2) return "glossy pass of an unknown kind";
+  if (asset_.specular.size() != asset_.positions.size()) return "the asset has a glossy pass but no specular material per vertex";
+  makeCurrent();
+  if (Status u = renderer_.uploadGlossyPass(kind, cpca, asset_.specular); !u.isOk()) return u.message();
+  glossyCpu_[k] = std::move(cpca);
+  return "";
+}
+
+void ClientApp::setGlossyMix(ShadingMode kind, GlossyMix mix) {
+  if (!isPassKind(kind)) return;
+  if (mix != GlossyMix::kDiffuse && mix != GlossyMix::kGlossy && mix != GlossyMix::kBoth) return;
+  glossyMix_[static_cast<std::size_t>(kind)] = mix;
+}
+
+GlossyMix ClientApp::glossyMix(ShadingMode kind) const {
+  return isPassKind(kind) ? glossyMix_[static_cast<std::size_t>(kind)] : GlossyMix::kDiffuse;
+}
+
+bool ClientApp::hasGlossy(ShadingMode kind) const {
+  if (!isPassKind(kind)) return false;
+  return renderer_.glossyOrder(kind) > 0 || stream_.hasMatrixKind(static_cast<int>(kind));
+}
+
+std::string ClientApp::streamGlossyPass(ShadingMode mode, int bands) {
+  if (!ok()) return error_;
+  if (!isPassKind(mode)) return "streamGlossyPass: kind must be a pass kind (unshadowed, shadowed or interreflected)";
+  const int kind = static_cast<int>(mode);
+  CpcaMatrixTransfer cpca;
+  if (stream_.isMatrixCpca(kind)) {
+    TransferPass info;
+    if (Status s = stream_.decodeMatrixPassCpca(kind, bands, &cpca, &info); !s.isOk()) return s.toString();
+    if (cpca.bands > kMaxGlossyOrder) {
+      // The client draws at most kMaxGlossyOrder bands: decode that prefix (the leading block).
+      if (Status s = stream_.decodeMatrixPassCpca(kind, kMaxGlossyOrder, &cpca, &info); !s.isOk()) return s.toString();
+    }
+  } else {
+    // Float32 (or another encoding): expanded, then one cluster per vertex.
+    TransferPass pass;
+    int order = 0;
+    if (Status s = stream_.decodeMatrixPass(kind, bands, &pass, &order); !s.isOk()) return s.toString();
+    const int lead = std::min(order, kMaxGlossyOrder);
+    const MatrixPacking packing = matrixPackingFor(static_cast<TransferKind>(kind), asset_.lighting.model);
+    const std::size_t full = matrixEntryCount(order, packing), part = matrixEntryCount(lead, packing);
+    const std::size_t rows = asset_.positions.size() * static_cast<std::size_t>(pass.channels);
+    if (pass.coeffs.size() != rows * full) return "glossy pass: matrix count disagrees with the vertex count";
+    std::vector<float> block(rows * part);
+    for (std::size_t r = 0; r < rows; ++r) std::copy_n(&pass.coeffs[r * full], part, &block[r * part]);
+    if (Status s = cpcaFromPlainMatrices(block, lead, packing, pass.channels, static_cast<std::uint32_t>(asset_.positions.size()), &cpca);
+        !s.isOk()) {
+      return s.message();
+    }
+  }
+  if (std::string e = uploadGlossy(static_cast<TransferKind>(kind), std::move(cpca)); !e.empty()) return e;
+  if (pendingMode_ == mode) {
+    mode_ = mode;
+    pendingMode_.reset();
+  }
+  return "";
+}
+
+std::vector<float> ClientApp::vertexGlossy() const {
+  if (!ok()) return {};
+  makeCurrent();
+  return renderer_.readGlossy(asset_.positions.size());
+}
+
+std::vector<float> ClientApp::glossyReference(ShadingMode kind) {
+  if (!ok() || !isPassKind(kind)) return {};
+  const CpcaMatrixTransfer& cpca = glossyCpu_[static_cast<std::size_t>(kind)];
+  if (cpca.bands == 0 || renderer_.glossyOrder(kind) == 0) return {};
+  std::vector<float> expanded(asset_.positions.size() * static_cast<std::size_t>(cpca.channels) * matrixEntryCount(cpca.bands, cpca.packing));
+  if (!cpcaMatrixReconstruct(cpca, expanded).isOk()) return {};
+  // The lighting the GPU drew with: the block (light cube + environment) at the display order.
+  const int bands = std::clamp(displayOrder_, 1, cpca.bands);
+  const std::vector<float> flat = lights_.lightSH();
+  std::vector<Rgb> lighting(static_cast<std::size_t>(bands * bands));
+  for (std::size_t i = 0; i < lighting.size() && 3 * i + 2 < flat.size(); ++i) lighting[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+  std::vector<float> out(3 * asset_.positions.size());
+  const GlossyView view{toVec3(lastEye_), fresnel_};
+  if (!glossyExitRadiance(expanded, cpca.bands, cpca.packing, cpca.channels, asset_.positions, asset_.normals, asset_.specular, view,
+                          lighting, out)
+           .isOk()) {
+    return {};
+  }
+  return out;
+}
+
+std::string ClientApp::useSyntheticGlossy(ShadingMode kind, int bands, int channels, int clusters, int vectors, int seed, float f0,
+                                          float exponent, float minGreen) {
+  if (!ok()) return error_;
+  if (!isPassKind(kind) || asset_.positions.empty()) return "useSyntheticGlossy: needs a scene and a pass kind";
+  if (!(f0 >= 0.0f && f0 <= 1.0f) || !(exponent >= 0.0f) || !std::isfinite(exponent)) return "useSyntheticGlossy: f0 in [0, 1], exponent >= 0";
+  SyntheticGlossySpec spec;
+  spec.bands = bands;
+  spec.channels = channels;
+  spec.clusters = clusters;
+  spec.vectors = vectors;
+  spec.seed = static_cast<std::uint64_t>(seed);
+  spec.packing = kind == ShadingMode::kShadowed ? MatrixPacking::kSymmetric : MatrixPacking::kFull;
+  std::vector<std::uint8_t> glossy(asset_.positions.size());
+  asset_.specular.assign(asset_.positions.size(), SpecularMaterial{});
+  for (std::size_t v = 0; v < asset_.positions.size(); ++v) {
+    glossy[v] = asset_.albedo[v].g >= minGreen ? 1 : 0;
+    if (glossy[v]) asset_.specular[v] = {{f0, f0, f0}, exponent};
+  }
+  CpcaMatrixTransfer cpca;
+  if (Status s = makeSyntheticCpcaMatrix(spec, static_cast<std::uint32_t>(asset_.positions.size()), &cpca, glossy); !s.isOk()) {
+    return s.toString();
+  }
+  return uploadGlossy(static_cast<TransferKind>(kind), std::move(cpca));
+}
+
 void ClientApp::adoptGeometry(BakedAsset decoded) {
   asset_ = std::move(decoded);
+  glossyCpu_ = {};
   asset_.passes.clear();  // on the GPU now; the CPU copy is not used again
   asset_.passes.shrink_to_fit();
   boundsMin_ = boundsMax_ = asset_.positions.front();
@@ -104,11 +253,16 @@ std::string ClientApp::streamGeometry() {
   if (Status s = stream_.decodeGeometry(&decoded); !s.isOk()) return s.toString();
   makeCurrent();
   if (Status u = renderer_.uploadGeometry(decoded); !u.isOk()) return u.message();
+  const bool anyGlossy = stream_.hasMatrixKind(0) || stream_.hasMatrixKind(1) || stream_.hasMatrixKind(2);
+  if (anyGlossy && decoded.specular.size() != decoded.positions.size()) {
+    if (Status s = stream_.decodeSpecular(&decoded.specular); !s.isOk()) return s.toString();
+  }
   adoptGeometry(std::move(decoded));
   // The displayed pass, chosen as loadAsset chooses among the passes the file holds.
-  if (!stream_.hasKind(static_cast<int>(mode_))) {
+  auto streams = [this](ShadingMode m) { return stream_.hasKind(static_cast<int>(m)) || stream_.hasMatrixKind(static_cast<int>(m)); };
+  if (!streams(mode_)) {
     for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
-      if (stream_.hasKind(static_cast<int>(m))) mode_ = m;
+      if (streams(m)) mode_ = m;
   }
   return "";
 }
@@ -162,10 +316,10 @@ void ClientApp::setEnvRotation(float yaw, float pitch) {
 void ClientApp::setLightColor(float r, float g, float b) { color_ = {r, g, b}; }
 void ClientApp::setMode(ShadingMode m) {
   if (!isPassKind(m) && m != ShadingMode::kLambert) return;
-  if (renderer_.hasPass(m) || asset_.positions.empty()) {
+  if (hasAnyPass(m) || asset_.positions.empty()) {
     mode_ = m;
     pendingMode_.reset();
-  } else if (stream_.hasKind(static_cast<int>(m))) {
+  } else if (stream_.hasKind(static_cast<int>(m)) || stream_.hasMatrixKind(static_cast<int>(m))) {
     pendingMode_ = m;  // still streaming: switch when its first band arrives
   }
 }
@@ -221,6 +375,10 @@ void ClientApp::render(int width, int height) {
   p.exposure = exposure_;
   p.background = background_ && environmentEnabled_;
   p.environment = packed_;
+  p.mix = glossyMix(mode_);
+  p.eye = camera_.eye();
+  p.fresnel = fresnel_;
+  lastEye_ = p.eye;
   renderer_.draw(width, height, p);
   lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);
 }
@@ -237,6 +395,13 @@ void ClientApp::prepareLighting() {
   syncLightView();
   // Re-projects the light cube only when dirty; leaves the lighting block bound.
   lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);
+}
+
+bool ClientApp::shadeGlossyVertices(bool tableOnly) {
+  if (!ok()) return false;
+  makeCurrent();
+  prepareLighting();
+  return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), fresnel_, tableOnly);
 }
 
 bool ClientApp::shadeVertices() {

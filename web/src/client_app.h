@@ -5,6 +5,7 @@
 // (orbit_camera.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -71,6 +72,38 @@ class ClientApp {
   // GPU buffer back: tests and tools only).
   std::vector<float> vertexRadiance() const;
 
+  // ---- glossy rendering (docs/web-client.md, "Glossy rendering") ----
+  // Which terms pass `kind` draws: its diffuse vector pass, its glossy matrix pass, or both
+  // (the default). Ignored for Lambert.
+  void setGlossyMix(ShadingMode kind, GlossyMix mix);
+  GlossyMix glossyMix(ShadingMode kind) const;
+  // Whether the scene has (or is streaming) a glossy matrix pass of `kind`.
+  bool hasGlossy(ShadingMode kind) const;
+  // Bands of the glossy pass of `kind` on the GPU (0 when absent): the shells arrived so far.
+  int glossyBands(ShadingMode kind) const { return renderer_.glossyOrder(kind); }
+  // [clusters, basis matrices per cluster, channels] of the glossy pass of `kind`; zeros when absent.
+  std::vector<int> glossyShape(ShadingMode kind) const {
+    const auto s = renderer_.glossyShape(kind);
+    return {s[0], s[1], s[2]};
+  }
+  // Decodes the glossy matrix pass of `kind` from its first `bands` shells (0: all that have
+  // arrived) and re-uploads it. "" or the error.
+  std::string streamGlossyPass(ShadingMode kind, int bands);
+  // Schlick's Fresnel in the glossy term (on by default; off: k_s = f0, for comparisons).
+  void setFresnel(bool on) { fresnel_ = on; }
+  // Glossy radiance of every vertex in the last frame, flat RGB before exposure (GPU read-back).
+  std::vector<float> vertexGlossy() const;
+  // The CPU reference of the last frame's glossy term for pass `kind`: prt::glossyExitRadiance
+  // on the matrices prt::cpcaMatrixReconstruct expands, with the last frame's lighting (read back from the GPU) and eye,
+  // at the bands drawn; flat RGB per vertex, empty when the pass is absent.
+  std::vector<float> glossyReference(ShadingMode kind);
+  // Tests: replaces the glossy pass of `kind` by a synthetic CPCA matrix pass (glossy_synthetic.h:
+  // `bands`, `channels`, `clusters`, `vectors`, `seed`) with material (f0, exponent) on every
+  // vertex whose albedo's green channel is >= `minGreen`; the others get f0 = 0 and all-zero
+  // matrices (no glossy term), as a bake stores non-glossy vertices. "" or the error.
+  std::string useSyntheticGlossy(ShadingMode kind, int bands, int channels, int clusters, int vectors, int seed,
+                                 float f0, float exponent, float minGreen);
+
   // Environment lighting: radiance SH, flat [r,g,b] per coefficient, order 1..16 (the first
   // kMaxClientOrder bands are kept). Returns "" or the error.
   std::string setEnvironment(const std::vector<float>& flatRgb, int order);
@@ -135,6 +168,15 @@ class ClientApp {
   // Benchmarks: the per-vertex PRT pass of the current mode alone, as render() runs it
   // (lighting updated first), without drawing; false when the mode has no pass.
   bool shadeVertices();
+  // Benchmarks: the glossy work of the current mode alone (lighting updated first): the
+  // per-cluster table and the per-vertex glossy pass, or with `tableOnly` the table alone.
+  bool shadeGlossyVertices(bool tableOnly);
+  // Waits for the glossy passes queued so far (a 1-value read-back of what they write).
+  void finishGlossy(bool tableOnly) const {
+    if (!ok()) return;
+    makeCurrent();
+    renderer_.finishGlossy(mode_, tableOnly);
+  }
   void finishShading() const;  // waits for the PRT passes queued so far (a 1-vertex read-back)
   std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
   const std::string& projectionError() const { return lights_.projectionError(); }
@@ -147,6 +189,8 @@ class ClientApp {
   int displayOrder() const { return displayOrder_; }
   ShadingMode mode() const { return mode_; }
   bool hasPass(ShadingMode mode) const { return ok() && renderer_.hasPass(mode); }
+  // A vector or a glossy pass of `mode` (Lambert: the geometry) is on the GPU.
+  bool hasAnyPass(ShadingMode mode) const { return hasPass(mode) || (ok() && renderer_.glossyOrder(mode) > 0); }
 
  private:
   bool ok() const { return error_.empty(); }
@@ -155,6 +199,8 @@ class ClientApp {
   void makeCurrent() const;
   void syncLightView();  // light-cube centre, near plane and order from the scene
   void adoptGeometry(BakedAsset decoded);  // bounds, order, mode, framing of a new scene
+  // Uploads a glossy pass and keeps its CPU copy for glossyReference. "" or the error.
+  std::string uploadGlossy(TransferKind kind, CpcaMatrixTransfer cpca);
 
   std::string error_;
   int context_ = 0;
@@ -162,6 +208,10 @@ class ClientApp {
   DynamicLighting lights_;
   bool environmentEnabled_ = true;
   bool cpcaDirect_ = true;
+  bool fresnel_ = true;
+  std::array<GlossyMix, 3> glossyMix_{GlossyMix::kBoth, GlossyMix::kBoth, GlossyMix::kBoth};
+  std::array<CpcaMatrixTransfer, 3> glossyCpu_{};  // the uploaded glossy passes, for glossyReference
+  glm::vec3 lastEye_{0.0f};
   std::vector<std::uint8_t> pending_;
   AssetStream stream_;
   BakedAsset asset_;

@@ -67,6 +67,9 @@ double weightTableBytes(const ClientApp& app) { return static_cast<double>(app.w
 
 val cpcaShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.cpcaShape(kind)); }
 val vertexRadiance(const ClientApp& app) { return val::array(app.vertexRadiance()); }
+val vertexGlossy(const ClientApp& app) { return val::array(app.vertexGlossy()); }
+val glossyReference(ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyReference(kind)); }
+val glossyShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyShape(kind)); }
 
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
 val viewProjection(const ClientApp& app) { return val::array(app.viewProjection()); }
@@ -90,6 +93,11 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .value("absent", prt::web::PassForm::kAbsent)
       .value("expanded", prt::web::PassForm::kExpanded)
       .value("cpca", prt::web::PassForm::kCpca);
+  // Module.GlossyMix.diffuse / glossy / both: which terms a pass draws (setGlossyMix).
+  emscripten::enum_<prt::web::GlossyMix>("GlossyMix")
+      .value("diffuse", prt::web::GlossyMix::kDiffuse)
+      .value("glossy", prt::web::GlossyMix::kGlossy)
+      .value("both", prt::web::GlossyMix::kBoth);
   emscripten::class_<ClientApp>("ClientApp")
       .constructor<std::string>()
       .function("error", &ClientApp::error)
@@ -106,6 +114,19 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("passForm", &ClientApp::passForm)
       .function("cpcaShape", &cpcaShape)
       .function("vertexRadiance", &vertexRadiance)
+      .function("setGlossyMix", &ClientApp::setGlossyMix)
+      .function("glossyMix", &ClientApp::glossyMix)
+      .function("hasGlossy", &ClientApp::hasGlossy)
+      .function("hasAnyPass", &ClientApp::hasAnyPass)
+      .function("glossyBands", &ClientApp::glossyBands)
+      .function("glossyShape", &glossyShape)
+      .function("streamGlossyPass", &ClientApp::streamGlossyPass)
+      .function("setFresnel", &ClientApp::setFresnel)
+      .function("vertexGlossy", &vertexGlossy)
+      .function("glossyReference", &glossyReference)
+      .function("useSyntheticGlossy", &ClientApp::useSyntheticGlossy)
+      .function("shadeGlossyVertices", &ClientApp::shadeGlossyVertices)
+      .function("finishGlossy", &ClientApp::finishGlossy)
       .function("setEnvironment", &setEnvironment)
       .function("setWhiteFurnace", &ClientApp::setWhiteFurnace)
       .function("setEnvRotation", &ClientApp::setEnvRotation)

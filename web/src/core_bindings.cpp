@@ -5,6 +5,7 @@
 #include <emscripten/val.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -12,10 +13,13 @@
 #include "cpca_texture.h"
 #include "cube_faces.h"
 #include "emitters.h"
+#include "glossy_synthetic.h"
+#include "glossy_texture.h"
 #include "prt/asset.h"
 #include "prt/cube_sh_weights.h"
 #include "prt/cubemap.h"
 #include "prt/exit_radiance.h"
+#include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_project.h"
 #include "prt/sh_rotation.h"
@@ -147,6 +151,151 @@ val timeTransferDecode(const val& bytes, int repeats) {
   return out;
 }
 
+// Glossy rendering on the CPU (glossy_texture.h's emulation of glossy_table.vert and
+// glossy.vert from the packed textures) against prt::glossyExitRadiance on the expanded
+// matrices (float and double accumulation), for a synthetic CPCA matrix pass (glossy_synthetic.h)
+// on `vertices` random points and normals: spec {bands, channels, packing ("full" |
+// "symmetric"), clusters, vectors, weightBits, seed}, eye [x, y, z], lighting (packLighting
+// layout, kPackedLightingFloats floats), `activeBands` displayed. Returns {emulated, reference,
+// referenceDouble, basisExact} (flat RGB per vertex) or a string naming the error.
+val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const val& lighting, int activeBands, bool fresnel) {
+  prt::web::SyntheticGlossySpec s;
+  s.bands = spec["bands"].as<int>();
+  s.channels = spec["channels"].as<int>();
+  s.packing = spec["packing"].as<std::string>() == "symmetric" ? prt::MatrixPacking::kSymmetric : prt::MatrixPacking::kFull;
+  s.clusters = spec["clusters"].as<int>();
+  s.vectors = spec["vectors"].as<int>();
+  s.weightBits = spec["weightBits"].as<int>();
+  s.seed = static_cast<std::uint64_t>(spec["seed"].as<double>());
+  const std::vector<float> light = emscripten::convertJSArrayToNumberVector<float>(lighting);
+  const std::vector<float> e = emscripten::convertJSArrayToNumberVector<float>(eye);
+  if (light.size() != static_cast<std::size_t>(prt::web::kPackedLightingFloats) || e.size() != 3 || vertices < 1) {
+    return val(std::string("lighting must hold kPackedLightingFloats floats, eye 3, vertices >= 1"));
+  }
+  if (activeBands < 1 || activeBands > s.bands) return val(std::string("activeBands must be 1 .. bands"));
+  prt::CpcaMatrixTransfer cpca;
+  if (prt::Status st = prt::web::makeSyntheticCpcaMatrix(s, static_cast<std::uint32_t>(vertices), &cpca); !st.isOk()) return val(st.toString());
+  // Geometry and materials from the same seed: points in a unit box, unit normals, f0 and
+  // exponents over the range materials use (dielectric to metal, s from 0 to 200).
+  std::uint64_t state = s.seed * 7919u + 17u;
+  auto next = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<float>(state >> 40) / static_cast<float>(1u << 24);
+  };
+  std::vector<prt::Vec3> positions(static_cast<std::size_t>(vertices)), normals(positions.size());
+  std::vector<prt::SpecularMaterial> specular(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    positions[v] = {2 * next() - 1, 2 * next() - 1, 2 * next() - 1};
+    prt::Vec3 n{2 * next() - 1, 2 * next() - 1, 2 * next() - 1};
+    if (prt::length(n) < 1e-3f) n = {0, 0, 1};
+    normals[v] = n * (1.0f / prt::length(n));
+    specular[v] = {{0.04f + 0.96f * next(), 0.04f + 0.96f * next(), 0.04f + 0.96f * next()}, 200.0f * next() * next()};
+  }
+  prt::web::GlossyTextures packed;
+  if (prt::Status st = prt::web::packGlossy(cpca, specular, 16384, &packed); !st.isOk()) return val(st.toString());
+  const prt::Vec3 eyePoint{e[0], e[1], e[2]};
+  const std::vector<float> table = prt::web::glossyTableCpu(packed, light.data(), activeBands);
+  const std::vector<float> emulated = prt::web::glossyRadianceCpu(packed, table, activeBands, positions, normals, eyePoint, fresnel);
+  std::vector<float> expanded(static_cast<std::size_t>(vertices) * static_cast<std::size_t>(s.channels) * prt::matrixEntryCount(s.bands, s.packing));
+  if (prt::Status st = prt::cpcaMatrixReconstruct(cpca, expanded); !st.isOk()) return val(st.toString());
+  std::vector<float> local;
+  if (prt::Status st = prt::web::expandCpcaMatrix(cpca, &local); !st.isOk()) return val(st.toString());
+  std::vector<prt::Rgb> rgb(static_cast<std::size_t>(activeBands * activeBands));
+  for (std::size_t i = 0; i < rgb.size(); ++i) {
+    rgb[i] = {light[i], light[prt::web::kMaxClientCoeffs + i], light[2 * prt::web::kMaxClientCoeffs + i]};
+  }
+  const prt::GlossyView view{eyePoint, fresnel};
+  std::vector<float> reference(3 * positions.size());
+  std::vector<double> referenceDouble(3 * positions.size());
+  if (prt::Status st = prt::glossyExitRadiance(expanded, s.bands, s.packing, s.channels, positions, normals, specular, view, rgb, reference);
+      !st.isOk()) {
+    return val(st.toString());
+  }
+  if (prt::Status st = prt::glossyExitRadianceDouble(expanded, s.bands, s.packing, s.channels, positions, normals, specular, view, rgb,
+                                                     referenceDouble);
+      !st.isOk()) {
+    return val(st.toString());
+  }
+  // The shader's SH evaluation against the shared one, bit for bit, at every reflected direction.
+  bool basisExact = true;
+  for (std::size_t v = 0; v < positions.size() && basisExact; ++v) {
+    float a[64], b[64];
+    prt::web::glossyShBasis(s.bands, normals[v], a);
+    prt::evalShBasisUnchecked(s.bands, normals[v], b);
+    for (int i = 0; i < s.bands * s.bands; ++i) basisExact = basisExact && a[i] == b[i];
+  }
+  val out = val::object();
+  out.set("emulated", val::array(emulated));
+  out.set("reference", val::array(reference));
+  out.set("referenceDouble", val::array(std::vector<float>(referenceDouble.begin(), referenceDouble.end())));
+  out.set("basisExact", basisExact);
+  out.set("expansionsAgree", local == expanded);  // glossy_synthetic's expansion is the codec's, bit for bit
+  out.set("tableTexels", packed.tableTexels);
+  return out;
+}
+
+// Glossy exit radiance of an asset's matrix pass `kind` toward eye [x, y, z] under `lighting`
+// (flat RGB per coefficient, bands^2 rows, bands <= the baked order): {reference} from
+// prt::glossyExitRadiance on the pass's full decode (decodeAsset), and for a CPCA pass
+// {emulated} from the client's packed textures (glossy_texture.h, the shaders' arithmetic) and
+// {reconstructed} from glossyExitRadiance on cpcaMatrixReconstruct; flat RGB per vertex, or a
+// string naming the error.
+val glossyAssetCheck(const val& bytes, const std::string& kind, const val& lighting, const val& eye, bool fresnel) {
+  const std::vector<std::uint8_t> data = bytesFrom(bytes);
+  const std::vector<float> flat = emscripten::convertJSArrayToNumberVector<float>(lighting);
+  const std::vector<float> e = emscripten::convertJSArrayToNumberVector<float>(eye);
+  if (e.size() != 3 || flat.empty() || flat.size() % 3 != 0) return val(std::string("eye must hold 3 numbers, lighting RGB rows"));
+  prt::BakedAsset asset;
+  if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
+  const prt::TransferPass* p = nullptr;
+  for (const prt::TransferPass& q : asset.passes)
+    if (q.form == prt::TransferForm::kMatrix && kind == prt::transferKindName(q.kind)) p = &q;
+  if (!p) return val("the asset has no " + kind + " matrix pass");
+  std::vector<prt::Rgb> rgb(flat.size() / 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+  const int bands = static_cast<int>(std::lround(std::sqrt(static_cast<double>(rgb.size()))));
+  const prt::MatrixPacking packing = prt::matrixPackingFor(p->kind, asset.lighting.model);
+  const prt::GlossyView view{{e[0], e[1], e[2]}, fresnel};
+  std::vector<float> reference(3 * asset.positions.size());
+  if (prt::Status s = prt::glossyExitRadiance(p->coeffs, asset.shOrder, packing, p->channels, asset.positions, asset.normals, asset.specular,
+                                              view, rgb, reference);
+      !s.isOk()) {
+    return val(s.toString());
+  }
+  val out = val::object();
+  out.set("reference", val::array(reference));
+  prt::TransferBlobInfo info;
+  if (!p->encoded.empty() && prt::readTransferBlobInfo(p->encoded, &info).isOk() && info.encoding == prt::TransferEncoding::kCpca) {
+    prt::CpcaMatrixTransfer cpca;
+    if (prt::Status s = prt::decodeCpcaMatrixTransfer(p->encoded, bands, &cpca); !s.isOk()) return val(s.toString());
+    prt::web::GlossyTextures packed;
+    if (prt::Status s = prt::web::packGlossy(cpca, asset.specular, 16384, &packed); !s.isOk()) return val(s.toString());
+    float light[prt::web::kPackedLightingFloats] = {};
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+      light[i] = rgb[i].r;
+      light[prt::web::kMaxClientCoeffs + i] = rgb[i].g;
+      light[2 * prt::web::kMaxClientCoeffs + i] = rgb[i].b;
+    }
+    const std::vector<float> table = prt::web::glossyTableCpu(packed, light, bands);
+    out.set("emulated", val::array(prt::web::glossyRadianceCpu(packed, table, bands, asset.positions, asset.normals, view.eye, fresnel)));
+    std::vector<float> expanded(asset.positions.size() * static_cast<std::size_t>(cpca.channels) * prt::matrixEntryCount(bands, packing));
+    if (prt::Status s = prt::cpcaMatrixReconstruct(cpca, expanded); !s.isOk()) return val(s.toString());
+    std::vector<float> local;
+    if (prt::Status s = prt::web::expandCpcaMatrix(cpca, &local); !s.isOk()) return val(s.toString());
+    out.set("expansionsAgree", local == expanded);
+    std::vector<float> reconstructed(3 * asset.positions.size());
+    if (prt::Status s = prt::glossyExitRadiance(expanded, bands, packing, cpca.channels, asset.positions, asset.normals, asset.specular, view,
+                                                rgb, reconstructed);
+        !s.isOk()) {
+      return val(s.toString());
+    }
+    out.set("reconstructed", val::array(reconstructed));
+    out.set("clusters", static_cast<int>(cpca.clusterCount));
+    out.set("vectors", cpca.vectors);
+  }
+  return out;
+}
+
 val evalBasis(int order, float x, float y, float z) {
   std::vector<float> out(static_cast<std::size_t>(prt::shCoeffCount(std::max(1, std::min(order, prt::kMaxShOrder)))));
   const prt::Status s = prt::evalShBasis(order, {x, y, z}, out);
@@ -274,6 +423,9 @@ EMSCRIPTEN_BINDINGS(prt_core) {
   emscripten::function("shadeConstant", &shadeConstant);
   emscripten::function("cpcaRadianceCheck", &cpcaRadianceCheck);
   emscripten::function("timeTransferDecode", &timeTransferDecode);
+  emscripten::function("glossySyntheticCheck", &glossySyntheticCheck);
+  emscripten::function("glossyAssetCheck", &glossyAssetCheck);
+  emscripten::constant("kMaxGlossyOrder", prt::web::kMaxGlossyOrder);
   emscripten::function("evalBasis", &evalBasis);
   emscripten::function("rotateCoefficients", &rotateCoefficients);
   emscripten::function("projectCube", &projectCube);

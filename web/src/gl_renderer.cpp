@@ -56,6 +56,19 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->weights = glGetUniformLocation(p, "uWeights");
   out->entries = glGetUniformLocation(p, "uEntries");
   out->weightTexels = glGetUniformLocation(p, "uWeightTexels");
+  out->matrices = glGetUniformLocation(p, "uMatrices");
+  out->rowTexels = glGetUniformLocation(p, "uRowTexels");
+  out->matrixTexels = glGetUniformLocation(p, "uMatrixTexels");
+  out->rows = glGetUniformLocation(p, "uRows");
+  out->symmetric = glGetUniformLocation(p, "uSymmetric");
+  out->vectors = glGetUniformLocation(p, "uVectors");
+  out->bands = glGetUniformLocation(p, "uBands");
+  out->fresnel = glGetUniformLocation(p, "uFresnel");
+  out->eye = glGetUniformLocation(p, "uEye");
+  out->shY00 = glGetUniformLocation(p, "uShY00");
+  out->shK1 = glGetUniformLocation(p, "uShK1");
+  out->shA = glGetUniformLocation(p, "uShA");
+  out->shB = glGetUniformLocation(p, "uShB");
   return Status::ok();
 }
 
@@ -63,6 +76,8 @@ Status GlRenderer::init() {
   if (Status s = link(shaders::k_prt_vert, shaders::k_discard_frag, &prt_, "vRadiance"); !s.isOk()) return s;
   if (Status s = link(shaders::k_radiance_vert, shaders::k_shade_frag, &radiance_); !s.isOk()) return s;
   if (Status s = link(shaders::k_cpca_vert, shaders::k_discard_frag, &cpca_, "vRadiance"); !s.isOk()) return s;
+  if (Status s = link(shaders::k_glossy_table_vert, shaders::k_discard_frag, &glossyTable_, "vTable"); !s.isOk()) return s;
+  if (Status s = link(shaders::k_glossy_vert, shaders::k_discard_frag, &glossyProgram_, "vGlossy"); !s.isOk()) return s;
   glGenTransformFeedbacks(1, &feedback_);
   glGenVertexArrays(1, &tableVao_);
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
@@ -72,7 +87,7 @@ Status GlRenderer::init() {
 }
 
 void GlRenderer::releaseGeometry() {
-  for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_}) {
+  for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_, &glossyBuffer_}) {
     if (*b) glDeleteBuffers(1, b);
     *b = 0;
   }
@@ -93,9 +108,19 @@ void GlRenderer::releasePass(PassTexture* p) {
   *p = {};
 }
 
+void GlRenderer::releaseGlossy(GlossyPass* g) {
+  for (GLuint* t : {&g->matrices, &g->weights, &g->table})
+    if (*t) glDeleteTextures(1, t);
+  for (GLuint* b : {&g->tableBuffer, &g->clusterIds, &g->specular})
+    if (*b) glDeleteBuffers(1, b);
+  if (g->vao) glDeleteVertexArrays(1, &g->vao);
+  *g = {};
+}
+
 void GlRenderer::release() {
   releaseGeometry();
   for (PassTexture& t : passes_) releasePass(&t);
+  for (GlossyPass& g : glossy_) releaseGlossy(&g);
 }
 
 void GlRenderer::setPassTexture(std::size_t kind, const TransferTexture& t, int order) {
@@ -163,6 +188,149 @@ Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
   return Status::ok();
 }
 
+Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular) {
+  const auto k = static_cast<std::size_t>(kind);
+  if (k > 2 || indexCount_ == 0 || cpca.vertexCount != static_cast<std::uint32_t>(vertexCount_)) {
+    return Status::error(StatusCode::kInvalidArgument, "uploadGlossyPass: no geometry, or pass kind or vertex count out of range");
+  }
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  GlossyTextures packed;
+  if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
+  GlossyPass& g = glossy_[k];
+  releaseGlossy(&g);
+  g.bands = packed.bands;
+  g.channels = packed.channels;
+  g.clusters = packed.clusters;
+  g.vectors = packed.vectors;
+  g.weightTexels = packed.weightTexels;
+  g.matrixTexels = packed.matrixTexels;
+  g.rowTexels = packed.rowTexels;
+  g.tableTexels = packed.tableTexels;
+  g.tableHeight = packed.tableHeight;
+  g.symmetric = packed.packing == MatrixPacking::kSymmetric;
+  glGenTextures(1, &g.matrices);
+  glBindTexture(GL_TEXTURE_2D, g.matrices);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, packed.matrixWidth, packed.matrixHeight, 0, GL_RGBA, GL_FLOAT, packed.matrixData.data());
+  glGenTextures(1, &g.weights);
+  glBindTexture(GL_TEXTURE_2D, g.weights);
+  setNearestClamp(GL_TEXTURE_2D);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (packed.weightBits == 8) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_BYTE, packed.weightData.data());
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_SHORT, packed.weightData.data());
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glGenTextures(1, &g.table);
+  glBindTexture(GL_TEXTURE_2D, g.table);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, packed.tableWidth, packed.tableHeight, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  // Sized for the whole table texture: the copy reads every row (WebGL zero-fills buffers).
+  g.tableBuffer = makeBuffer(GL_ARRAY_BUFFER, nullptr, static_cast<std::size_t>(packed.tableWidth) * packed.tableHeight * 4 * sizeof(float));
+  glGenVertexArrays(1, &g.vao);
+  glBindVertexArray(g.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, positions_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, normals_);
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  g.clusterIds = makeBuffer(GL_ARRAY_BUFFER, packed.clusterOf.data(), packed.clusterOf.size() * sizeof(std::uint16_t));
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
+  g.specular = makeBuffer(GL_ARRAY_BUFFER, packed.specular.data(), packed.specular.size() * sizeof(float));
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  if (Status s = glErrorStatus("this scene's glossy transfer", "uploading a glossy pass"); !s.isOk()) {
+    releaseGlossy(&g);
+    return s;
+  }
+  return Status::ok();
+}
+
+int GlRenderer::glossyOrder(ShadingMode mode) const {
+  if (!isPassKind(mode)) return 0;
+  return glossy_[static_cast<std::size_t>(mode)].bands;
+}
+
+std::array<int, 3> GlRenderer::glossyShape(ShadingMode mode) const {
+  if (glossyOrder(mode) == 0) return {0, 0, 0};
+  const GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
+  return {g.clusters, g.vectors, g.channels};
+}
+
+bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, bool fresnel, bool tableOnly) {
+  if (!isPassKind(mode) || indexCount_ == 0) return false;
+  const GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
+  if (g.bands == 0) return false;
+  const int bands = std::clamp(displayOrder, 1, g.bands);
+  // 1. The table: every cluster's (1 + N') matrices times the lighting, one point per texel.
+  glUseProgram(glossyTable_.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.matrices);
+  glUniform1i(glossyTable_.matrices, 0);
+  glUniform1i(glossyTable_.textureWidth, kTransferTextureWidth);
+  glUniform1i(glossyTable_.rowTexels, g.rowTexels);
+  glUniform1i(glossyTable_.matrixTexels, g.matrixTexels);
+  glUniform1i(glossyTable_.channels, g.channels);
+  glUniform1i(glossyTable_.rows, bands * bands);
+  glUniform1i(glossyTable_.symmetric, g.symmetric ? 1 : 0);
+  glBindVertexArray(tableVao_);
+  capture(g.tableBuffer, static_cast<GLsizei>(g.tableTexels));
+  // 2. Into the table texture, GPU to GPU.
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.tableBuffer);
+  glBindTexture(GL_TEXTURE_2D, g.table);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.tableHeight, GL_RGBA, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  if (tableOnly) return true;
+  // 3. Per vertex: weighted sum, lobe convolution, y_i(R) toward the eye, Schlick.
+  glUseProgram(glossyProgram_.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.table);
+  glUniform1i(glossyProgram_.table, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, g.weights);
+  glUniform1i(glossyProgram_.weights, 1);
+  glUniform1i(glossyProgram_.textureWidth, kTransferTextureWidth);
+  glUniform1i(glossyProgram_.rowTexels, g.rowTexels);
+  glUniform1i(glossyProgram_.vectors, g.vectors);
+  glUniform1i(glossyProgram_.weightTexels, g.weightTexels);
+  glUniform1i(glossyProgram_.bands, bands);
+  glUniform1i(glossyProgram_.fresnel, fresnel ? 1 : 0);
+  glUniform3f(glossyProgram_.eye, eye.x, eye.y, eye.z);
+  const ShRecurrenceConstants& sh = shRecurrenceConstants();
+  glUniform1f(glossyProgram_.shY00, sh.y00);
+  glUniform1f(glossyProgram_.shK1, sh.k1);
+  glUniform4fv(glossyProgram_.shA, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.a);
+  glUniform4fv(glossyProgram_.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
+  glBindVertexArray(g.vao);
+  capture(glossyBuffer_, vertexCount_);
+  glActiveTexture(GL_TEXTURE0);
+  return true;
+}
+
+void GlRenderer::finishGlossy(ShadingMode mode, bool tableOnly) const {
+  if (!isPassKind(mode) || glossy_[static_cast<std::size_t>(mode)].bands == 0) return;
+  float value = 0.0f;
+  glBindBuffer(GL_ARRAY_BUFFER, tableOnly ? glossy_[static_cast<std::size_t>(mode)].tableBuffer : glossyBuffer_);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float), &value);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+std::vector<float> GlRenderer::readGlossy(std::size_t vertices) const {
+  std::vector<float> out(std::min(vertices, static_cast<std::size_t>(vertexCount_)) * 3);
+  if (out.empty()) return out;
+  glBindBuffer(GL_ARRAY_BUFFER, glossyBuffer_);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return out;
+}
+
 void GlRenderer::makeGeometry(const BakedAsset& asset) {
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
@@ -179,6 +347,9 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
   radianceBuffer_ = makeBuffer(GL_ARRAY_BUFFER, nullptr, asset.positions.size() * sizeof(Vec3));
   glEnableVertexAttribArray(3);
   glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  // Attribute 5, the glossy term: enabled by draw only while a glossy pass is drawn.
+  glossyBuffer_ = makeBuffer(GL_ARRAY_BUFFER, nullptr, asset.positions.size() * sizeof(Vec3));
+  glVertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
   glGenVertexArrays(1, &feedbackVao_);
   glBindVertexArray(feedbackVao_);
   glBindBuffer(GL_ARRAY_BUFFER, positions_);
@@ -371,11 +542,27 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
   }
-  if (!shade(p.mode, p.displayOrder)) return;
+  // The terms of the pass: diffuse (vector pass) and glossy (matrix pass), each captured into
+  // its buffer; a term switched off or absent is a constant zero attribute.
+  const bool diffuse = p.mix != GlossyMix::kGlossy && shade(p.mode, p.displayOrder);
+  const bool glossy = p.mix != GlossyMix::kDiffuse && shadeGlossy(p.mode, p.displayOrder, p.eye, p.fresnel);
+  if (!diffuse && !glossy) return;
   // Draw pass with the captured radiance.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindVertexArray(vao_);
+  if (diffuse) {
+    glEnableVertexAttribArray(3);
+  } else {
+    glDisableVertexAttribArray(3);
+    glVertexAttrib3f(3, 0.0f, 0.0f, 0.0f);
+  }
+  if (glossy) {
+    glEnableVertexAttribArray(5);
+  } else {
+    glDisableVertexAttribArray(5);
+    glVertexAttrib3f(5, 0.0f, 0.0f, 0.0f);
+  }
   glUseProgram(radiance_.id);
   glUniformMatrix4fv(radiance_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
   glUniform1f(radiance_.exposure, p.exposure);

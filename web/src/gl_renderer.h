@@ -5,10 +5,12 @@
 #include <GLES3/gl3.h>
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "cpca_texture.h"
+#include "glossy_texture.h"
 #include "glm_types.h"
 #include "prt/asset.h"
 #include "prt/status.h"
@@ -29,6 +31,11 @@ inline bool isPassKind(ShadingMode mode) {
 // Bound to JS as the embind enum PassForm: absent, expanded, cpca.
 enum class PassForm { kAbsent = 0, kExpanded = 1, kCpca = 2 };
 
+// Which terms of a pass are drawn (docs/web-client.md, "Glossy rendering"): the diffuse vector
+// pass, the glossy matrix pass of the same kind, or their sum. Bound to JS as the embind enum
+// GlossyMix: diffuse, glossy, both. A term whose pass the asset lacks draws as zero.
+enum class GlossyMix { kDiffuse = 0, kGlossy = 1, kBoth = 2 };
+
 struct FrameParams {
   glm::mat4 viewProjection{1.0f};
   ShadingMode mode = ShadingMode::kInterreflected;
@@ -39,6 +46,9 @@ struct FrameParams {
   // Lambert programs read the full lighting from the uniform block bound at
   // kLightingBlockBinding (lighting_block.h).
   const float* environment = nullptr;
+  GlossyMix mix = GlossyMix::kBoth;
+  glm::vec3 eye{0.0f};         // world-space camera position: the glossy term's view direction
+  bool fresnel = true;         // Schlick's k_s (false: k_s = f0)
 };
 
 class GlRenderer {
@@ -57,6 +67,24 @@ class GlRenderer {
   // cpca_texture.h), holding cpca.bands.size() bands; replaces either form of that pass. Like
   // uploadPass, needs geometry first, and a pass that does not fit changes nothing.
   Status uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca);
+  // Uploads the glossy matrix pass `kind` (shadowed or interreflected) in its CPCA form
+  // (glossy_texture.h), holding cpca.bands shells, with one specular material per vertex;
+  // replaces a previous glossy pass of that kind. Needs geometry first; a pass that does not
+  // fit changes nothing.
+  Status uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular);
+  // Bands the glossy pass of `mode` holds; 0 when absent (and for Lambert).
+  int glossyOrder(ShadingMode mode) const;
+  // Glossy pass of `mode`: {clusters, basis matrices per cluster, channels}; zeros when absent.
+  std::array<int, 3> glossyShape(ShadingMode mode) const;
+  // The glossy vertex passes alone (table, then per-vertex glossy radiance into the glossy
+  // buffer) for `mode` seen from `eye`, with the bound lighting block; false when absent.
+  // `tableOnly`: stop after the per-cluster table (benchmarks of the per-frame cluster work).
+  bool shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, bool fresnel = true, bool tableOnly = false);
+  // Waits for the glossy passes queued so far: a 1-value read-back of the table buffer of
+  // `mode` (tableOnly) or of the glossy radiance buffer (benchmarks).
+  void finishGlossy(ShadingMode mode, bool tableOnly) const;
+  // The glossy radiance the last frame computed, RGB per vertex (synchronous read-back).
+  std::vector<float> readGlossy(std::size_t vertices) const;
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
   bool hasPass(ShadingMode mode) const;
   // How pass `mode` is drawn (kAbsent for Lambert).
@@ -79,7 +107,20 @@ class GlRenderer {
     GLint transfer = -1, textureWidth = -1, texelsPerChannel = -1, channels = -1, activeTexels = -1;
     GLint inverseViewProjection = -1;
     GLint table = -1, weights = -1, entries = -1, weightTexels = -1;
+    // glossy_table.vert, glossy.vert
+    GLint matrices = -1, rowTexels = -1, matrixTexels = -1, rows = -1, symmetric = -1, vectors = -1, bands = -1;
+    GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
   };
+  // A glossy matrix pass in its CPCA form (glossy_texture.h): matrices, weight levels, the
+  // per-frame table (captured into tableBuffer, copied into the table texture), and a VAO
+  // feeding glossy.vert (position, normal, cluster id, specular material).
+  struct GlossyPass {
+    GLuint matrices = 0, weights = 0, table = 0, tableBuffer = 0, clusterIds = 0, specular = 0, vao = 0;
+    int bands = 0, channels = 0, clusters = 0, vectors = 0, weightTexels = 0, matrixTexels = 0, rowTexels = 0;
+    int tableTexels = 0, tableHeight = 0;
+    bool symmetric = false;
+  };
+  static void releaseGlossy(GlossyPass* g);
   struct PassTexture {
     GLuint texture = 0;  // the transfer, or for CPCA the cluster entries (both packTransfer layout)
     int channels = 0, texelsPerChannel = 0;
@@ -107,16 +148,18 @@ class GlRenderer {
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
-  Program prt_, lambert_, background_, radiance_, cpca_;
+  Program prt_, lambert_, background_, radiance_, cpca_, glossyTable_, glossyProgram_;
   GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
   GLuint vao_ = 0, feedbackVao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, radianceBuffer_ = 0;
+  GLuint glossyBuffer_ = 0;  // glossy radiance per vertex (attribute 5 of vao_)
   GLuint backgroundVao_ = 0, feedback_ = 0;
   GLsizei vertexCount_ = 0;
   GLsizei indexCount_ = 0;
   int bakedOrder_ = 0;
   std::array<PassTexture, 3> passes_{};
+  std::array<GlossyPass, 3> glossy_{};  // by TransferKind (unshadowed unused: no such matrix pass is baked)
 };
 
 }  // namespace prt::web

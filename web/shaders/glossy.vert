@@ -1,0 +1,121 @@
+#version 300 es
+// Glossy PRT, per vertex (docs/web-client.md, "Glossy rendering"): the transferred incident
+// radiance T_c = table[k][0][c] + sum_j level_j table[k][j][c] of the vertex's cluster k (the
+// table glossy_table.vert made this frame), convolved with the Phong lobe (band scales g_l(s),
+// prt/glossy_lobe.h) and evaluated at the mirror direction R of the live eye:
+//   L_c = k_s,c sum_i (g_l(i) T_c,i) y_i(R),   k_s = Schlick(f0, n.v)
+// as prt::glossyExitRadiance (prt/glossy_radiance.h). One point per vertex, rasteriser off,
+// captured by transform feedback; glossyRadianceCpu (web/src/glossy_texture.cpp) emulates it.
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp isampler2D;
+
+layout(location = 0) in vec3 aPosition;
+layout(location = 2) in vec3 aNormal;
+layout(location = 4) in uint aCluster;
+layout(location = 5) in vec4 aSpecular;  // f0 r, g, b; Phong exponent s
+
+uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
+uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
+uniform int uTextureWidth;
+uniform int uRowTexels;       // ceil(packed bands^2 / 4): the table's stride
+uniform int uVectors;         // N' (<= 64)
+uniform int uWeightTexels;
+uniform int uBands;           // displayed bands (<= 8)
+uniform int uFresnel;         // 0: k_s = f0
+uniform vec3 uEye;            // world space
+// Real SH by Lisle & Huang's recurrence, constants as prt/sh_basis.cpp (glossy_texture.h).
+uniform float uShY00;
+uniform float uShK1;
+uniform vec4 uShA[16];
+uniform vec4 uShB[16];
+
+out vec3 vGlossy;
+
+float y[64];
+
+float shA(int i) { return uShA[i >> 2][i & 3]; }
+float shB(int i) { return uShB[i >> 2][i & 3]; }
+
+void shBasis(int order, vec3 d) {
+  y[0] = uShY00;
+  if (order == 1) return;
+  y[1] = uShK1 * d.y;
+  y[2] = uShK1 * d.z;
+  y[3] = uShK1 * d.x;
+  for (int l = 2; l < order; ++l) {
+    int base = l * (l + 1), base1 = (l - 1) * l, base2 = (l - 2) * (l - 1);
+    for (int m = -(l - 2); m <= l - 2; ++m) y[base + m] = shA(base + m) * d.z * y[base1 + m] - shB(base + m) * y[base2 + m];
+    y[base - (l - 1)] = shA(base - (l - 1)) * d.z * y[base1 - (l - 1)];
+    y[base + (l - 1)] = shA(base + (l - 1)) * d.z * y[base1 + (l - 1)];
+    float sp = y[base1 + (l - 1)], sn = y[base1 - (l - 1)];
+    float c = shA(base + l);
+    y[base + l] = c * (d.x * sp - d.y * sn);
+    y[base - l] = c * (d.y * sp + d.x * sn);
+  }
+}
+
+vec4 tableTexel(int i) { return texelFetch(uTable, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+
+void main() {
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  vGlossy = vec3(0.0);
+  vec3 d = uEye - aPosition;
+  float distance = length(d);
+  if (!(distance > 0.0)) return;
+  vec3 toEye = d * (1.0 / distance);
+  vec3 n = aNormal;
+  vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
+  float rl = length(r);
+  r = rl > 0.0 ? r * (1.0 / rl) : n;
+  shBasis(uBands, r);
+  // Phong band scales g_l(s) = (s+1) I_l (prt/glossy_lobe.cpp's recurrence, in float).
+  float s = aSpecular.w;
+  float g[8];
+  float evenPrev = 1.0 / (s + 1.0), oddPrev = 1.0 / (s + 2.0);
+  for (int l = 0; l < uBands; ++l) {
+    float value;
+    if (l == 0) {
+      value = evenPrev;
+    } else if (l == 1) {
+      value = oddPrev;
+    } else if (l % 2 == 0) {
+      evenPrev = evenPrev * (s - float(l) + 2.0) / (s + float(l) + 1.0);
+      value = evenPrev;
+    } else {
+      oddPrev = oddPrev * (s - float(l) + 2.0) / (s + float(l) + 1.0);
+      value = oddPrev;
+    }
+    g[l] = (s + 1.0) * value;
+  }
+  vec3 f0 = aSpecular.rgb;
+  vec3 ks = f0;
+  if (uFresnel == 1) {
+    float k = 1.0 - clamp(dot(n, toEye), 0.0, 1.0);
+    float k2 = k * k, k5 = k2 * k2 * k;
+    ks = f0 + (1.0 - f0) * k5;
+  }
+  float levels[64];
+  int wbase = gl_VertexID * uWeightTexels;
+  for (int t = 0; t < uWeightTexels; ++t) {
+    int i = wbase + t;
+    vec4 q = vec4(texelFetch(uWeights, ivec2(i % uTextureWidth, i / uTextureWidth), 0));
+    for (int u = 0; u < 4; ++u)
+      if (4 * t + u < uVectors) levels[4 * t + u] = q[u];
+  }
+  int first = int(aCluster) * (1 + uVectors);
+  int rows = uBands * uBands, activeTexels = (rows + 3) / 4;
+  for (int c = 0; c < 3; ++c) {
+    float sum = 0.0;
+    for (int t = 0; t < activeTexels; ++t) {
+      vec4 tr = tableTexel((first * 3 + c) * uRowTexels + t);
+      for (int j = 0; j < uVectors; ++j) tr += levels[j] * tableTexel(((first + 1 + j) * 3 + c) * uRowTexels + t);
+      for (int q = 0; q < 4; ++q) {
+        int i = 4 * t + q;
+        if (i < rows) sum += g[int(sqrt(float(i) + 0.5))] * tr[q] * y[i];
+      }
+    }
+    vGlossy[c] = ks[c] * sum;
+  }
+}
