@@ -159,8 +159,10 @@ std::string entryJson(const CatalogueEntry& e) {
   j += ",\"shOrder\":" + std::to_string(s.shOrder) + ",\"passes\":[";
   for (std::size_t i = 0; i < s.passes.size(); ++i) {
     const AssetPassInfo& p = s.passes[i];
+    // Glossy matrix passes say so; vector passes keep the listing they always had.
     j += std::string(i ? "," : "") + "{\"kind\":" + jsonString(transferKindName(p.kind)) +
-         ",\"channels\":" + std::to_string(p.channels) + ",\"bounces\":" + std::to_string(p.bounces) + "}";
+         (p.form == TransferForm::kMatrix ? ",\"form\":\"matrix\"" : "") + ",\"channels\":" + std::to_string(p.channels) +
+         ",\"bounces\":" + std::to_string(p.bounces) + "}";
   }
   j += "],\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling);
   // The client needs the lighting model to light the transfer correctly, and for the local

@@ -503,7 +503,8 @@ TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
   for (std::size_t i = 0; i < s.indices.size(); i += 3) {
     if (s.indices[i] >= base) std::swap(s.indices[i + 1], s.indices[i + 2]);
   }
-  s.specular.assign(s.positions.size(), SpecularMaterial{{0, 0, 0}, 1.0f});
+  // The floor has no specular part at all (f0 = f90 = 0): a purely diffuse sender.
+  s.specular.assign(s.positions.size(), SpecularMaterial{{0, 0, 0}, 1.0f, 0.0f});
   for (std::size_t v = base; v < s.positions.size(); ++v) s.specular[v] = {{1, 1, 1}, 1.0f};
   BakeOptions o;
   o.order = order;
@@ -663,9 +664,13 @@ TEST(GlossyBake, DeterministicWhateverTheThreadCount) {
     sum3 += a.glossyInterreflected[v * 3 * 256];
   }
   EXPECT_GT(sum3, sum1);
-  // Vertices with f0 = 0 still get matrices (receivers are material-agnostic).
+  // Vertices with no specular part (f0 = f90 = 0) still get matrices (receivers are
+  // material-agnostic).
   Scene diffuse = s;
-  for (auto& m : diffuse.specular) m.f0 = {0, 0, 0};
+  for (auto& m : diffuse.specular) {
+    m.f0 = {0, 0, 0};
+    m.f90 = 0.0f;
+  }
   BakeResult d;
   ASSERT_TRUE(bakeTransfer(diffuse, o, &d).isOk());
   EXPECT_EQ(d.glossyShadowed, one.glossyShadowed);

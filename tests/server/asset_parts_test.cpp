@@ -3,6 +3,7 @@
 // transfer's parts, fetched as a prefix, decode band by band like the whole blob.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "asset_parts.h"
@@ -144,6 +145,76 @@ TEST(AssetParts, EncodedTransferIsCutAtItsBlobParts) {
                          cpca, static_cast<TransferKind>(s.arg0));
   }
   EXPECT_EQ(encoded, 2);
+}
+
+// A glossy asset (docs/glossy.md): its CPCA matrix blob is cut like a vector one, the cluster
+// ids and the weights (both needed before any shell) as clusters parts, then one part per
+// shell; every part of it is marked as a matrix pass, and each shell prefix decodes as the
+// leading blocks of the whole blob.
+TEST(AssetParts, EncodedMatrixTransferIsCutAtItsShells) {
+  const int order = 3, vertices = 300;
+  BakedAsset a;
+  a.shOrder = order;
+  a.name = "glossy";
+  for (int v = 0; v < vertices; ++v) {
+    const float t = static_cast<float>(v);
+    a.positions.push_back({t, 0.0f, 0.5f * t});
+    a.normals.push_back({0.0f, 1.0f, 0.0f});
+    a.albedo.push_back({0.5f, 0.5f, 0.5f});
+    a.specular.push_back({{0.04f, 0.04f, 0.04f}, 8.0f});
+  }
+  for (int v = 0; v + 2 < vertices; ++v) a.indices.insert(a.indices.end(), {std::uint32_t(v), std::uint32_t(v + 1), std::uint32_t(v + 2)});
+  TransferPass diffuse{TransferKind::kShadowed, 1, 0, std::vector<float>(static_cast<std::size_t>(vertices * order * order), 0.25f), {}};
+  a.passes.push_back(diffuse);
+  TransferPass m{TransferKind::kShadowed, 1, 0, {}, {}};
+  m.form = TransferForm::kMatrix;
+  const std::size_t entries = matrixEntryCount(order, MatrixPacking::kSymmetric);
+  for (int v = 0; v < vertices; ++v) {
+    for (std::size_t e = 0; e < entries; ++e) m.coeffs.push_back(0.1f * std::sin(0.05f * v + 0.7f * e) + (e == 0 ? 0.5f : 0.0f));
+  }
+  TransferCodecSettings settings;
+  ASSERT_TRUE(parseTransferSetting("cpca8@0.05", {}, &settings).isOk());
+  ASSERT_TRUE(encodeTransferMatrix(m.coeffs, order, MatrixPacking::kSymmetric, 1, settings, &m.encoded).isOk());
+  const std::vector<std::uint8_t> blob = m.encoded;
+  a.passes.push_back(m);
+  std::vector<std::uint8_t> file;
+  ASSERT_TRUE(encodeAsset(a, &file).isOk());
+  const AssetSummary summary = verified(file);
+  const std::vector<AssetPart> parts = cutAssetParts(file, summary);
+  expectTiling(parts, file.size());
+  int matrixSection = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer)) matrixSection = static_cast<int>(i);
+  }
+  ASSERT_GE(matrixSection, 0);
+  const auto mine = partsOfSection(parts, matrixSection);
+  ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + 2 + order));  // head, ids, weights, shells
+  EXPECT_EQ(mine[0]->kind, AssetPartKind::kTransferHead);
+  EXPECT_EQ(mine[1]->kind, AssetPartKind::kTransferClusters);
+  EXPECT_EQ(mine[2]->kind, AssetPartKind::kTransferClusters);
+  for (int l = 0; l < order; ++l) {
+    EXPECT_EQ(mine[3 + l]->kind, AssetPartKind::kTransferBand);
+    EXPECT_EQ(mine[3 + l]->band, l);
+  }
+  for (const AssetPart* p : mine) {
+    EXPECT_TRUE(p->hasPass && p->matrix);
+    EXPECT_EQ(p->pass, TransferKind::kShadowed);
+  }
+  for (const AssetPart& p : parts) {
+    if (p.section != matrixSection) {
+      EXPECT_FALSE(p.matrix) << "section " << p.section;
+    }
+  }
+  for (int b = 1; b <= order; ++b) {
+    std::vector<std::uint8_t> prefix = joined(file, {mine.begin(), mine.begin() + 3 + b});
+    if (b == order) prefix.resize(blob.size());
+    std::vector<float> fromPrefix, fromWhole;
+    const Status sp = decodeTransferMatrix(prefix, b, &fromPrefix);
+    ASSERT_TRUE(sp.isOk()) << "bands " << b << ": " << sp.toString();
+    ASSERT_TRUE(decodeTransferMatrix(blob, b, &fromWhole).isOk());
+    EXPECT_EQ(fromPrefix.size(), static_cast<std::size_t>(vertices) * matrixEntryCount(b, MatrixPacking::kSymmetric));
+    EXPECT_TRUE(fromPrefix == fromWhole) << "bands " << b;
+  }
 }
 
 TEST(AssetParts, UnreadableBlobsAndEmptySectionsStayWhole) {

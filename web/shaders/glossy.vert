@@ -3,7 +3,7 @@
 // radiance T_c = table[k][0][c] + sum_j level_j table[k][j][c] of the vertex's cluster k (the
 // table glossy_table.vert made this frame), convolved with the Phong lobe (band scales g_l(s),
 // prt/glossy_lobe.h) and evaluated at the mirror direction R of the live eye:
-//   L_c = k_s,c sum_i (g_l(i) T_c,i) y_i(R),   k_s = Schlick(f0, n.v)
+//   L_c = k_s,c sum_i (g_l(i) T_c,i) y_i(R),   k_s = Schlick(f0, f90, n.v)
 // as prt::glossyExitRadiance (prt/glossy_radiance.h). One point per vertex, rasteriser off,
 // captured by transform feedback; glossyRadianceCpu (web/src/glossy_texture.cpp) emulates it.
 precision highp float;
@@ -15,6 +15,7 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec3 aNormal;
 layout(location = 4) in uint aCluster;
 layout(location = 5) in vec4 aSpecular;  // f0 r, g, b; Phong exponent s
+layout(location = 6) in float aSpecularF90;  // Schlick's grazing reflectance (0: no specular part)
 
 uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
@@ -94,7 +95,7 @@ void main() {
   if (uFresnel == 1) {
     float k = 1.0 - clamp(dot(n, toEye), 0.0, 1.0);
     float k2 = k * k, k5 = k2 * k2 * k;
-    ks = f0 + (1.0 - f0) * k5;
+    ks = f0 + (aSpecularF90 - f0) * k5;
   }
   float levels[64];
   int wbase = gl_VertexID * uWeightTexels;

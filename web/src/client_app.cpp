@@ -218,7 +218,7 @@ std::string ClientApp::useSyntheticGlossy(ShadingMode kind, int bands, int chann
   spec.seed = static_cast<std::uint64_t>(seed);
   spec.packing = kind == ShadingMode::kShadowed ? MatrixPacking::kSymmetric : MatrixPacking::kFull;
   std::vector<std::uint8_t> glossy(asset_.positions.size());
-  asset_.specular.assign(asset_.positions.size(), SpecularMaterial{});
+  asset_.specular.assign(asset_.positions.size(), SpecularMaterial{{0.0f, 0.0f, 0.0f}, 0.0f, 0.0f});  // no specular part
   for (std::size_t v = 0; v < asset_.positions.size(); ++v) {
     glossy[v] = asset_.albedo[v].g >= minGreen ? 1 : 0;
     if (glossy[v]) asset_.specular[v] = {{f0, f0, f0}, exponent};

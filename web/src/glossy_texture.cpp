@@ -195,13 +195,15 @@ Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMateri
   }
   t.clusterOf.resize(V);
   for (std::size_t v = 0; v < V; ++v) t.clusterOf[v] = static_cast<std::uint16_t>(cpca.clusterOf[v]);
-  t.specular.resize(4 * V);
+  t.specular.resize(kGlossySpecularFloats * V);
   for (std::size_t v = 0; v < V; ++v) {
     const SpecularMaterial& m = specular[v];
-    t.specular[4 * v] = m.f0.r;
-    t.specular[4 * v + 1] = m.f0.g;
-    t.specular[4 * v + 2] = m.f0.b;
-    t.specular[4 * v + 3] = m.exponent;
+    float* dst = &t.specular[kGlossySpecularFloats * v];
+    dst[0] = m.f0.r;
+    dst[1] = m.f0.g;
+    dst[2] = m.f0.b;
+    dst[3] = m.exponent;
+    dst[4] = m.f90;
   }
   *out = std::move(t);
   return Status::ok();
@@ -245,7 +247,7 @@ std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<
   for (std::size_t v = 0; v < V; ++v) {
     const Vec3 d = eye - positions[v];
     const float distance = length(d);
-    const float* spec = &p.specular[4 * v];
+    const float* spec = &p.specular[kGlossySpecularFloats * v];
     if (!(distance > 0.0f)) continue;
     const Vec3 toEye = d * (1.0f / distance);
     const Vec3 n = normals[v];
@@ -254,7 +256,7 @@ std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<
     r = rl > 0.0f ? r * (1.0f / rl) : n;
     glossyShBasis(bands, r, y);
     phongLobeBandScalesUnchecked(bands, spec[3], g);
-    const Rgb ks = fresnel ? schlickFresnel({spec[0], spec[1], spec[2]}, dot(n, toEye)) : Rgb{spec[0], spec[1], spec[2]};
+    const Rgb ks = fresnel ? schlickFresnel({spec[0], spec[1], spec[2]}, spec[4], dot(n, toEye)) : Rgb{spec[0], spec[1], spec[2]};
     const float k[3] = {ks.r, ks.g, ks.b};
     const std::size_t first = static_cast<std::size_t>(p.clusterOf[v]) * (1 + N);
     for (std::size_t c = 0; c < 3; ++c) {

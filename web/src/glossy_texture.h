@@ -33,6 +33,10 @@ inline constexpr int kMaxGlossyOrder = 8;
 // costs 3 * ceil(bands^2 / 4) texel fetches per vertex; the codec's searches stay far below.
 inline constexpr int kMaxGlossyVectors = 64;
 
+// Floats per vertex in GlossyTextures::specular: f0 r, g, b and the exponent (attribute 5, a
+// vec4), then f90 (attribute 6).
+inline constexpr std::size_t kGlossySpecularFloats = 5;
+
 struct GlossyTextures {
   int bands = 0;              // order of the packed matrices (the shells decoded so far)
   int channels = 0;           // matrix channels: 1 (shadowed) or 3 (interreflected)
@@ -53,7 +57,7 @@ struct GlossyTextures {
   int weightWidth = 0, weightHeight = 0;
   std::vector<std::uint8_t> weightData;
   std::vector<std::uint16_t> clusterOf;  // per vertex (K <= 65536): an integer vertex attribute
-  std::vector<float> specular;           // per vertex f0 r, g, b, exponent: a vec4 attribute
+  std::vector<float> specular;           // per vertex f0 r, g, b, exponent, f90: a vec4 and a float attribute
   // The per-frame table, RGBA32F: texel ((k * (1 + N') + m) * 3 + c) * rowTexels + t holds rows
   // 4t .. 4t+3 of A_km,c L_c.
   int tableTexels = 0;
