@@ -9,6 +9,7 @@
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/local_sphere.h"
 #include "baker/transfer/parallel_for.h"
+#include "baker/transfer/reference_sampling.h"
 #include "prt/glossy_lobe.h"
 #include "prt/sampling.h"
 
@@ -17,23 +18,8 @@ namespace {
 
 constexpr std::size_t kRayBatch = 1024;
 
-double radicalInverse2(std::uint32_t k) {
-  std::uint32_t bits = k;
-  bits = (bits << 16) | (bits >> 16);
-  bits = ((bits & 0x55555555u) << 1) | ((bits & 0xAAAAAAAAu) >> 1);
-  bits = ((bits & 0x33333333u) << 2) | ((bits & 0xCCCCCCCCu) >> 2);
-  bits = ((bits & 0x0F0F0F0Fu) << 4) | ((bits & 0xF0F0F0F0u) >> 4);
-  bits = ((bits & 0x00FF00FFu) << 8) | ((bits & 0xFF00FF00u) >> 8);
-  return bits * (1.0 / 4294967296.0);
-}
-
-void frameAround(Vec3 a, Vec3* t1, Vec3* t2) {
-  const Vec3 helper = std::fabs(a.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  Vec3 u = cross(helper, a);
-  u = u * (1.0f / length(u));
-  *t1 = u;
-  *t2 = cross(a, u);
-}
+using reference::frameAround;
+using reference::radicalInverse2;
 
 }  // namespace
 

@@ -13,19 +13,6 @@ namespace {
 
 Status invalid(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
 
-// Rows of a kTransferTextureWidth-wide texture holding `texels`; an error when over maxHeight.
-Status rowsFor(std::size_t texels, int maxHeight, const char* what, int* rows) {
-  const std::size_t width = static_cast<std::size_t>(kTransferTextureWidth);
-  const std::size_t need = std::max<std::size_t>(1, (texels + width - 1) / width);
-  if (need > static_cast<std::size_t>(std::max(1, maxHeight))) {
-    return invalid(std::string("CPCA ") + what + " needs " + std::to_string(texels) + " texels; one texture on this device holds " +
-                   std::to_string(width * static_cast<std::size_t>(std::max(1, maxHeight))) + " (MAX_TEXTURE_SIZE " +
-                   std::to_string(maxHeight) + ")");
-  }
-  *rows = static_cast<int>(need);
-  return Status::ok();
-}
-
 bool consistent(const CpcaTransfer& cpca) {
   const std::size_t V = cpca.vertexCount, K = cpca.clusterCount, C = static_cast<std::size_t>(cpca.channels);
   if ((C != 1 && C != 3) || K == 0 || K > kMaxTransferClusters || cpca.clusterOf.size() != V || cpca.bands.empty() ||
@@ -60,8 +47,8 @@ Status packCpca(const CpcaTransfer& cpca, int maxHeight, CpcaTextures* out) {
 
   const std::size_t V = cpca.vertexCount, K = cpca.clusterCount, C = static_cast<std::size_t>(cpca.channels);
   const std::size_t E = static_cast<std::size_t>(t.entriesPerCluster), n2 = static_cast<std::size_t>(shCoeffCount(t.order));
-  if (Status s = rowsFor(V * static_cast<std::size_t>(t.weightTexels), maxHeight, "weights", &t.weightHeight); !s.isOk()) return s;
-  if (Status s = rowsFor(K * E, maxHeight, "cluster table", &t.tableHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(V * static_cast<std::size_t>(t.weightTexels), maxHeight, "CPCA weights", &t.weightHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(K * E, maxHeight, "CPCA cluster table", &t.tableHeight); !s.isOk()) return s;
   t.weightWidth = t.tableWidth = kTransferTextureWidth;
 
   // Entries as a transfer pass of K * E "vertices": the mean of every band, then each axis

@@ -13,19 +13,6 @@ namespace {
 
 Status invalid(std::string message) { return Status::error(StatusCode::kInvalidArgument, std::move(message)); }
 
-// Rows of a kTransferTextureWidth-wide texture holding `texels`; an error when over maxHeight.
-Status rowsFor(std::size_t texels, int maxHeight, const char* what, int* rows) {
-  const std::size_t width = static_cast<std::size_t>(kTransferTextureWidth);
-  const std::size_t need = std::max<std::size_t>(1, (texels + width - 1) / width);
-  if (need > static_cast<std::size_t>(std::max(1, maxHeight))) {
-    return invalid(std::string("glossy ") + what + " needs " + std::to_string(texels) + " texels; one texture on this device holds " +
-                   std::to_string(width * static_cast<std::size_t>(std::max(1, maxHeight))) + " (MAX_TEXTURE_SIZE " +
-                   std::to_string(maxHeight) + ")");
-  }
-  *rows = static_cast<int>(need);
-  return Status::ok();
-}
-
 // K_lm of the real SH without Condon-Shortley phase (prt/sh_basis.cpp's shNorm).
 double shNorm(int l, int m) {
   const int am = m < 0 ? -m : m;
@@ -153,9 +140,9 @@ Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMateri
   t.rowTexels = texelsForOrder(cpca.bands);
   const std::size_t matrices = K * (1 + N) * C;
   t.tableTexels = static_cast<int>(K * (1 + N) * 3 * static_cast<std::size_t>(t.rowTexels));
-  if (Status s = rowsFor(matrices * static_cast<std::size_t>(t.matrixTexels), maxHeight, "matrices", &t.matrixHeight); !s.isOk()) return s;
-  if (Status s = rowsFor(V * static_cast<std::size_t>(t.weightTexels), maxHeight, "weights", &t.weightHeight); !s.isOk()) return s;
-  if (Status s = rowsFor(static_cast<std::size_t>(t.tableTexels), maxHeight, "cluster table", &t.tableHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(matrices * static_cast<std::size_t>(t.matrixTexels), maxHeight, "glossy matrices", &t.matrixHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(V * static_cast<std::size_t>(t.weightTexels), maxHeight, "glossy weights", &t.weightHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(static_cast<std::size_t>(t.tableTexels), maxHeight, "glossy cluster table", &t.tableHeight); !s.isOk()) return s;
   t.matrixWidth = t.weightWidth = t.tableWidth = kTransferTextureWidth;
 
   const std::size_t width = static_cast<std::size_t>(kTransferTextureWidth);

@@ -49,4 +49,17 @@ void packLighting(const std::vector<Rgb>& coeffs, int displayOrder, float* out) 
   }
 }
 
+Status textureRowsFor(std::size_t texels, int maxHeight, const std::string& what, int* rows) {
+  const std::size_t width = static_cast<std::size_t>(kTransferTextureWidth);
+  const std::size_t need = std::max<std::size_t>(1, (texels + width - 1) / width);
+  if (need > static_cast<std::size_t>(std::max(1, maxHeight))) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         what + " needs " + std::to_string(texels) + " texels; one texture on this device holds " +
+                             std::to_string(width * static_cast<std::size_t>(std::max(1, maxHeight))) +
+                             " (MAX_TEXTURE_SIZE " + std::to_string(maxHeight) + ")");
+  }
+  *rows = static_cast<int>(need);
+  return Status::ok();
+}
+
 }  // namespace prt::web

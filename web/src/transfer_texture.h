@@ -3,6 +3,7 @@
 // the packing is tested under Node like the rest of the shared code.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "client_limits.h"
@@ -21,6 +22,11 @@ struct TransferTexture {
   int texelsPerChannel = 0;    // ceil(order^2 / 4)
   std::vector<float> texels;   // width * height * 4 floats
 };
+
+// Rows of a kTransferTextureWidth-wide texture holding `texels` (at least 1) into *rows; an
+// error naming `what`, the texels needed and what one texture holds when over maxHeight
+// (the device's MAX_TEXTURE_SIZE).
+Status textureRowsFor(std::size_t texels, int maxHeight, const std::string& what, int* rows);
 
 // Texels of one channel at `order`: ceil(order^2 / 4).
 inline int texelsForOrder(int order) { return (order * order + 3) / 4; }
