@@ -23,6 +23,23 @@ GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
   return b;
 }
 
+// An integer RGBA texture of CPCA weight levels (8- or 16-bit, signed), nearest and clamped:
+// the diffuse CPCA pass and the glossy pass store their per-vertex weights alike.
+GLuint makeWeightTexture(int weightBits, int width, int height, const void* levels) {
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  setNearestClamp(GL_TEXTURE_2D);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (weightBits == 8) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8I, width, height, 0, GL_RGBA_INTEGER, GL_BYTE, levels);
+  } else {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16I, width, height, 0, GL_RGBA_INTEGER, GL_SHORT, levels);
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  return t;
+}
+
 // The GL error the calls since the last check left (glGetError) as a Status: ok when none;
 // out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
 // other error its code and what was being done ("WebGL error N while <during>").
@@ -154,16 +171,7 @@ Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
   p.weightTexels = packed.weightTexels;
   p.weightsBefore = packed.weightsBefore;
   p.tableHeight = packed.tableHeight;
-  glGenTextures(1, &p.weights);
-  glBindTexture(GL_TEXTURE_2D, p.weights);
-  setNearestClamp(GL_TEXTURE_2D);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (packed.weightBits == 8) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_BYTE, packed.weightData.data());
-  } else {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_SHORT, packed.weightData.data());
-  }
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  p.weights = makeWeightTexture(packed.weightBits, packed.weightWidth, packed.weightHeight, packed.weightData.data());
   glGenTextures(1, &p.table);
   glBindTexture(GL_TEXTURE_2D, p.table);
   setNearestClamp(GL_TEXTURE_2D);
@@ -213,16 +221,7 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glBindTexture(GL_TEXTURE_2D, g.matrices);
   setNearestClamp(GL_TEXTURE_2D);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, packed.matrixWidth, packed.matrixHeight, 0, GL_RGBA, GL_FLOAT, packed.matrixData.data());
-  glGenTextures(1, &g.weights);
-  glBindTexture(GL_TEXTURE_2D, g.weights);
-  setNearestClamp(GL_TEXTURE_2D);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (packed.weightBits == 8) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_BYTE, packed.weightData.data());
-  } else {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16I, packed.weightWidth, packed.weightHeight, 0, GL_RGBA_INTEGER, GL_SHORT, packed.weightData.data());
-  }
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  g.weights = makeWeightTexture(packed.weightBits, packed.weightWidth, packed.weightHeight, packed.weightData.data());
   glGenTextures(1, &g.table);
   glBindTexture(GL_TEXTURE_2D, g.table);
   setNearestClamp(GL_TEXTURE_2D);
