@@ -1,8 +1,9 @@
 // Frame time of glossy rendering in the web client (docs/web-client.md, "Glossy rendering";
 // docs/bench/glossy.md), side by side in one page and one run at 1280x720: Lambert, diffuse
-// PRT (the pass's vector term alone), diffuse + glossy, and the glossy work alone: the
-// per-frame cluster table (every cluster's matrices times the lighting) and table + per-vertex
-// glossy pass. Headless Chromium on SwiftShader (or a real GPU with --gpu); interleaved
+// PRT (the pass's vector term alone), diffuse + glossy, each with the camera moving (lighting
+// unchanged) and with the lights moving (lighting changed every frame), and the glossy work
+// alone: the cluster table (every cluster's matrices times the lighting), table + transferred
+// radiance + view step, and the per-vertex view step alone. Headless Chromium on SwiftShader (or a real GPU with --gpu); interleaved
 // rounds, best round per setting. Writes JSON (and prints a Markdown table).
 // Usage: node web_glossy_bench.mjs BASE_URL SCENE OUT_JSON [--mode shadowed|interreflected]
 //          [--order N] [--gpu] [--synthetic BANDS,CHANNELS,CLUSTERS,VECTORS] [--rounds R (default 5)]
@@ -51,25 +52,31 @@ const info = await page.evaluate((m) => {
 }, mode);
 if (!info.glossyBands) throw new Error(`scene '${scene}' has no glossy ${mode} pass (use --synthetic B,C,K,N)`);
 
+// "camera moving": frames whose lighting is unchanged (the glossy term re-evaluates its cached
+// transferred radiance at the new view); "lights moving": every frame's lighting changed, so
+// the cluster table and the transferred radiance are remade too.
 const settings = [
   { name: 'lambert', set: { mode: 'lambert', order } },
   { name: 'diffuse PRT', set: { mode, order, glossy: { [mode]: 'diffuse' } } },
-  { name: 'diffuse + glossy', set: { mode, order, glossy: { [mode]: 'both' } } },
+  { name: 'diffuse + glossy, camera moving', set: { mode, order, glossy: { [mode]: 'both' } } },
+  { name: 'diffuse PRT, lights moving', set: { mode, order, glossy: { [mode]: 'diffuse' } }, relight: true },
+  { name: 'diffuse + glossy, lights moving', set: { mode, order, glossy: { [mode]: 'both' } }, relight: true },
   { name: 'glossy: cluster table alone', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'table' },
-  { name: 'glossy: table + per-vertex', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'all' },
+  { name: 'glossy: table + transferred radiance + view step', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'relight' },
+  { name: 'glossy: view step alone', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'view' },
 ];
 const best = Object.fromEntries(settings.map((s) => [s.name, Infinity]));
 for (let round = 0; round < ROUNDS; round++) {
   for (const s of settings) {
     await page.evaluate((o) => window.prtApp.set({ ...o, background: false }), s.set);
-    const ms = await page.evaluate(([g, n]) => {
+    const ms = await page.evaluate(([g, relight, n]) => {
       if (g) {
-        window.prtApp.timeGlossy(2, g === 'table');
-        return window.prtApp.timeGlossy(n, g === 'table');
+        window.prtApp.timeGlossy(2, g);
+        return window.prtApp.timeGlossy(n, g);
       }
-      window.prtApp.timeFrames(2);
-      return window.prtApp.timeFrames(n);
-    }, [s.glossy, FRAMES]);
+      window.prtApp.timeFrames(2, relight);
+      return window.prtApp.timeFrames(n, relight);
+    }, [s.glossy, !!s.relight, FRAMES]);
     best[s.name] = Math.min(best[s.name], ms);
   }
 }

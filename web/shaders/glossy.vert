@@ -1,8 +1,8 @@
 #version 300 es
-// Glossy PRT, per vertex (docs/web-client.md, "Glossy rendering"): the transferred incident
-// radiance T_c = table[k][0][c] + sum_j level_j table[k][j][c] of the vertex's cluster k (the
-// table glossy_table.vert made this frame), convolved with the Phong lobe (band scales g_l(s),
-// prt/glossy_lobe.h) and evaluated at the mirror direction R of the live eye:
+// Glossy PRT, per vertex and every frame (docs/web-client.md, "Glossy rendering"): the
+// transferred incident radiance T_c (glossy_transfer.vert's output for the current lighting),
+// convolved with the Phong lobe (band scales g_l(s), prt/glossy_lobe.h) and evaluated at the
+// mirror direction R of the live eye:
 //   L_c = k_s,c sum_i (g_l(i) T_c,i) y_i(R),   k_s = Schlick(f0, f90, n.v)
 // as prt::glossyExitRadiance (prt/glossy_radiance.h). One point per vertex, rasteriser off,
 // captured by transform feedback; glossyRadianceCpu (web/src/glossy_texture.cpp) emulates it.
@@ -13,16 +13,13 @@ precision highp isampler2D;
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec3 aNormal;
-layout(location = 4) in uint aCluster;
 layout(location = 5) in vec4 aSpecular;  // f0 r, g, b; Phong exponent s
 layout(location = 6) in float aSpecularF90;  // Schlick's grazing reflectance (0: no specular part)
 
-uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
-uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
+uniform sampler2D uTransfer;  // RGBA32F: T_vc rows 4t .. 4t+3 at texel (c * uVertices + v) * uRowTexels + t
 uniform int uTextureWidth;
-uniform int uRowTexels;       // ceil(packed bands^2 / 4): the table's stride
-uniform int uVectors;         // N' (<= 64)
-uniform int uWeightTexels;
+uniform int uRowTexels;       // ceil(packed bands^2 / 4)
+uniform int uVertices;
 uniform int uBands;           // displayed bands (<= 8)
 uniform int uFresnel;         // 0: k_s = f0
 uniform vec3 uEye;            // world space
@@ -57,7 +54,7 @@ void shBasis(int order, vec3 d) {
   }
 }
 
-vec4 tableTexel(int i) { return texelFetch(uTable, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+vec4 transferTexel(int i) { return texelFetch(uTransfer, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
 
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
@@ -97,26 +94,19 @@ void main() {
     float k2 = k * k, k5 = k2 * k2 * k;
     ks = f0 + (aSpecularF90 - f0) * k5;
   }
-  float levels[64];
-  int wbase = gl_VertexID * uWeightTexels;
-  for (int t = 0; t < uWeightTexels; ++t) {
-    int i = wbase + t;
-    vec4 q = vec4(texelFetch(uWeights, ivec2(i % uTextureWidth, i / uTextureWidth), 0));
-    for (int u = 0; u < 4; ++u)
-      if (4 * t + u < uVectors) levels[4 * t + u] = q[u];
-  }
-  int first = int(aCluster) * (1 + uVectors);
   int rows = uBands * uBands, activeTexels = (rows + 3) / 4;
+  // The lobe's band scales folded into the basis once: gy_i = g_l(i) y_i(R), zero from rows on.
+  vec4 gy[16];
+  for (int t = 0; t < activeTexels; ++t) {
+    for (int q = 0; q < 4; ++q) {
+      int i = 4 * t + q;
+      gy[t][q] = i < rows ? g[int(sqrt(float(i) + 0.5))] * y[i] : 0.0;
+    }
+  }
   for (int c = 0; c < 3; ++c) {
     float sum = 0.0;
-    for (int t = 0; t < activeTexels; ++t) {
-      vec4 tr = tableTexel((first * 3 + c) * uRowTexels + t);
-      for (int j = 0; j < uVectors; ++j) tr += levels[j] * tableTexel(((first + 1 + j) * 3 + c) * uRowTexels + t);
-      for (int q = 0; q < 4; ++q) {
-        int i = 4 * t + q;
-        if (i < rows) sum += g[int(sqrt(float(i) + 0.5))] * tr[q] * y[i];
-      }
-    }
+    int base = (c * uVertices + gl_VertexID) * uRowTexels;
+    for (int t = 0; t < activeTexels; ++t) sum += dot(transferTexel(base + t), gy[t]);
     vGlossy[c] = ks[c] * sum;
   }
 }

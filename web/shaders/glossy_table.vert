@@ -1,21 +1,22 @@
 #version 300 es
-// Glossy PRT, per frame (docs/web-client.md, "Glossy rendering"): every cluster's mean and
-// basis matrices times the lighting, A_km,c L_c, from the CPCA matrix pass without expanding
-// it (Sloan et al. 2003 §4.1). One point per table texel, rasteriser off, captured by transform
-// feedback: point ((k * (1 + N') + m) * 3 + c) * uRowTexels + t writes rows 4t .. 4t+3 of the
-// product for cluster k, matrix m (0 the mean, else a basis matrix with its weight step folded
-// in) and lighting channel c. web/src/glossy_texture.cpp (glossyTableCpu) emulates it exactly.
+// Glossy PRT, when the lighting changes (docs/web-client.md, "Glossy rendering"): every
+// cluster's mean and basis matrices times the lighting, A_km,c L_c, from the CPCA matrix pass
+// without expanding it per vertex (Sloan et al. 2003 §4.1). One point per table texel,
+// rasteriser off, captured by transform feedback: point ((k * (1 + N') + m) * 3 + c) *
+// uRowTexels + t writes rows 4t .. 4t+3 of the product for cluster k, matrix m (0 the mean,
+// else a basis matrix with its weight step folded in) and lighting channel c. The matrices are
+// stored as full rows of uRowTexels texels, so a row times the lighting is uRowTexels vec4
+// dot products. web/src/glossy_texture.cpp (glossyTableCpu) emulates it.
 precision highp float;
 precision highp int;
 precision highp sampler2D;
 
 uniform sampler2D uMatrices;  // RGBA32F: matrix ((k * (1 + N') + m) * uChannels + c), uMatrixTexels texels each
 uniform int uTextureWidth;
-uniform int uRowTexels;       // ceil(bands^2 / 4) at the packed order
-uniform int uMatrixTexels;    // ceil(packed entries / 4)
+uniform int uRowTexels;       // ceil(packed bands^2 / 4): texels of one row and of one table vector
+uniform int uMatrixTexels;    // packed bands^2 * uRowTexels
 uniform int uChannels;        // 1: one matrix for r, g, b; 3: one per channel
 uniform int uRows;            // displayed bands^2 (<= packed bands^2)
-uniform int uSymmetric;       // 1: lower-triangle packing; 0: the shell packing (prt/transfer_matrix.h)
 layout(std140) uniform Lighting {  // the frame's lighting (lighting_combine.vert)
   vec4 uLightR[16];
   vec4 uLightG[16];
@@ -24,36 +25,26 @@ layout(std140) uniform Lighting {  // the frame's lighting (lighting_combine.ver
 
 out vec4 vTable;
 
-float lightAt(int c, int j) {
-  vec4 t = c == 0 ? uLightR[j >> 2] : (c == 1 ? uLightG[j >> 2] : uLightB[j >> 2]);
-  return t[j & 3];
-}
-
-// prt/transfer_matrix.h matrixEntryIndex.
-int entryIndex(int i, int j) {
-  int k = max(i, j);
-  if (uSymmetric == 1) return k * (k + 1) / 2 + min(i, j);
-  if (i == j) return k * k + 2 * k;
-  return i == k ? k * k + j : k * k + k + i;
-}
-
-float entry(int base, int e) {
-  int texel = base + (e >> 2);
-  return texelFetch(uMatrices, ivec2(texel % uTextureWidth, texel / uTextureWidth), 0)[e & 3];
-}
+vec4 texelAt(int texel) { return texelFetch(uMatrices, ivec2(texel % uTextureWidth, texel / uTextureWidth), 0); }
 
 void main() {
   int t = gl_VertexID % uRowTexels;
   int c = (gl_VertexID / uRowTexels) % 3;
   int km = gl_VertexID / (uRowTexels * 3);
   int base = (km * uChannels + (uChannels == 3 ? c : 0)) * uMatrixTexels;
+  int activeTexels = (uRows + 3) / 4;
+  // The lighting's displayed coefficients, 4 to a vec4, zero from uRows on.
+  vec4 light[16];
+  for (int u = 0; u < activeTexels; ++u) {
+    vec4 l = c == 0 ? uLightR[u] : (c == 1 ? uLightG[u] : uLightB[u]);
+    light[u] = l * vec4(lessThan(ivec4(4 * u) + ivec4(0, 1, 2, 3), ivec4(uRows)));
+  }
   vec4 rows = vec4(0.0);
   for (int q = 0; q < 4; ++q) {
     int i = 4 * t + q;
+    if (i >= uRows) break;
     float acc = 0.0;
-    if (i < uRows) {
-      for (int j = 0; j < uRows; ++j) acc += entry(base, entryIndex(i, j)) * lightAt(c, j);
-    }
+    for (int u = 0; u < activeTexels; ++u) acc += dot(texelAt(base + i * uRowTexels + u), light[u]);
     rows[q] = acc;
   }
   vTable = rows;

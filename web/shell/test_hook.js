@@ -8,6 +8,8 @@ import { PASS_NAMES } from './stream_loader.js';
 
 export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
+// GlRenderer's GlossyWork (web/src/gl_renderer.h) by name, for timeGlossy.
+const GLOSSY_WORK = { table: 1, relight: 2, view: 3 };
 
 const rows = (flat) => {
   const out = [];
@@ -89,12 +91,17 @@ export function installTestHook(page) {
       page.refreshGui();
     },
     // Benchmark: the glossy work of the displayed pass alone, n times back to back, ended by a
-    // read-back: the per-cluster table alone (`tableOnly`) or table plus per-vertex pass.
-    timeGlossy(n, tableOnly = false) {
+    // read-back: 'table' the per-cluster table alone; 'relight' table, transferred radiance
+    // and the per-vertex view step (a frame whose lighting changed); 'view' the view step
+    // alone on the cached transferred radiance (a frame where only the camera moved).
+    timeGlossy(n, work = 'relight') {
       if (!ready()) return NaN;
+      const code = GLOSSY_WORK[work];
+      if (code === undefined) throw new Error(`timeGlossy: work must be one of ${Object.keys(GLOSSY_WORK).join(', ')}`);
+      if (code === GLOSSY_WORK.view && !page.app.shadeGlossyVertices(GLOSSY_WORK.relight)) return NaN;
       const t0 = performance.now();
-      for (let i = 0; i < n; i++) if (!page.app.shadeGlossyVertices(tableOnly)) return NaN;
-      page.app.finishGlossy(tableOnly);  // a read-back of what the last pass wrote
+      for (let i = 0; i < n; i++) if (!page.app.shadeGlossyVertices(code)) return NaN;
+      page.app.finishGlossy(code);  // a read-back of what the last pass wrote
       return (performance.now() - t0) / n;
     },
     // Registers a mesh for mesh lights (xyz positions in the light's units, triangle
@@ -122,13 +129,16 @@ export function installTestHook(page) {
       return [(x * 0.5 + 0.5) * canvas.clientWidth, (0.5 - y * 0.5) * canvas.clientHeight];
     },
     // Benchmark: draws n frames back to back, each finished with a 1-pixel readPixels (so the
-    // GPU work is inside the measurement), and returns the mean milliseconds per frame.
-    timeFrames(n) {
+    // GPU work is inside the measurement), and returns the mean milliseconds per frame. With
+    // `relight` each frame treats the lighting as changed (as while a light moves), so the
+    // glossy term redoes its view-independent work; otherwise only the camera could have moved.
+    timeFrames(n, relight = false) {
       if (!ready()) return NaN;
       const gl = canvas.getContext('webgl2');
       const pixel = new Uint8Array(4);
       const t0 = performance.now();
       for (let i = 0; i < n; i++) {
+        if (relight) page.app.touchLighting();
         page.app.render(canvas.width, canvas.height);
         gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
       }

@@ -378,6 +378,7 @@ void ClientApp::render(int width, int height) {
   p.mix = glossyMix(mode_);
   p.eye = camera_.eye();
   p.fresnel = fresnel_;
+  p.lightingVersion = lightingVersion_;
   lastEye_ = p.eye;
   renderer_.draw(width, height, p);
   lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);
@@ -395,13 +396,16 @@ void ClientApp::prepareLighting() {
   syncLightView();
   // Re-projects the light cube only when dirty; leaves the lighting block bound.
   lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);
+  if (lights_.lightingVersion() != seenBlockVersion_ || lightingTouched_) ++lightingVersion_;
+  seenBlockVersion_ = lights_.lightingVersion();
+  lightingTouched_ = false;
 }
 
-bool ClientApp::shadeGlossyVertices(bool tableOnly) {
-  if (!ok()) return false;
+bool ClientApp::shadeGlossyVertices(int work) {
+  if (!ok() || work < 0 || work > 3) return false;
   makeCurrent();
   prepareLighting();
-  return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), fresnel_, tableOnly);
+  return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), lightingVersion_, fresnel_, static_cast<GlossyWork>(work));
 }
 
 bool ClientApp::shadeVertices() {

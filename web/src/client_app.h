@@ -168,15 +168,19 @@ class ClientApp {
   // Benchmarks: the per-vertex PRT pass of the current mode alone, as render() runs it
   // (lighting updated first), without drawing; false when the mode has no pass.
   bool shadeVertices();
-  // Benchmarks: the glossy work of the current mode alone (lighting updated first): the
-  // per-cluster table and the per-vertex glossy pass, or with `tableOnly` the table alone.
-  bool shadeGlossyVertices(bool tableOnly);
+  // Benchmarks: the glossy work of the current mode alone (lighting updated first), as
+  // `work` (GlossyWork: 0 as a frame needs it, 1 the per-cluster table alone, 2 table,
+  // transferred radiance and view step, 3 the per-vertex view step alone).
+  bool shadeGlossyVertices(int work);
   // Waits for the glossy passes queued so far (a 1-value read-back of what they write).
-  void finishGlossy(bool tableOnly) const {
+  void finishGlossy(int work) const {
     if (!ok()) return;
     makeCurrent();
-    renderer_.finishGlossy(mode_, tableOnly);
+    renderer_.finishGlossy(mode_, static_cast<GlossyWork>(work));
   }
+  // Benchmarks: the next frame treats the lighting as changed (as when a light moves), so
+  // the glossy term's view-independent work runs again.
+  void touchLighting() { lightingTouched_ = true; }
   void finishShading() const;  // waits for the PRT passes queued so far (a 1-vertex read-back)
   std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
   const std::string& projectionError() const { return lights_.projectionError(); }
@@ -209,6 +213,10 @@ class ClientApp {
   bool environmentEnabled_ = true;
   bool cpcaDirect_ = true;
   bool fresnel_ = true;
+  // The lighting version render() hands the renderer (FrameParams::lightingVersion): a new
+  // one whenever the lighting block was rebuilt or touchLighting was called.
+  unsigned lightingVersion_ = 0, seenBlockVersion_ = 0;
+  bool lightingTouched_ = false;
   std::array<GlossyMix, 3> glossyMix_{GlossyMix::kBoth, GlossyMix::kBoth, GlossyMix::kBoth};
   std::array<CpcaMatrixTransfer, 3> glossyCpu_{};  // the uploaded glossy passes, for glossyReference
   glm::vec3 lastEye_{0.0f};

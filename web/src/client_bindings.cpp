@@ -127,6 +127,7 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("useSyntheticGlossy", &ClientApp::useSyntheticGlossy)
       .function("shadeGlossyVertices", &ClientApp::shadeGlossyVertices)
       .function("finishGlossy", &ClientApp::finishGlossy)
+      .function("touchLighting", &ClientApp::touchLighting)
       .function("setEnvironment", &setEnvironment)
       .function("setWhiteFurnace", &ClientApp::setWhiteFurnace)
       .function("setEnvRotation", &ClientApp::setEnvRotation)

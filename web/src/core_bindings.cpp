@@ -151,8 +151,8 @@ val timeTransferDecode(const val& bytes, int repeats) {
   return out;
 }
 
-// Glossy rendering on the CPU (glossy_texture.h's emulation of glossy_table.vert and
-// glossy.vert from the packed textures) against prt::glossyExitRadiance on the expanded
+// Glossy rendering on the CPU (glossy_texture.h's emulation of glossy_table.vert,
+// glossy_transfer.vert and glossy.vert from the packed textures) against prt::glossyExitRadiance on the expanded
 // matrices (float and double accumulation), for a synthetic CPCA matrix pass (glossy_synthetic.h)
 // on `vertices` random points and normals: spec {bands, channels, packing ("full" |
 // "symmetric"), clusters, vectors, weightBits, seed}, eye [x, y, z], lighting (packLighting
@@ -195,7 +195,8 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
   if (prt::Status st = prt::web::packGlossy(cpca, specular, 16384, &packed); !st.isOk()) return val(st.toString());
   const prt::Vec3 eyePoint{e[0], e[1], e[2]};
   const std::vector<float> table = prt::web::glossyTableCpu(packed, light.data(), activeBands);
-  const std::vector<float> emulated = prt::web::glossyRadianceCpu(packed, table, activeBands, positions, normals, eyePoint, fresnel);
+  const std::vector<float> transfer = prt::web::glossyTransferCpu(packed, table, activeBands);
+  const std::vector<float> emulated = prt::web::glossyRadianceCpu(packed, transfer, activeBands, positions, normals, eyePoint, fresnel);
   std::vector<float> expanded(static_cast<std::size_t>(vertices) * static_cast<std::size_t>(s.channels) * prt::matrixEntryCount(s.bands, s.packing));
   if (prt::Status st = prt::cpcaMatrixReconstruct(cpca, expanded); !st.isOk()) return val(st.toString());
   std::vector<float> local;
@@ -277,7 +278,8 @@ val glossyAssetCheck(const val& bytes, const std::string& kind, const val& light
       light[2 * prt::web::kMaxClientCoeffs + i] = rgb[i].b;
     }
     const std::vector<float> table = prt::web::glossyTableCpu(packed, light, bands);
-    out.set("emulated", val::array(prt::web::glossyRadianceCpu(packed, table, bands, asset.positions, asset.normals, view.eye, fresnel)));
+    const std::vector<float> transfer = prt::web::glossyTransferCpu(packed, table, bands);
+    out.set("emulated", val::array(prt::web::glossyRadianceCpu(packed, transfer, bands, asset.positions, asset.normals, view.eye, fresnel)));
     std::vector<float> expanded(asset.positions.size() * static_cast<std::size_t>(cpca.channels) * prt::matrixEntryCount(bands, packing));
     if (prt::Status s = prt::cpcaMatrixReconstruct(cpca, expanded); !s.isOk()) return val(s.toString());
     std::vector<float> local;

@@ -142,6 +142,7 @@ void DynamicLighting::update(const float* environment, int displayOrder) {
   if (combinedVersion_ != cubeVersion_ || combinedOrder_ != displayOrder ||
       std::memcmp(combinedEnvironment_, environment, sizeof combinedEnvironment_) != 0) {
     block_.combine(environment, displayOrder);
+    ++blockVersion_;
     combinedVersion_ = cubeVersion_;
     combinedOrder_ = displayOrder;
     std::memcpy(combinedEnvironment_, environment, sizeof combinedEnvironment_);

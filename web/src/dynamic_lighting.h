@@ -48,6 +48,8 @@ class DynamicLighting {
   // rebuilds the block if the cube, `environment` (packLighting layout, kPackedLightingFloats, zero
   // when off) or the display order changed. Leaves the block bound.
   void update(const float* environment, int displayOrder);
+  // Counts the block's rebuilds: equal across two updates only if the block's values did not change.
+  unsigned lightingVersion() const { return blockVersion_; }
   // Re-renders and re-projects the cube now, whatever the dirty flag says (benchmarks).
   void projectNow();
   // Waits for all queued GL work: glFinish, then a 1-texel readPixels of the cube-SH
@@ -85,7 +87,7 @@ class DynamicLighting {
   Vec3 center_{};
   float nearZ_ = 1e-4f;
   bool dirty_ = true, cubeEmpty_ = true;
-  unsigned cubeVersion_ = 1, combinedVersion_ = 0;
+  unsigned cubeVersion_ = 1, combinedVersion_ = 0, blockVersion_ = 0;
   float combinedEnvironment_[kPackedLightingFloats] = {};
   int combinedOrder_ = 0;
   std::vector<float> cpuCubeSh_;  // packLighting layout, valid on the CPU path and when empty

@@ -24,6 +24,10 @@ Status compile(GLenum type, const char* source, GLuint* out) {
 }  // namespace
 
 Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feedback) {
+  return feedback ? linkProgram(vs, fs, out, &feedback, 1) : linkProgram(vs, fs, out, nullptr, 0);
+}
+
+Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* const* feedback, int feedbackCount) {
   GLuint v = 0, f = 0;
   if (Status s = compile(GL_VERTEX_SHADER, vs, &v); !s.isOk()) return s;
   if (Status s = compile(GL_FRAGMENT_SHADER, fs, &f); !s.isOk()) {
@@ -33,7 +37,10 @@ Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feed
   const GLuint p = glCreateProgram();
   glAttachShader(p, v);
   glAttachShader(p, f);
-  if (feedback) glTransformFeedbackVaryings(p, 1, &feedback, GL_SEPARATE_ATTRIBS);
+  // One varying: separate attribs (its own buffer); several: interleaved into one buffer.
+  if (feedbackCount > 0) {
+    glTransformFeedbackVaryings(p, feedbackCount, feedback, feedbackCount == 1 ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS);
+  }
   glLinkProgram(p);
   glDeleteShader(v);
   glDeleteShader(f);

@@ -10,6 +10,8 @@ namespace prt::web {
 // Compiles and links `vs` + `fs` into *out. `feedback`: name of a varying to capture with
 // transform feedback (separate attribs), or nullptr. Errors carry the driver's log.
 Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feedback = nullptr);
+// The same with `feedbackCount` varyings captured interleaved into one buffer, in that order.
+Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* const* feedback, int feedbackCount);
 
 // Binds the program's uniform block `name` (if it has one) to binding point `binding`.
 void bindUniformBlock(GLuint program, const char* name, GLuint binding);

@@ -54,8 +54,12 @@ Status glErrorStatus(const char* memoryFor, const char* during) {
 }  // namespace
 
 Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* feedback) {
+  return feedback ? link(vs, fs, out, &feedback, 1) : link(vs, fs, out, nullptr, 0);
+}
+
+Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* const* feedback, int count) {
   GLuint p = 0;
-  if (Status s = linkProgram(vs, fs, &p, feedback); !s.isOk()) return s;
+  if (Status s = linkProgram(vs, fs, &p, feedback, count); !s.isOk()) return s;
   bindUniformBlock(p, "Lighting", kLightingBlockBinding);
   out->id = p;
   out->viewProjection = glGetUniformLocation(p, "uViewProjection");
@@ -77,7 +81,8 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->rowTexels = glGetUniformLocation(p, "uRowTexels");
   out->matrixTexels = glGetUniformLocation(p, "uMatrixTexels");
   out->rows = glGetUniformLocation(p, "uRows");
-  out->symmetric = glGetUniformLocation(p, "uSymmetric");
+  out->channel = glGetUniformLocation(p, "uChannel");
+  out->vertices = glGetUniformLocation(p, "uVertices");
   out->vectors = glGetUniformLocation(p, "uVectors");
   out->bands = glGetUniformLocation(p, "uBands");
   out->fresnel = glGetUniformLocation(p, "uFresnel");
@@ -126,9 +131,9 @@ void GlRenderer::releasePass(PassTexture* p) {
 }
 
 void GlRenderer::releaseGlossy(GlossyPass* g) {
-  for (GLuint* t : {&g->matrices, &g->weights, &g->table})
+  for (GLuint* t : {&g->matrices, &g->weights, &g->table, &g->transfer})
     if (*t) glDeleteTextures(1, t);
-  for (GLuint* b : {&g->tableBuffer, &g->clusterIds, &g->specular})
+  for (GLuint* b : {&g->tableBuffer, &g->transferBuffer, &g->clusterIds, &g->specular})
     if (*b) glDeleteBuffers(1, b);
   if (g->vao) glDeleteVertexArrays(1, &g->vao);
   *g = {};
@@ -205,6 +210,7 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   GlossyTextures packed;
   if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
+  if (Status s = ensureTransferProgram(packed.rowTexels); !s.isOk()) return s;
   GlossyPass& g = glossy_[k];
   releaseGlossy(&g);
   g.bands = packed.bands;
@@ -216,7 +222,7 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   g.rowTexels = packed.rowTexels;
   g.tableTexels = packed.tableTexels;
   g.tableHeight = packed.tableHeight;
-  g.symmetric = packed.packing == MatrixPacking::kSymmetric;
+  g.transferHeight = packed.transferHeight;
   glGenTextures(1, &g.matrices);
   glBindTexture(GL_TEXTURE_2D, g.matrices);
   setNearestClamp(GL_TEXTURE_2D);
@@ -229,6 +235,13 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glBindTexture(GL_TEXTURE_2D, 0);
   // Sized for the whole table texture: the copy reads every row (WebGL zero-fills buffers).
   g.tableBuffer = makeBuffer(GL_ARRAY_BUFFER, nullptr, static_cast<std::size_t>(packed.tableWidth) * packed.tableHeight * 4 * sizeof(float));
+  glGenTextures(1, &g.transfer);
+  glBindTexture(GL_TEXTURE_2D, g.transfer);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, packed.transferWidth, packed.transferHeight, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  g.transferBuffer =
+      makeBuffer(GL_ARRAY_BUFFER, nullptr, static_cast<std::size_t>(packed.transferWidth) * packed.transferHeight * 4 * sizeof(float));
   glGenVertexArrays(1, &g.vao);
   glBindVertexArray(g.vao);
   glBindBuffer(GL_ARRAY_BUFFER, positions_);
@@ -266,11 +279,16 @@ std::array<int, 3> GlRenderer::glossyShape(ShadingMode mode) const {
   return {g.clusters, g.vectors, g.channels};
 }
 
-bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, bool fresnel, bool tableOnly) {
-  if (!isPassKind(mode) || indexCount_ == 0) return false;
-  const GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
-  if (g.bands == 0) return false;
-  const int bands = std::clamp(displayOrder, 1, g.bands);
+Status GlRenderer::ensureTransferProgram(int rowTexels) {
+  if (rowTexels < 1 || rowTexels > 16) return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad row width");
+  Program& p = glossyTransfer_[static_cast<std::size_t>(rowTexels)];
+  if (p.id) return Status::ok();
+  static const char* const kNames[16] = {"vT0", "vT1", "vT2",  "vT3",  "vT4",  "vT5",  "vT6",  "vT7",
+                                         "vT8", "vT9", "vT10", "vT11", "vT12", "vT13", "vT14", "vT15"};
+  return link(shaders::k_glossy_transfer_vert, shaders::k_discard_frag, &p, kNames, rowTexels);
+}
+
+void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   // 1. The table: every cluster's (1 + N') matrices times the lighting, one point per texel.
   glUseProgram(glossyTable_.id);
   glActiveTexture(GL_TEXTURE0);
@@ -281,27 +299,64 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   glUniform1i(glossyTable_.matrixTexels, g.matrixTexels);
   glUniform1i(glossyTable_.channels, g.channels);
   glUniform1i(glossyTable_.rows, bands * bands);
-  glUniform1i(glossyTable_.symmetric, g.symmetric ? 1 : 0);
   glBindVertexArray(tableVao_);
   capture(g.tableBuffer, static_cast<GLsizei>(g.tableTexels));
-  // 2. Into the table texture, GPU to GPU.
+  // Into the table texture, GPU to GPU.
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.tableBuffer);
   glBindTexture(GL_TEXTURE_2D, g.table);
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.tableHeight, GL_RGBA, GL_FLOAT, nullptr);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  if (tableOnly) return true;
-  // 3. Per vertex: weighted sum, lobe convolution, y_i(R) toward the eye, Schlick.
-  glUseProgram(glossyProgram_.id);
-  glActiveTexture(GL_TEXTURE0);
+  g.transferValid = false;
+  if (tableOnly) return;
+  // 2. Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
+  const Program& t = glossyTransfer_[static_cast<std::size_t>(g.rowTexels)];
+  glUseProgram(t.id);
   glBindTexture(GL_TEXTURE_2D, g.table);
-  glUniform1i(glossyProgram_.table, 0);
+  glUniform1i(t.table, 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, g.weights);
-  glUniform1i(glossyProgram_.weights, 1);
+  glUniform1i(t.weights, 1);
+  glUniform1i(t.textureWidth, kTransferTextureWidth);
+  glUniform1i(t.rowTexels, g.rowTexels);
+  glUniform1i(t.activeTexels, texelsForOrder(bands));
+  glUniform1i(t.vectors, g.vectors);
+  glUniform1i(t.weightTexels, g.weightTexels);
+  glBindVertexArray(g.vao);
+  const GLsizeiptr channelBytes = static_cast<GLsizeiptr>(vertexCount_) * g.rowTexels * 4 * static_cast<GLsizeiptr>(sizeof(float));
+  for (int c = 0; c < 3; ++c) {
+    glUniform1i(t.channel, c);
+    capture(g.transferBuffer, vertexCount_, c * channelBytes, channelBytes);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.transferBuffer);
+  glBindTexture(GL_TEXTURE_2D, g.transfer);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.transferHeight, GL_RGBA, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  g.transferValid = true;
+}
+
+bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, unsigned lightingVersion, bool fresnel,
+                             GlossyWork work) {
+  if (!isPassKind(mode) || indexCount_ == 0) return false;
+  GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
+  if (g.bands == 0) return false;
+  const int bands = std::clamp(displayOrder, 1, g.bands);
+  const bool stale = !g.transferValid || g.transferVersion != lightingVersion || g.transferBands != bands;
+  if (work == GlossyWork::kTableOnly || work == GlossyWork::kRelight || (work == GlossyWork::kAsNeeded && stale)) {
+    relightGlossy(g, bands, work == GlossyWork::kTableOnly);
+    g.transferVersion = lightingVersion;
+    g.transferBands = bands;
+    if (work == GlossyWork::kTableOnly) return true;
+  }
+  if (!g.transferValid) return false;  // kViewOnly before any relight
+  // 3. Per vertex: lobe convolution, y_i(R) toward the eye, Schlick, on the cached T.
+  glUseProgram(glossyProgram_.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.transfer);
+  glUniform1i(glossyProgram_.transfer, 0);
   glUniform1i(glossyProgram_.textureWidth, kTransferTextureWidth);
   glUniform1i(glossyProgram_.rowTexels, g.rowTexels);
-  glUniform1i(glossyProgram_.vectors, g.vectors);
-  glUniform1i(glossyProgram_.weightTexels, g.weightTexels);
+  glUniform1i(glossyProgram_.vertices, vertexCount_);
   glUniform1i(glossyProgram_.bands, bands);
   glUniform1i(glossyProgram_.fresnel, fresnel ? 1 : 0);
   glUniform3f(glossyProgram_.eye, eye.x, eye.y, eye.z);
@@ -312,14 +367,13 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   glUniform4fv(glossyProgram_.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
   glBindVertexArray(g.vao);
   capture(glossyBuffer_, vertexCount_);
-  glActiveTexture(GL_TEXTURE0);
   return true;
 }
 
-void GlRenderer::finishGlossy(ShadingMode mode, bool tableOnly) const {
+void GlRenderer::finishGlossy(ShadingMode mode, GlossyWork work) const {
   if (!isPassKind(mode) || glossy_[static_cast<std::size_t>(mode)].bands == 0) return;
   float value = 0.0f;
-  glBindBuffer(GL_ARRAY_BUFFER, tableOnly ? glossy_[static_cast<std::size_t>(mode)].tableBuffer : glossyBuffer_);
+  glBindBuffer(GL_ARRAY_BUFFER, work == GlossyWork::kTableOnly ? glossy_[static_cast<std::size_t>(mode)].tableBuffer : glossyBuffer_);
   glGetBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float), &value);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -446,10 +500,14 @@ std::vector<float> GlRenderer::readRadiance(std::size_t vertices) const {
   return out;
 }
 
-void GlRenderer::capture(GLuint buffer, GLsizei points) {
+void GlRenderer::capture(GLuint buffer, GLsizei points, GLintptr offset, GLsizeiptr bytes) {
   glEnable(GL_RASTERIZER_DISCARD);
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, feedback_);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+  if (bytes > 0) {
+    glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer, offset, bytes);
+  } else {
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+  }
   glBeginTransformFeedback(GL_POINTS);
   glDrawArrays(GL_POINTS, 0, points);
   glEndTransformFeedback();
@@ -547,7 +605,7 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
   // The terms of the pass: diffuse (vector pass) and glossy (matrix pass), each captured into
   // its buffer; a term switched off or absent is a constant zero attribute.
   const bool diffuse = p.mix != GlossyMix::kGlossy && shade(p.mode, p.displayOrder);
-  const bool glossy = p.mix != GlossyMix::kDiffuse && shadeGlossy(p.mode, p.displayOrder, p.eye, p.fresnel);
+  const bool glossy = p.mix != GlossyMix::kDiffuse && shadeGlossy(p.mode, p.displayOrder, p.eye, p.lightingVersion, p.fresnel);
   if (!diffuse && !glossy) return;
   // Draw pass with the captured radiance.
   glEnable(GL_DEPTH_TEST);

@@ -49,6 +49,17 @@ struct FrameParams {
   GlossyMix mix = GlossyMix::kBoth;
   glm::vec3 eye{0.0f};         // world-space camera position: the glossy term's view direction
   bool fresnel = true;         // Schlick's k_s (false: k_s = f0)
+  // Changes whenever the bound lighting block may hold other values: the glossy pass keeps
+  // its transferred radiance (view-independent) while this and the display order stay put.
+  unsigned lightingVersion = 0;
+};
+
+// How much of the glossy work shadeGlossy does (docs/web-client.md, "Glossy rendering").
+enum class GlossyWork {
+  kAsNeeded = 0,  // table and transferred radiance only if the lighting changed, then the view step
+  kTableOnly = 1,  // the per-cluster table alone (benchmarks)
+  kRelight = 2,    // all three steps, as a frame whose lighting changed (benchmarks)
+  kViewOnly = 3,   // the per-vertex view step alone, on the cached transferred radiance (benchmarks)
 };
 
 class GlRenderer {
@@ -76,13 +87,15 @@ class GlRenderer {
   int glossyOrder(ShadingMode mode) const;
   // Glossy pass of `mode`: {clusters, basis matrices per cluster, channels}; zeros when absent.
   std::array<int, 3> glossyShape(ShadingMode mode) const;
-  // The glossy vertex passes alone (table, then per-vertex glossy radiance into the glossy
-  // buffer) for `mode` seen from `eye`, with the bound lighting block; false when absent.
-  // `tableOnly`: stop after the per-cluster table (benchmarks of the per-frame cluster work).
-  bool shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, bool fresnel = true, bool tableOnly = false);
+  // The glossy vertex passes alone for `mode` seen from `eye` with the bound lighting block
+  // (version `lightingVersion`, FrameParams): the table and the transferred radiance when the
+  // lighting or the display order changed since they were made (or as `work` forces), then the
+  // per-vertex glossy radiance into the glossy buffer. False when the pass is absent.
+  bool shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, unsigned lightingVersion, bool fresnel = true,
+                   GlossyWork work = GlossyWork::kAsNeeded);
   // Waits for the glossy passes queued so far: a 1-value read-back of the table buffer of
-  // `mode` (tableOnly) or of the glossy radiance buffer (benchmarks).
-  void finishGlossy(ShadingMode mode, bool tableOnly) const;
+  // `mode` (kTableOnly) or of the glossy radiance buffer (benchmarks).
+  void finishGlossy(ShadingMode mode, GlossyWork work) const;
   // The glossy radiance the last frame computed, RGB per vertex (synchronous read-back).
   std::vector<float> readGlossy(std::size_t vertices) const;
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
@@ -108,17 +121,22 @@ class GlRenderer {
     GLint inverseViewProjection = -1;
     GLint table = -1, weights = -1, entries = -1, weightTexels = -1;
     // glossy_table.vert, glossy.vert
-    GLint matrices = -1, rowTexels = -1, matrixTexels = -1, rows = -1, symmetric = -1, vectors = -1, bands = -1;
+    GLint matrices = -1, rowTexels = -1, matrixTexels = -1, rows = -1, vectors = -1, bands = -1;
+    GLint channel = -1, vertices = -1;
     GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
   };
   // A glossy matrix pass in its CPCA form (glossy_texture.h): matrices, weight levels, the
-  // per-frame table (captured into tableBuffer, copied into the table texture), and a VAO
-  // feeding glossy.vert (position, normal, cluster id, specular material).
+  // table and the transferred radiance (each captured into its buffer, copied into its
+  // texture) with the lighting version and bands they were made for, and a VAO feeding
+  // glossy_transfer.vert and glossy.vert (position, normal, cluster id, specular material).
   struct GlossyPass {
-    GLuint matrices = 0, weights = 0, table = 0, tableBuffer = 0, clusterIds = 0, specular = 0, vao = 0;
+    GLuint matrices = 0, weights = 0, table = 0, tableBuffer = 0, transfer = 0, transferBuffer = 0;
+    GLuint clusterIds = 0, specular = 0, vao = 0;
     int bands = 0, channels = 0, clusters = 0, vectors = 0, weightTexels = 0, matrixTexels = 0, rowTexels = 0;
-    int tableTexels = 0, tableHeight = 0;
-    bool symmetric = false;
+    int tableTexels = 0, tableHeight = 0, transferHeight = 0;
+    bool transferValid = false;
+    unsigned transferVersion = 0;
+    int transferBands = 0;
   };
   static void releaseGlossy(GlossyPass* g);
   struct PassTexture {
@@ -134,6 +152,11 @@ class GlRenderer {
   };
   // `feedback`: name of a varying to capture with transform feedback, or nullptr.
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
+  // The same with `count` varyings captured interleaved.
+  Status link(const char* vs, const char* fs, Program* out, const char* const* feedback, int count);
+  // Makes the table and the transferred radiance of `g` for the bound lighting at `bands`.
+  void relightGlossy(GlossyPass& g, int bands, bool tableOnly);
+  Status ensureTransferProgram(int rowTexels);  // links glossyTransfer_[rowTexels] once
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
@@ -141,14 +164,18 @@ class GlRenderer {
   void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
   static void releasePass(PassTexture* p);
   // Runs the bound program once per point over `points` points of the bound VAO, rasteriser
-  // off, capturing its output into `buffer` by transform feedback.
-  void capture(GLuint buffer, GLsizei points);
+  // off, capturing its output into `buffer` (from byte `offset`, `bytes` long; 0: all of it)
+  // by transform feedback.
+  void capture(GLuint buffer, GLsizei points, GLintptr offset = 0, GLsizeiptr bytes = 0);
   // prt.vert in use over pass texture `t` (transfer or CPCA entries), shading `activeOrder` bands.
   void usePrtProgram(const PassTexture& t, int activeOrder);
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
   Program prt_, lambert_, background_, radiance_, cpca_, glossyTable_, glossyProgram_;
+  // glossy_transfer.vert linked per row width r = 1 .. 16 texels (capturing vT0 .. vT{r-1}),
+  // on first use.
+  std::array<Program, 17> glossyTransfer_{};
   GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.

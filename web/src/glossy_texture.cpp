@@ -136,16 +136,23 @@ Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMateri
   t.vectors = static_cast<int>(N);
   t.weightBits = cpca.weightBits;
   t.weightTexels = std::max<int>(1, static_cast<int>((N + 3) / 4));
-  t.matrixTexels = static_cast<int>((entries + 3) / 4);
   t.rowTexels = texelsForOrder(cpca.bands);
+  t.matrixTexels = cpca.bands * cpca.bands * t.rowTexels;
   const std::size_t matrices = K * (1 + N) * C;
   t.tableTexels = static_cast<int>(K * (1 + N) * 3 * static_cast<std::size_t>(t.rowTexels));
   if (Status s = textureRowsFor(matrices * static_cast<std::size_t>(t.matrixTexels), maxHeight, "glossy matrices", &t.matrixHeight); !s.isOk()) return s;
   if (Status s = textureRowsFor(V * static_cast<std::size_t>(t.weightTexels), maxHeight, "glossy weights", &t.weightHeight); !s.isOk()) return s;
   if (Status s = textureRowsFor(static_cast<std::size_t>(t.tableTexels), maxHeight, "glossy cluster table", &t.tableHeight); !s.isOk()) return s;
-  t.matrixWidth = t.weightWidth = t.tableWidth = kTransferTextureWidth;
+  t.transferTexels = static_cast<int>(3 * V * static_cast<std::size_t>(t.rowTexels));
+  if (Status s = textureRowsFor(static_cast<std::size_t>(t.transferTexels), maxHeight, "glossy transferred radiance", &t.transferHeight);
+      !s.isOk()) {
+    return s;
+  }
+  t.matrixWidth = t.weightWidth = t.tableWidth = t.transferWidth = kTransferTextureWidth;
 
   const std::size_t width = static_cast<std::size_t>(kTransferTextureWidth);
+  const std::size_t rows = static_cast<std::size_t>(cpca.bands) * static_cast<std::size_t>(cpca.bands);
+  const std::size_t rowFloats = static_cast<std::size_t>(t.rowTexels) * 4;
   t.matrixData.assign(width * static_cast<std::size_t>(t.matrixHeight) * 4, 0.0f);
   for (std::size_t k = 0; k < K; ++k) {
     for (std::size_t m = 0; m <= N; ++m) {
@@ -155,7 +162,12 @@ Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMateri
         const std::size_t index = (k * (1 + N) + m) * C + c;
         const float* src = &cpca.matrices[index * entries];
         float* dst = &t.matrixData[index * static_cast<std::size_t>(t.matrixTexels) * 4];
-        for (std::size_t e = 0; e < entries; ++e) dst[e] = m == 0 ? src[e] : scale * src[e];
+        for (std::size_t i = 0; i < rows; ++i) {
+          for (std::size_t j = 0; j < rows; ++j) {
+            const float e = src[matrixEntryIndex(i, j, cpca.packing)];
+            dst[i * rowFloats + j] = m == 0 ? e : scale * e;
+          }
+        }
       }
     }
   }
@@ -198,8 +210,8 @@ Status packGlossy(const CpcaMatrixTransfer& cpca, std::span<const SpecularMateri
 
 std::vector<float> glossyTableCpu(const GlossyTextures& p, const float* lighting, int activeBands) {
   const int bands = std::clamp(activeBands, 1, p.bands);
-  const int rows = bands * bands;
-  const std::size_t C = static_cast<std::size_t>(p.channels);
+  const int rows = bands * bands, activeTexels = texelsForOrder(bands);
+  const std::size_t C = static_cast<std::size_t>(p.channels), rowFloats = static_cast<std::size_t>(p.rowTexels) * 4;
   std::vector<float> table(static_cast<std::size_t>(p.tableTexels) * 4, 0.0f);
   for (int point = 0; point < p.tableTexels; ++point) {
     // glossy_table.vert: gl_VertexID -> (cluster k, matrix m, lighting channel c, texel t).
@@ -207,14 +219,17 @@ std::vector<float> glossyTableCpu(const GlossyTextures& p, const float* lighting
     const int c = (point / p.rowTexels) % 3;
     const int km = point / (p.rowTexels * 3);
     const std::size_t matrix = static_cast<std::size_t>(km) * C + (C == 3 ? static_cast<std::size_t>(c) : 0);
-    const float* entries = &p.matrixData[matrix * static_cast<std::size_t>(p.matrixTexels) * 4];
+    const float* m = &p.matrixData[matrix * static_cast<std::size_t>(p.matrixTexels) * 4];
     const float* light = lighting + c * kMaxClientCoeffs;
     for (int q = 0; q < 4; ++q) {
       const int i = 4 * t + q;
       float acc = 0.0f;
       if (i < rows) {
-        for (int j = 0; j < rows; ++j) {
-          acc += entries[matrixEntryIndex(static_cast<std::size_t>(i), static_cast<std::size_t>(j), p.packing)] * light[j];
+        for (int u = 0; u < activeTexels; ++u) {
+          const float* row = &m[static_cast<std::size_t>(i) * rowFloats + 4 * static_cast<std::size_t>(u)];
+          float texel = 0.0f;
+          for (int w = 0; w < 4; ++w) texel += 4 * u + w < rows ? row[w] * light[4 * u + w] : 0.0f;
+          acc += texel;
         }
       }
       table[static_cast<std::size_t>(point) * 4 + static_cast<std::size_t>(q)] = acc;
@@ -223,13 +238,37 @@ std::vector<float> glossyTableCpu(const GlossyTextures& p, const float* lighting
   return table;
 }
 
-std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<float>& table, int activeBands,
+std::vector<float> glossyTransferCpu(const GlossyTextures& p, const std::vector<float>& table, int activeBands) {
+  const int activeTexels = texelsForOrder(std::clamp(activeBands, 1, p.bands));
+  const std::size_t V = p.clusterOf.size(), N = static_cast<std::size_t>(p.vectors), R = static_cast<std::size_t>(p.rowTexels);
+  std::vector<float> transfer(static_cast<std::size_t>(p.transferTexels) * 4, 0.0f);
+  if (table.size() != static_cast<std::size_t>(p.tableTexels) * 4) return transfer;
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::size_t v = 0; v < V; ++v) {
+      // glossy_transfer.vert: the draw of channel c, point v.
+      const std::size_t first = static_cast<std::size_t>(p.clusterOf[v]) * (1 + N);
+      for (std::size_t t = 0; t < static_cast<std::size_t>(activeTexels); ++t) {
+        const float* mean = &table[((first * 3 + c) * R + t) * 4];
+        float tr[4] = {mean[0], mean[1], mean[2], mean[3]};
+        for (std::size_t j = 0; j < N; ++j) {
+          const float level = static_cast<float>(levelAt(p, v, static_cast<int>(j)));
+          const float* axis = &table[(((first + 1 + j) * 3 + c) * R + t) * 4];
+          for (int q = 0; q < 4; ++q) tr[q] += level * axis[q];
+        }
+        std::copy(tr, tr + 4, &transfer[((c * V + v) * R + t) * 4]);
+      }
+    }
+  }
+  return transfer;
+}
+
+std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<float>& transfer, int activeBands,
                                      std::span<const Vec3> positions, std::span<const Vec3> normals, Vec3 eye, bool fresnel) {
   const int bands = std::clamp(activeBands, 1, p.bands);
   const int rows = bands * bands, activeTexels = texelsForOrder(bands);
-  const std::size_t V = p.clusterOf.size(), N = static_cast<std::size_t>(p.vectors);
+  const std::size_t V = p.clusterOf.size(), R = static_cast<std::size_t>(p.rowTexels);
   std::vector<float> out(3 * V, 0.0f);
-  if (positions.size() != V || normals.size() != V || table.size() != static_cast<std::size_t>(p.tableTexels) * 4) return out;
+  if (positions.size() != V || normals.size() != V || transfer.size() != static_cast<std::size_t>(p.transferTexels) * 4) return out;
   float y[kMaxGlossyOrder * kMaxGlossyOrder], g[kMaxGlossyOrder];
   for (std::size_t v = 0; v < V; ++v) {
     const Vec3 d = eye - positions[v];
@@ -243,22 +282,18 @@ std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<
     r = rl > 0.0f ? r * (1.0f / rl) : n;
     glossyShBasis(bands, r, y);
     phongLobeBandScalesUnchecked(bands, spec[3], g);
+    // The lobe's band scales folded into the basis once, as glossy.vert does.
+    float gy[kMaxGlossyOrder * kMaxGlossyOrder];
+    for (int i = 0; i < rows; ++i) gy[i] = g[bandOf(i)] * y[i];
     const Rgb ks = fresnel ? schlickFresnel({spec[0], spec[1], spec[2]}, spec[4], dot(n, toEye)) : Rgb{spec[0], spec[1], spec[2]};
     const float k[3] = {ks.r, ks.g, ks.b};
-    const std::size_t first = static_cast<std::size_t>(p.clusterOf[v]) * (1 + N);
     for (std::size_t c = 0; c < 3; ++c) {
       float sum = 0.0f;
       for (int t = 0; t < activeTexels; ++t) {
-        const float* mean = &table[(((first) * 3 + c) * static_cast<std::size_t>(p.rowTexels) + static_cast<std::size_t>(t)) * 4];
-        float tr[4] = {mean[0], mean[1], mean[2], mean[3]};
-        for (std::size_t j = 0; j < N; ++j) {
-          const float level = static_cast<float>(levelAt(p, v, static_cast<int>(j)));
-          const float* axis = &table[(((first + 1 + j) * 3 + c) * static_cast<std::size_t>(p.rowTexels) + static_cast<std::size_t>(t)) * 4];
-          for (int q = 0; q < 4; ++q) tr[q] += level * axis[q];
-        }
+        const float* tr = &transfer[((c * V + v) * R + static_cast<std::size_t>(t)) * 4];
         for (int q = 0; q < 4; ++q) {
           const int i = 4 * t + q;
-          if (i < rows) sum += g[bandOf(i)] * tr[q] * y[i];
+          if (i < rows) sum += tr[q] * gy[i];
         }
       }
       out[3 * v + c] = k[c] * sum;

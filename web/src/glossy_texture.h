@@ -1,17 +1,20 @@
 // Packs a CPCA matrix pass (prt/transfer_codec.h CpcaMatrixTransfer) for rendering the glossy
 // term straight from the compressed form (Sloan et al. 2003 §4.1; docs/web-client.md,
-// "Glossy rendering"), and emulates the two glossy shaders on the CPU. GL-free, so the
+// "Glossy rendering"), and emulates the three glossy shaders on the CPU. GL-free, so the
 // arithmetic is tested under Node against prt/glossy_radiance.h.
 //
-// Per frame (shaders/glossy_table.vert, transform feedback, one point per table texel):
+// When the lighting changes (shaders/glossy_table.vert, one point per table texel, then
+// shaders/glossy_transfer.vert, one point per vertex and channel; both by transform feedback):
 //   table[k][m][c] = A_km,c L_c     (bands^2 values, 4 to an RGBA texel)
-// for every cluster k, matrix m = 0 (the mean) .. N' (basis matrices, their cluster's
-// weight step folded in) and lighting channel c = r, g, b, A_km,c the channel's matrix (the
-// one matrix of a 1-channel pass for all three). Per vertex (shaders/glossy.vert):
-//   T_c     = table[k][0][c] + sum_j level_vj table[k][j][c]        (transferred radiance)
-//   L_c     = k_s,c sum_i (g_l(i)(s) T_c,i) y_i(R),  R = reflect(-v, n) toward the live eye
+//   T_vc           = table[k][0][c] + sum_j level_vj table[k][j][c]   (transferred radiance)
+// for every cluster k, matrix m = 0 (the mean) .. N' (basis matrices, their cluster's weight
+// step folded in), lighting channel c = r, g, b (A_km,c the channel's matrix, or the one matrix
+// of a 1-channel pass for all three) and vertex v of cluster k. Every frame (shaders/glossy.vert):
+//   L_c = k_s,c sum_i (g_l(i)(s) T_vc,i) y_i(R),  R = reflect(-v, n) toward the live eye
 // with k_s Schlick's term at n.v; the same formula as prt::glossyExitRadiance, reordered by
-// linearity (the matrix-vector products are taken before the weighted sum).
+// linearity (the matrix-vector products are taken before the weighted sum). T is independent
+// of the view, so a frame whose lighting did not change (the camera orbiting) costs only the
+// last step.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +32,9 @@ namespace prt::web {
 // Largest glossy order (bands) the shaders take: their arrays hold 64 SH values (y_i(R) and a
 // row of the table), the order of the client's lighting (client_limits.h).
 inline constexpr int kMaxGlossyOrder = 8;
-// Largest N' (basis matrices per cluster) the shaders take: glossy.vert's loop bound. Each
-// costs 3 * ceil(bands^2 / 4) texel fetches per vertex; the codec's searches stay far below.
+// Largest N' (basis matrices per cluster) the shaders take: glossy_transfer.vert's loop bound.
+// Each costs 3 * ceil(bands^2 / 4) texel fetches per vertex when the lighting changes; the
+// codec's searches stay far below.
 inline constexpr int kMaxGlossyVectors = 64;
 
 // Floats per vertex in GlossyTextures::specular: f0 r, g, b and the exponent (attribute 5, a
@@ -45,11 +49,13 @@ struct GlossyTextures {
   int vectors = 0;            // N'
   int weightBits = 8;         // 8: RGBA8I levels; 16: RGBA16I
   int weightTexels = 0;       // ceil(N' / 4) RGBA texels per vertex (at least 1)
-  int matrixTexels = 0;       // ceil(matrixEntryCount(bands, packing) / 4) texels per matrix
-  int rowTexels = 0;          // ceil(bands^2 / 4): texels of one table vector
+  int rowTexels = 0;          // ceil(bands^2 / 4): texels of one matrix row and of one table vector
+  int matrixTexels = 0;       // bands^2 * rowTexels texels per matrix
   // Matrices, RGBA32F, kTransferTextureWidth wide: matrix ((k * (1 + N') + m) * channels + c)
-  // at texels [that index * matrixTexels, + matrixTexels), its packed entries 4 to a texel
-  // (zero-padded); basis matrices (m >= 1) multiplied by their cluster's weight step.
+  // at texels [that index * matrixTexels, + matrixTexels), expanded from its packing to full
+  // rows, row i at texels i * rowTexels .. (4 entries to a texel, zero-padded), so that a row
+  // times the lighting is rowTexels vec4 dot products; basis matrices (m >= 1) multiplied by
+  // their cluster's weight step.
   int matrixWidth = 0, matrixHeight = 0;
   std::vector<float> matrixData;
   // Integer weight levels, vertex v's N' at texels v * weightTexels .. (4 per texel), int8 or
@@ -62,6 +68,10 @@ struct GlossyTextures {
   // 4t .. 4t+3 of A_km,c L_c.
   int tableTexels = 0;
   int tableWidth = 0, tableHeight = 0;
+  // The transferred radiance, RGBA32F: texel (c * V + v) * rowTexels + t holds rows 4t .. 4t+3
+  // of T_vc (channel-major: glossy_transfer.vert runs once per channel over all vertices).
+  int transferTexels = 0;
+  int transferWidth = 0, transferHeight = 0;
 };
 
 // Packs `cpca` (its `bands` decoded shells, 1 .. kMaxGlossyOrder) with one specular material
@@ -96,9 +106,13 @@ void glossyShBasis(int order, Vec3 dir, float* out);
 // beyond are zero), float, in the shader's order of operations.
 std::vector<float> glossyTableCpu(const GlossyTextures& packed, const float* lighting, int activeBands);
 
-// glossy.vert on the CPU from the table: glossy exit radiance toward `eye`, RGB per vertex
-// (a vertex at the eye gets 0); Fresnel as in glossyExitRadiance when `fresnel`.
-std::vector<float> glossyRadianceCpu(const GlossyTextures& packed, const std::vector<float>& table, int activeBands,
+// glossy_transfer.vert on the CPU: the transferred radiance (transferTexels * 4 floats) from
+// glossyTableCpu's table at `activeBands` (rows beyond are zero), in the shader's order.
+std::vector<float> glossyTransferCpu(const GlossyTextures& packed, const std::vector<float>& table, int activeBands);
+
+// glossy.vert on the CPU from the transferred radiance: glossy exit radiance toward `eye`, RGB
+// per vertex (a vertex at the eye gets 0); Fresnel as in glossyExitRadiance when `fresnel`.
+std::vector<float> glossyRadianceCpu(const GlossyTextures& packed, const std::vector<float>& transfer, int activeBands,
                                      std::span<const Vec3> positions, std::span<const Vec3> normals, Vec3 eye,
                                      bool fresnel = true);
 

@@ -1,0 +1,50 @@
+#version 300 es
+// Glossy PRT, when the lighting changes (docs/web-client.md, "Glossy rendering"): a vertex's
+// transferred incident radiance for one lighting channel c,
+//   T_vc = table[k][0][c] + sum_j level_vj table[k][j][c]
+// (k its cluster, the table glossy_table.vert made from this lighting), independent of the
+// view. One point per vertex, rasteriser off, drawn once per channel (uChannel), captured by
+// transform feedback as ROW_TEXELS vec4 (vT0 .. vT15, the first ROW_TEXELS of them captured:
+// the program is linked per row width). glossyTransferCpu (web/src/glossy_texture.cpp)
+// emulates it.
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp isampler2D;
+
+layout(location = 4) in uint aCluster;
+
+uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
+uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
+uniform int uTextureWidth;
+uniform int uRowTexels;       // ceil(packed bands^2 / 4): the table's stride (<= 16)
+uniform int uActiveTexels;    // ceil(displayed bands^2 / 4) (<= uRowTexels)
+uniform int uVectors;         // N' (<= 64)
+uniform int uWeightTexels;
+uniform int uChannel;         // 0 r, 1 g, 2 b
+
+out vec4 vT0, vT1, vT2, vT3, vT4, vT5, vT6, vT7, vT8, vT9, vT10, vT11, vT12, vT13, vT14, vT15;
+
+vec4 tableTexel(int i) { return texelFetch(uTable, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+
+void main() {
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  float levels[64];
+  int wbase = gl_VertexID * uWeightTexels;
+  for (int t = 0; t < uWeightTexels; ++t) {
+    int i = wbase + t;
+    vec4 q = vec4(texelFetch(uWeights, ivec2(i % uTextureWidth, i / uTextureWidth), 0));
+    for (int u = 0; u < 4; ++u)
+      if (4 * t + u < uVectors) levels[4 * t + u] = q[u];
+  }
+  int first = int(aCluster) * (1 + uVectors);
+  vec4 tr[16];
+  for (int t = 0; t < 16; ++t) tr[t] = vec4(0.0);
+  for (int t = 0; t < uActiveTexels; ++t) {
+    vec4 acc = tableTexel((first * 3 + uChannel) * uRowTexels + t);
+    for (int j = 0; j < uVectors; ++j) acc += levels[j] * tableTexel(((first + 1 + j) * 3 + uChannel) * uRowTexels + t);
+    tr[t] = acc;
+  }
+  vT0 = tr[0]; vT1 = tr[1]; vT2 = tr[2]; vT3 = tr[3]; vT4 = tr[4]; vT5 = tr[5]; vT6 = tr[6]; vT7 = tr[7];
+  vT8 = tr[8]; vT9 = tr[9]; vT10 = tr[10]; vT11 = tr[11]; vT12 = tr[12]; vT13 = tr[13]; vT14 = tr[14]; vT15 = tr[15];
+}
