@@ -9,7 +9,6 @@
 precision highp float;
 precision highp int;
 precision highp sampler2D;
-precision highp isampler2D;
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec3 aNormal;

@@ -378,7 +378,7 @@ void ClientApp::render(int width, int height) {
   p.mix = glossyMix(mode_);
   p.eye = camera_.eye();
   p.fresnel = fresnel_;
-  p.lightingVersion = lightingVersion_;
+  p.lightingVersion = lights_.lightingVersion();
   lastEye_ = p.eye;
   renderer_.draw(width, height, p);
   lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);
@@ -396,16 +396,13 @@ void ClientApp::prepareLighting() {
   syncLightView();
   // Re-projects the light cube only when dirty; leaves the lighting block bound.
   lights_.update(environmentEnabled_ ? packed_ : kNoEnvironment, displayOrder_);
-  if (lights_.lightingVersion() != seenBlockVersion_ || lightingTouched_) ++lightingVersion_;
-  seenBlockVersion_ = lights_.lightingVersion();
-  lightingTouched_ = false;
 }
 
 bool ClientApp::shadeGlossyVertices(int work) {
   if (!ok() || work < 0 || work > 3) return false;
   makeCurrent();
   prepareLighting();
-  return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), lightingVersion_, fresnel_, static_cast<GlossyWork>(work));
+  return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), lights_.lightingVersion(), fresnel_, static_cast<GlossyWork>(work));
 }
 
 bool ClientApp::shadeVertices() {

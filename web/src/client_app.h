@@ -180,7 +180,7 @@ class ClientApp {
   }
   // Benchmarks: the next frame treats the lighting as changed (as when a light moves), so
   // the glossy term's view-independent work runs again.
-  void touchLighting() { lightingTouched_ = true; }
+  void touchLighting() { lights_.touchBlock(); }
   void finishShading() const;  // waits for the PRT passes queued so far (a 1-vertex read-back)
   std::size_t weightTableBytes() const { return lights_.weightTableBytes(); }
   const std::string& projectionError() const { return lights_.projectionError(); }
@@ -213,10 +213,6 @@ class ClientApp {
   bool environmentEnabled_ = true;
   bool cpcaDirect_ = true;
   bool fresnel_ = true;
-  // The lighting version render() hands the renderer (FrameParams::lightingVersion): a new
-  // one whenever the lighting block was rebuilt or touchLighting was called.
-  unsigned lightingVersion_ = 0, seenBlockVersion_ = 0;
-  bool lightingTouched_ = false;
   std::array<GlossyMix, 3> glossyMix_{GlossyMix::kBoth, GlossyMix::kBoth, GlossyMix::kBoth};
   std::array<CpcaMatrixTransfer, 3> glossyCpu_{};  // the uploaded glossy passes, for glossyReference
   glm::vec3 lastEye_{0.0f};

@@ -50,6 +50,8 @@ class DynamicLighting {
   void update(const float* environment, int displayOrder);
   // Counts the block's rebuilds: equal across two updates only if the block's values did not change.
   unsigned lightingVersion() const { return blockVersion_; }
+  // Benchmarks: the next update rebuilds the block as if the lighting had changed.
+  void touchBlock() { combinedOrder_ = 0; }
   // Re-renders and re-projects the cube now, whatever the dirty flag says (benchmarks).
   void projectNow();
   // Waits for all queued GL work: glFinish, then a 1-texel readPixels of the cube-SH
