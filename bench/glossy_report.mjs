@@ -45,6 +45,10 @@ md += `Interreflected glossy matrix pass (RGB, ${bake.order}^4 entries per chann
 md += `${codec.lightings} cases = 16 views x the first 8 test lightings of compress-report; PSNR of the glossy term, worst and mean over cases.\n\n`;
 md += `| setting | B/vertex | zstd-19 B/vertex | PSNR worst, dB | PSNR mean, dB | clusters | N' | encode, s |\n|---|---:|---:|---:|---:|---:|---:|---:|\n`;
 for (const r of codec.rows) {
+  if (r.error) {
+    md += `| ${r.setting} | not encoded: ${r.error} | | | | | | |\n`;
+    continue;
+  }
   md += `| ${r.setting} | ${f(r.bytes_per_vertex)} | ${f(r.zstd_bytes_per_vertex)} | ${f(r.psnr_db)} | ${f(r.psnr_db_mean)} | ${r.clusters} | ${r.vectors_per_band.join(',') || '-'} | ${f(r.encode_seconds, 1)} |\n`;
 }
 md += smallest

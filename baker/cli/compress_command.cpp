@@ -166,6 +166,7 @@ struct Row {
   double encodeSeconds = 0;
   TransferEncodeReport report;
   std::vector<LightingError> perLighting;  // with --per-lighting, in lighting order
+  std::string error;                       // why the setting could not be encoded ("" if it was)
 };
 
 std::string perVertex(std::size_t bytes, std::size_t vertices) {
@@ -198,6 +199,10 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
+    if (!r.error.empty()) {
+      s += "    {\"setting\": " + jsonString(r.setting) + ", \"error\": " + jsonString(r.error) + "}" + (i + 1 < rows.size() ? ",\n" : "\n");
+      continue;
+    }
     s += "    {\"setting\": " + jsonString(r.setting) + ", \"bytes\": " + std::to_string(r.bytes) +
          ", \"bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.bytes) / V) +
          ", \"zstd_bytes\": " + std::to_string(r.zstdBytes) + ", \"zstd_bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.zstdBytes) / V) +
@@ -237,6 +242,10 @@ std::string formatTable(const Options& o, const TransferPass& pass, int order, s
     if (r.setting == "f16") f16 = &r;
   }
   for (const Row& r : rows) {
+    if (!r.error.empty()) {
+      s += r.setting + std::string(std::max<std::size_t>(15, r.setting.size() + 1) - r.setting.size(), ' ') + "not encoded: " + r.error + "\n";
+      continue;
+    }
     const std::string ratio = f16 ? perVertex(f16->zstdBytes, r.zstdBytes) : "-";
     std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9.2f %9.2f %9.5f %9.5f %9.5f %8d %-14s %8.2f\n", r.setting.c_str(),
                   perVertex(r.bytes, vertices).c_str(), perVertex(r.zstdBytes, vertices).c_str(),
@@ -287,13 +296,16 @@ const char* compressReportHelpText() {
          "  --json              one JSON object instead of a table\n"
          "  -h, --help          show this help\n"
          "\n"
-         "Exit status: 0 success, 1 bad input (file, contents, an unreachable CPCA target),\n"
-         "2 bad command line.\n";
+         "A CPCA target a setting cannot reach makes that row say why (JSON: \"error\") and the\n"
+         "report goes on with the other settings; it fails (status 4) only when no setting could\n"
+         "be encoded.\n";
 }
 
 int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
   if (wantsHelp(args)) {
     std::fputs(compressReportHelpText(), out);
+    std::fputs("\n", out);
+    std::fputs(exitStatusHelp(), out);
     return kExitOk;
   }
   Options o;
@@ -350,6 +362,7 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   }
 
   std::vector<Row> rows;
+  Status lastError = Status::ok();  // of the last setting that could not be encoded
   std::vector<float> decoded(pass->coeffs.size());
   std::vector<double> radiance;
   for (const TransferCodecSettings& setting : o.settings) {
@@ -361,7 +374,16 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     const Status encoded = o.glossy ? encodeTransferMatrix(pass->coeffs, order, packing, pass->channels, setting, &blob, &r.report)
                                     : encodeTransfer(pass->coeffs, order, pass->channels, setting, &blob, &r.report);
     if (!encoded.isOk()) {
-      return reportFailure(err, "compress-report", Status::error(encoded.code(), r.setting + ": " + encoded.message()));
+      // A target this setting cannot reach is a finding of the report, not a failure of it:
+      // the row says so and the other settings are still measured.
+      if (encoded.code() != StatusCode::kInvalidArgument) {
+        return reportFailure(err, "compress-report", Status::error(encoded.code(), r.setting + ": " + encoded.message()));
+      }
+      std::fprintf(err, "prt-bake: note: %s: %s\n", r.setting.c_str(), encoded.message().c_str());
+      r.error = encoded.message();
+      lastError = Status::error(encoded.code(), r.setting + ": " + encoded.message());
+      rows.push_back(std::move(r));
+      continue;
     }
     r.encodeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Status decodedOk = o.glossy ? decodeTransferMatrix(blob, order, std::span<float>(decoded))
@@ -398,6 +420,9 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     }
     r.psnrMean = finite == reference.size() ? psnrSum / static_cast<double>(finite) : std::numeric_limits<double>::infinity();
     rows.push_back(std::move(r));
+  }
+  if (std::all_of(rows.begin(), rows.end(), [](const Row& r) { return !r.error.empty(); })) {
+    return reportFailure(err, "compress-report", lastError);
   }
   const std::string text = o.json ? formatJson(o, *pass, order, vertices, names, rows) : formatTable(o, *pass, order, vertices, names, rows);
   std::fputs(text.c_str(), out);
