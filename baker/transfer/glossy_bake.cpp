@@ -152,7 +152,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   }
 
   struct Scratch {
-    std::vector<float> a, rows, dense, yR, t, tmp;
+    std::vector<float> a, rows, glossyRows, dense, diffuse, yR, t, tmp;
     std::vector<std::uint64_t> order;  // (triangle, hit index) of one group's hits
   };
   const unsigned threads = std::max(1u, job.threads);
@@ -160,7 +160,9 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   for (auto& s : scratch) {
     s.a.resize(kGroupHits * n2);
     s.rows.resize(kGroupHits * row3);
+    s.glossyRows.resize(kGroupHits * row3);
     s.dense.resize(kBlockVertices * n2 * row3);
+    s.diffuse.resize(kBlockVertices * row3);
     s.yR.resize(n2);
     s.t.resize(n2);
     s.tmp.resize(n2);
@@ -177,6 +179,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
     const std::size_t blockVertices = end - begin;
     const std::size_t vertexDense = n2 * row3;
     std::fill(s.dense.begin(), s.dense.begin() + static_cast<std::ptrdiff_t>(blockVertices * vertexDense), 0.0f);
+    std::fill(s.diffuse.begin(), s.diffuse.begin() + static_cast<std::ptrdiff_t>(blockVertices * row3), 0.0f);
     const std::uint32_t totalHits = rec.hitStart[blockVertices];
     // The block's hits in groups of kGroupHits (fixed boundaries: deterministic). Within a
     // group, rows are computed in triangle order: the block's neighbouring receivers see
@@ -190,6 +193,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
       }
       std::sort(s.order.begin(), s.order.end());
       std::fill(s.rows.begin(), s.rows.begin() + static_cast<std::ptrdiff_t>((g1 - g0) * row3), 0.0f);
+      std::fill(s.glossyRows.begin(), s.glossyRows.begin() + static_cast<std::ptrdiff_t>((g1 - g0) * row3), 0.0f);
       for (const std::uint64_t key : s.order) {
         const auto h = static_cast<std::uint32_t>(key);
         const std::size_t r = h - g0;
@@ -200,6 +204,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
         const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
         const float bary[3] = {1.0f - b1 - b2, b1, b2};
         float* row = &s.rows[r * row3];
+        float* glossyRow = &s.glossyRows[r * row3];  // the glossy senders' part alone
         for (int corner = 0; corner < 3; ++corner) {
           const std::uint32_t u = scene.indices[3 * static_cast<std::size_t>(hit.triangle) + corner];
           const float bc = bary[corner];
@@ -222,20 +227,34 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
             vectorTimesDense(s.t.data(), Mc, n2, s.tmp.data());
             for (int c = (channels == 1 ? 0 : pc); c < (channels == 1 ? 3 : pc + 1); ++c) {
               const float f = bc * Fc[c];
-              for (std::size_t j = 0; j < n2; ++j) row[c * n2 + j] += f * s.tmp[j];
+              for (std::size_t j = 0; j < n2; ++j) glossyRow[c * n2 + j] += f * s.tmp[j];
             }
           }
         }
+        for (std::size_t i = 0; i < row3; ++i) row[i] += glossyRow[i];
       }
       for (std::size_t local = 0; local < blockVertices; ++local) {
         const std::uint32_t lo = std::max(rec.hitStart[local], g0), hi = std::min(rec.hitStart[local + 1], g1);
         if (lo >= hi) continue;
+        // The diffuse receiver's view of the same glossy reflections: cosine-weighted, as the
+        // diffuse bounces weigh their senders (Hit::weight).
+        if (job.diffuseFromGlossy) {
+          float* acc = &s.diffuse[local * row3];
+          for (std::uint32_t h = lo; h < hi; ++h) {
+            const float w = rec.hits[h].weight;
+            const float* glossyRow = &s.glossyRows[(h - g0) * row3];
+            for (std::size_t i = 0; i < row3; ++i) acc[i] += w * glossyRow[i];
+          }
+        }
         // dense (n2 x 3n2) += w A^T rows: the rank-k update over this vertex's hits in the group.
         cblas_sgemm(CblasRowMajor, CblasTrans, CblasNoTrans, static_cast<int>(n2), static_cast<int>(row3),
                     static_cast<int>(hi - lo), job.sampleWeight, &s.a[(lo - g0) * n2], static_cast<int>(n2),
                     &s.rows[(lo - g0) * row3], static_cast<int>(row3), 1.0f, &s.dense[local * vertexDense],
                     static_cast<int>(row3));
       }
+    }
+    if (job.diffuseFromGlossy) {
+      std::memcpy(job.diffuseFromGlossy + begin * row3, s.diffuse.data(), blockVertices * row3 * sizeof(float));
     }
     for (std::size_t v = begin; v < end; ++v) {
       const float* gathered = &s.dense[(v - begin) * vertexDense];

@@ -19,13 +19,15 @@
 // (B^0 = albedo x shadowed; albedo folded in) and M^0 the shadowed matrix. Evaluating each
 // corner's outgoing radiance with its own normal and material, then interpolating, is how
 // the diffuse bounces interpolate B.
-// What is gathered, by path (receiver <- sender <- ... <- light): bounce b reads B^{b-1},
-// the diffuse series, whose paths are all diffuse (the diffuse transfer's own bounces,
-// BakeResult::interreflected, do NOT gather glossy senders), and M^{b-1} at glossy senders,
-// which gathered both kinds one level down. So every path receiver <- G...G <- D...D <- light
-// is gathered, and any path with a glossy reflection before a diffuse one
-// (... <- D <- ... <- G <- light: light focused by a glossy surface onto a diffuse one) is
-// not, neither in the glossy nor in the diffuse transfer. Senders' radiance is evaluated at
+// Diffuse receivers, bounce b <= glossyBounces: the diffuse transfer's bounce b
+// (BakeResult::interreflected) gathers, besides B^{b-1}, the glossy part of the same rows
+// with the receiver's cosine weight:
+//   B^b_{x,c,j} = rho_c(x) sum_h Hit::weight_h [B^{b-1}_{c,j}(q_h) + glossy part of row^{b-1}_{c,j}(q_h)]
+// so light a glossy surface reflects onto a diffuse one (D <- G <- light) is in both series.
+// What is gathered, by path (receiver <- sender <- ... <- light): every path whose first
+// glossyBounces reflections are any mix of diffuse and glossy ones; beyond glossyBounces,
+// the diffuse bounces gather diffuse senders only (no M^{b-1} is kept there), so a glossy
+// reflection more than glossyBounces steps from the receiver is dropped. Senders' radiance is evaluated at
 // the hit triangle's corners (own normal, f0, exponent) and interpolated, not at the hit
 // point; hits on back faces carry nothing (as for the diffuse bounces).
 #pragma once
@@ -87,6 +89,10 @@ struct GlossyBounceJob {
   MatrixPacking previousPacking = MatrixPacking::kFull;
   float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][dense n2 x n2]; null: not kept
   float* interreflected = nullptr;  // += M^b, [vertex][channel][full]
+  // Written (not added to) when non-null: the glossy senders' radiance a diffuse receiver
+  // gathers in its bounce b, sum_h Hit::weight * glossy part of row^{b-1}(q_h),
+  // [vertex][channel][coefficient], albedo not applied.
+  float* diffuseFromGlossy = nullptr;
   unsigned threads = 1;
   const BakeOptions* options = nullptr;  // for progress
 };

@@ -382,8 +382,9 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   const bool glossyBounce = o.glossy && o.glossyBounces > 0;
   const std::size_t fullEntries = matrixEntryCount(o.order, MatrixPacking::kFull);
   std::vector<std::int32_t> senderIndex;
-  std::vector<float> glossyPrevious, glossyCurrent;
+  std::vector<float> glossyPrevious, glossyCurrent, diffuseFromGlossy;
   if (glossyBounce) {
+    diffuseFromGlossy.assign(vertexCount * stride, 0.0f);
     out->glossyInterreflected.assign(vertexCount * 3 * fullEntries, 0.0f);
     for (std::size_t v = 0; v < vertexCount; ++v) {
       const float* src = &out->glossyShadowed[v * glossyEntries];
@@ -406,7 +407,8 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   }
 
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
-    if (glossyBounce && bounce <= o.glossyBounces) {
+    const bool glossyThisBounce = glossyBounce && bounce <= o.glossyBounces;
+    if (glossyThisBounce) {
       GlossyBounceJob job;
       job.scene = &scene;
       job.order = o.order;
@@ -421,6 +423,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
       job.previousPacking = glossyPacking;
       job.glossyCurrent = bounce < o.glossyBounces ? glossyCurrent.data() : nullptr;
       job.interreflected = out->glossyInterreflected.data();
+      job.diffuseFromGlossy = diffuseFromGlossy.data();
       job.threads = threads;
       job.options = &o;
       out->passes.push_back(gatherGlossyBounce(job));
@@ -457,6 +460,10 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
             const float wc = w[corner];
             for (std::size_t i = 0; i < stride; ++i) gathered[i] += wc * src[i];
           }
+        }
+        if (glossyThisBounce) {
+          const float* fromGlossy = &diffuseFromGlossy[v * stride];
+          for (std::size_t i = 0; i < stride; ++i) gathered[i] += fromGlossy[i];
         }
         const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};
         float* dst = &current[v * stride];

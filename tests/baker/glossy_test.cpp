@@ -612,6 +612,48 @@ TEST(GlossyBake, FirstBounceOffAGlossyFloorGathersItsLobe) {
   }
 }
 
+// Glossy -> diffuse: the same glossy floor (albedo 0, f0 = 1, s = 1) under uniform white
+// light, seen by a diffuse receiver of albedo rho facing down. The floor's radiance toward
+// the receiver from direction w is (1 + n.w)/2 (above), so bounce 1 of the receiver's diffuse
+// transfer is rho integral_{n.w>0} (1/pi)(n.w)(1 + n.w)/2 dw = rho (1/2 + 1/3) = 5 rho / 6.
+// The floor has no diffuse part, so a bake that gathers only diffuse senders gives 0.
+TEST(GlossyBake, FirstBounceOffAGlossyFloorLightsADiffuseReceiver) {
+  const int order = 4;
+  const float rho = 0.5f, h = 0.1f;
+  Scene scene;
+  test::addPlane(&scene, 10.0f, 40, 0.0f, {0, 0, 0});
+  const auto base = static_cast<std::uint32_t>(scene.positions.size());
+  test::addPlane(&scene, 0.01f, 1, h, {rho, rho, rho});
+  for (std::size_t v = base; v < scene.positions.size(); ++v) scene.normals[v] = {0, -1, 0};
+  for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
+    if (scene.indices[i] >= base) std::swap(scene.indices[i + 1], scene.indices[i + 2]);
+  }
+  scene.specular.assign(scene.positions.size(), SpecularMaterial{{1, 1, 1}, 1.0f});
+  for (std::size_t v = base; v < scene.positions.size(); ++v) scene.specular[v] = {{0, 0, 0}, 1.0f, 0.0f};
+  BakeOptions o;
+  o.order = order;
+  o.samples = 16384;
+  o.glossy = true;
+  o.glossyBounces = 1;
+  o.maxBounces = 1;
+  o.threads = 2;
+  BakeResult r;
+  ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
+  ASSERT_EQ(r.bounces, 1);
+  const std::size_t n2 = static_cast<std::size_t>(order) * order;
+  const double l00 = std::sqrt(4.0 * kPiD);
+  for (std::size_t v = base; v < scene.positions.size(); ++v) {
+    const double direct = rho * r.shadowed[v * n2] * l00;
+    EXPECT_LT(direct, 0.01);  // the floor hides all but a grazing band
+    for (int c = 0; c < 3; ++c) {
+      const double total = r.interreflected[v * 3 * n2 + c * n2] * l00;
+      // Allowed: the two MC projections (2e-3 each), the patch's shadow on the floor (< 1e-3)
+      // and the grazing band the finite floor misses (cosine-weighted, < 1e-3).
+      EXPECT_NEAR(total - direct, 5.0 * rho / 6.0, 4e-3 + 1e-3 + 1e-3) << "vertex " << v << " channel " << c;
+    }
+  }
+}
+
 Scene twoSpheresOnFloor() {
   Scene s;
   test::addPlane(&s, 2.0f, 8, 0.0f, {0.6f, 0.5f, 0.4f});
