@@ -272,6 +272,33 @@ const light = (shape, extra = {}) => {
   }
 }
 
+// The analytic light path (web/src/analytic_lights.h) under Node: a sphere is the circular
+// light of half-angle asin(a/d); a rect seen from behind gives zero; radiance scales it.
+{
+  const order = 5, a = 0.3, d = 1.5, dir = [0.48, 0.6, -0.64];
+  const n = Math.hypot(...dir), u = dir.map((x) => x / n);
+  const c = [0.1, 0.2, 0.3];
+  const sphere = [0, c[0] + d * u[0], c[1] + d * u[1], c[2] + d * u[2], a, a, 0, 0, 1, 1, 0.5, 0.25, 2, 0, 0, 0];
+  const sh = core.analyticLightSH(sphere, c, order);
+  const cap = core.circularLightSH(order, Math.asin(a / d), 1, ...u);
+  if (check(Array.isArray(sh) && sh.length === 3 * order * order && Array.isArray(cap), `analyticLightSH sphere: ${sh}, circularLightSH: ${cap}`)) {
+    let worst = 0;
+    for (let i = 0; i < order * order; i++)
+      for (let ch = 0; ch < 3; ch++) worst = Math.max(worst, Math.abs(sh[3 * i + ch] - [2, 1, 0.5][ch] * cap[i]));
+    check(worst < 1e-6 * Math.abs(2 * cap[0]), `analytic sphere differs from the circular light by ${worst}`);
+  }
+  const rectFacingAway = [2, 0, 0, 2, 0.5, 0.4, 0, 0, 1, 1, 1, 1, 3, 0, 0, 0];  // at z = 2 emitting toward +z, seen from 0
+  const back = core.analyticLightSH(rectFacingAway, [0, 0, 0], order);
+  check(Array.isArray(back) && back.every((x) => x === 0), `a rect seen from behind should give zero, got ${back && back.slice(0, 3)}`);
+  const rectFacing = [2, 0, 0, 2, 0.5, 0.4, 0, 0, -1, 1, 1, 1, 3, 0, 0, 0];
+  const front = core.analyticLightSH(rectFacing, [0, 0, 0], order);
+  // On axis: L_0 = 3 x solid angle / (2 sqrt(pi)), solid angle 4 asin(ab / sqrt((a^2+d^2)(b^2+d^2))).
+  const omega = 4 * Math.asin((0.25 * 0.2) / Math.sqrt((0.25 ** 2 + 4) * (0.2 ** 2 + 4)));
+  check(Array.isArray(front) && Math.abs(front[0] - (3 * omega) / (2 * Math.sqrt(Math.PI))) < 1e-6, `rect on axis L_0 ${front && front[0]}`);
+  const bad = core.analyticLightSH([0, 0, 0, 0, -1, 1, 0, 0, 1, 1, 1, 1, 1, 0, 0, 0], c, order);
+  check(typeof bad === 'string' && bad.includes('sizeX'), `a bad light should be refused with a message naming the field: ${bad}`);
+}
+
 if (failures.length) {
   console.error(`${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
   process.exit(1);

@@ -12,7 +12,7 @@ import { streamAsset, PASS_NAMES } from './stream_loader.js';
 import { installTestHook } from './test_hook.js';
 
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
-const PROJECTIONS = { gpu: 0, cpu: 1 };
+const PROJECTIONS = { analytic: 2, gpu: 0, cpu: 1 };
 const params = new URLSearchParams(location.search);
 const canvas = document.getElementById('view');
 const loadingText = document.getElementById('loading-text');
@@ -39,7 +39,7 @@ const state = {
 };
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // The dynamic-light settings the Lights panel edits (docs/web-client.md).
-const lightSettings = { projection: 'gpu', cubeSize: 64, environmentOn: true };
+const lightSettings = { projection: 'analytic', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
 let app = null;
 // What the wasm module gives besides ClientApp, filled in once it is loaded: maxOrder, the
@@ -73,6 +73,7 @@ const hook = installTestHook({
   selectEnvironment,
   applyState,
   applyLightSettings,
+  scale: () => sceneRadius,
   refreshGui: () => { if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay()); },
 });
 

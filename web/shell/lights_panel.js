@@ -2,6 +2,11 @@
 // buttons that add a sphere, disc, rect, torus or OBJ-file light, and one sub-folder per
 // light (colour, intensity, size, position, facing for one-sided lights, remove).
 import { parseObj, normaliseToUnitRadius } from './obj_loader.js';
+import { randomLights } from './random_lights.js';
+
+// Per-light sub-folders are built for the first this-many lights: hundreds of folders would
+// make the panel, not the lighting, the slow part.
+const MAX_LIGHT_FOLDERS = 16;
 
 const FACINGS = { down: [0, -1, 0], up: [0, 1, 0], '+x': [1, 0, 0], '-x': [-1, 0, 0], '+z': [0, 0, 1], '-z': [0, 0, -1] };
 
@@ -22,7 +27,7 @@ export class LightsPanel {
     this.page = page;
     this.folder = gui.addFolder('Lights');
     const s = page.settings;
-    this.folder.add(s, 'projection', ['gpu', 'cpu']).name('projection').onChange(() => page.applySettings());
+    this.folder.add(s, 'projection', ['analytic', 'gpu', 'cpu']).name('projection').onChange(() => page.applySettings());
     this.folder.add(s, 'cubeSize', [32, 64, 128]).name('cube size (per face)').onChange(() => page.applySettings());
     this.folder.add(s, 'environmentOn').name('environment on').onChange(() => page.applySettings());
     const actions = {
@@ -31,6 +36,8 @@ export class LightsPanel {
       rect: () => this.addLight('rect'),
       torus: () => this.addLight('torus'),
       obj: () => this.pickObj(),
+      random: () => this.addRandom(),
+      randomCount: 64,
       help: () => page.showHelp(),
     };
     this.folder.add(actions, 'sphere').name('add sphere light');
@@ -38,6 +45,9 @@ export class LightsPanel {
     this.folder.add(actions, 'rect').name('add rect light');
     this.folder.add(actions, 'torus').name('add torus light');
     this.folder.add(actions, 'obj').name('add OBJ mesh light…');
+    this.folder.add(actions, 'randomCount', 1, 256, 1).name('random lights: count');
+    this.folder.add(actions, 'random').name('add random lights');
+    this.actions = actions;
     this.folder.add(actions, 'help').name('? how lights work');
     this.fileInput = document.createElement('input');
     this.fileInput.type = 'file';
@@ -63,6 +73,17 @@ export class LightsPanel {
       : { ...base, shape: 'mesh', mesh: kind, scale: 0.1 * R };
     try {
       this.page.lightSet.add(spec);
+    } catch (e) {
+      this.page.notify(e.message);
+    }
+  }
+
+  // Adds `randomCount` seeded random sphere/disc/rect lights (random_lights.js).
+  addRandom() {
+    const set = this.page.lightSet;
+    this.randomSeed = (this.randomSeed ?? 0) + 1;
+    try {
+      set.set(set.snapshot().concat(randomLights(Math.round(this.actions.randomCount), this.page.centre(), this.page.scale(), this.randomSeed)));
     } catch (e) {
       this.page.notify(e.message);
     }
@@ -95,7 +116,7 @@ export class LightsPanel {
     this.signature = this.page.lightSet.lights.map((l) => `${l.shape}:${l.mesh ?? ''}`).join();
     const R = this.page.scale(), c = this.page.centre();
     const set = this.page.lightSet;
-    set.lights.forEach((light, i) => {
+    set.lights.slice(0, MAX_LIGHT_FOLDERS).forEach((light, i) => {
       const meshName = light.shape === 'mesh' ? set.meshes.get(light.mesh).name : '';
       const folder = this.folder.addFolder(`light ${i + 1}: ${light.shape === 'mesh' ? meshName : light.shape}`);
       const view = { color: light.color.slice(), intensity: light.intensity, x: 0, y: 0, z: 0, size: 0, width: 0, height: 0, facing: 'down',
@@ -137,7 +158,7 @@ export class LightsPanel {
       this.rebuild();
       return;
     }
-    lights.forEach((light, i) => {
+    lights.slice(0, MAX_LIGHT_FOLDERS).forEach((light, i) => {
       const v = this.views[i];
       v.color = light.color.slice();
       v.intensity = light.intensity;

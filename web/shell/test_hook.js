@@ -4,6 +4,7 @@
 // first, and the benchmarks' timing loops. app.js owns the page and hands installTestHook
 // what the hook reads and calls; app.js and stream_loader.js write the state fields.
 import { normaliseLights } from './lights.js';
+import { randomLights } from './random_lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
 export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy'];
@@ -159,19 +160,32 @@ export function installTestHook(page) {
     // finishGpu alone was seen not to block in headless Chromium, letting work pile up.
     // Batches > 1 measure updates shorter than the browser's timer resolution (100 us
     // without cross-origin isolation).
-    timeLightUpdates(n, batch = 1) {
+    // On the analytic path an update re-projects light `onlyLight` (every light when omitted
+    // or < 0: a drag moves one) and rebuilds the lighting block; there is no cube render to
+    // wait for, so each sample ends with one read-back of the block (lightSH) instead.
+    timeLightUpdates(n, batch = 1, onlyLight = -1) {
       if (!ready()) return [];
+      const analytic = lightSettings.projection === 'analytic';
       const samples = [];
       for (let i = 0; i < n; i++) {
         const t0 = performance.now();
         for (let k = 0; k < batch; k++) {
-          page.app.projectLightsNow();
-          page.app.finishGpu();
-          page.app.cubeSH();
+          page.app.projectLightsNow(onlyLight);
+          if (!analytic) {
+            page.app.finishGpu();
+            page.app.cubeSH();
+          }
         }
+        if (analytic) page.app.lightSH();
         samples.push((performance.now() - t0) / batch);
       }
       return samples;
+    },
+    // `count` seeded random sphere/disc/rect lights around the light centre (random_lights.js),
+    // as a list for set({lights}).
+    randomLights(count, seed = 1) {
+      if (!ready()) throw new Error('randomLights: no scene is loaded yet');
+      return randomLights(count, Array.from(page.app.lightCenter()), page.scale(), seed);
     },
     // Reloads the current scene with CPCA passes drawn 'direct' (from their clusters) or
     // 'expanded' (to plain transfer on load), like the panel's "CPCA rendering"; resolves once
@@ -200,7 +214,7 @@ export function installTestHook(page) {
         throw new Error(`set: order must be an integer 1..${maxOrder}, got ${JSON.stringify(options.order)}`);
       }
       if ('projection' in options && !Object.hasOwn(page.projections, options.projection)) {
-        throw new Error(`set: projection must be 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
+        throw new Error(`set: projection must be 'analytic', 'gpu' or 'cpu', got ${JSON.stringify(options.projection)}`);
       }
       if ('cubeSize' in options && !(Number.isInteger(options.cubeSize) && options.cubeSize >= 8 && options.cubeSize <= 512)) {
         throw new Error(`set: cubeSize must be an integer 8..512 (texels per face side), got ${JSON.stringify(options.cubeSize)}`);

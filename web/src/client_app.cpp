@@ -440,11 +440,11 @@ std::vector<float> ClientApp::cubeSH() {
   return lights_.cubeSH();
 }
 
-void ClientApp::projectLightsNow() {
+void ClientApp::projectLightsNow(int onlyLight) {
   if (!ok()) return;
   makeCurrent();
   syncLightView();
-  lights_.projectNow();
+  lights_.projectNow(onlyLight);
 }
 
 void ClientApp::finishGpu() {

@@ -148,7 +148,7 @@ class ClientApp {
   int addLightMesh(std::vector<float> positions, std::vector<std::uint32_t> indices);
   // Whether the environment is added to the lighting (and drawn as the background).
   void setEnvironmentEnabled(bool on) { environmentEnabled_ = on; }
-  std::string setProjection(int mode);  // 0 GPU, 1 CPU; "" or why GPU is unavailable
+  std::string setProjection(int mode);  // 0 GPU, 1 CPU, 2 analytic; "" or why GPU is unavailable
   int projectionMode() const { return lights_.projectionMode(); }
   bool gpuProjectionSupported() const { return lights_.gpuProjectionSupported(); }
   std::string setCubeSize(int size);  // faces of size x size texels, 8..512
@@ -159,11 +159,13 @@ class ClientApp {
   Vec3 lightCenter() const;
   int lightingModel() const { return static_cast<int>(asset_.lighting.model); }
   float lightingRadius() const { return asset_.lighting.radius; }
-  // The last light-cube projection alone, flat [r,g,b] per coefficient at the baked order
-  // (at most kMaxClientOrder); projects first if lights, size, path or order changed since.
+  // The emitters' SH alone (light cube plus, on the analytic path, the analytic lights), flat
+  // [r,g,b] per coefficient at the baked order (at most kMaxClientOrder); projects first if
+  // lights, size, path or order changed since.
   std::vector<float> cubeSH();
-  // Re-renders and re-projects the light cube now, without drawing (benchmarks).
-  void projectLightsNow();
+  // Re-projects the lights now, without drawing (benchmarks): the whole light cube on the
+  // GPU/CPU paths; on the analytic path light `onlyLight` (all when < 0), as a drag moving it does.
+  void projectLightsNow(int onlyLight);
   void finishGpu();  // waits until the GPU has done all queued work (benchmarks)
   // Benchmarks: the per-vertex PRT pass of the current mode alone, as render() runs it
   // (lighting updated first), without drawing; false when the mode has no pass.

@@ -12,6 +12,7 @@
 #include "client_limits.h"
 #include "cpca_texture.h"
 #include "cube_faces.h"
+#include "analytic_lights.h"
 #include "emitters.h"
 #include "glossy_synthetic.h"
 #include "glossy_texture.h"
@@ -372,6 +373,25 @@ val parseLights(const val& flat, int meshCount) {
   return out;
 }
 
+// The analytic path's SH of lights `flat` (16 floats each, no meshes) seen from c at `order`,
+// summed with their radiance: flat [r,g,b] per coefficient, or an error string.
+val analyticLightSH(const val& flat, const val& c, int order) {
+  const std::vector<float> data = emscripten::convertJSArrayToNumberVector<float>(flat);
+  const std::vector<float> cv = emscripten::convertJSArrayToNumberVector<float>(c);
+  if (cv.size() != 3) return val(std::string("c must hold 3 numbers"));
+  std::vector<prt::web::Emitter> emitters;
+  if (std::string e = prt::web::parseEmitters(data, 0, &emitters); !e.empty()) return val(e);
+  prt::web::AnalyticLights lights;
+  if (prt::Status s = lights.setView({cv[0], cv[1], cv[2]}, order); !s.isOk()) return val(s.toString());
+  lights.setEmitters(emitters, data);
+  std::vector<float> packed(prt::web::kPackedLightingFloats);
+  lights.update(packed.data());
+  std::vector<float> out;
+  for (int i = 0; i < order * order; ++i)
+    for (int ch = 0; ch < 3; ++ch) out.push_back(packed[static_cast<std::size_t>(ch * prt::web::kMaxClientCoeffs + i)]);
+  return val::array(out);
+}
+
 // Where world point p lands on light-cube face `face` seen from c: [s, t, depth] (NDC).
 val cubeFaceProject(int face, const val& c, const val& p) {
   if (face < 0 || face > 5) return val(std::string("face must be 0..5"));
@@ -417,6 +437,7 @@ EMSCRIPTEN_BINDINGS(prt_core) {
   emscripten::constant("kPackedLightingFloats", prt::web::kPackedLightingFloats);
   emscripten::function("circularLightSH", &circularLightSH);
   emscripten::function("parseLights", &parseLights);
+  emscripten::function("analyticLightSH", &analyticLightSH);
   emscripten::function("cubeFaceProject", &cubeFaceProject);
   emscripten::function("sphereTouchesCubeFace", &sphereTouchesCubeFace);
   emscripten::function("decodeRgbeAtlas", &decodeRgbeAtlas);

@@ -17,7 +17,7 @@ Status DynamicLighting::init(bool floatTargets) {
   if (Status s = reduction_.init(); !s.isOk()) return s;
   if (Status s = block_.init(floatTargets); !s.isOk()) return s;
   if (!block_.cubeShFramebuffer()) floatTargets_ = false;
-  if (!floatTargets_) path_ = ProjectionPath::kCpu;
+  if (!floatTargets_ && path_ == ProjectionPath::kGpu) path_ = ProjectionPath::kCpu;
   cpuCubeSh_.assign(kPackedLightingFloats, 0.0f);
   return Status::ok();
 }
@@ -26,10 +26,30 @@ std::string DynamicLighting::setLights(std::span<const float> flat) {
   std::vector<Emitter> parsed;
   if (std::string e = parseEmitters(flat, static_cast<int>(meshes_.size()), &parsed); !e.empty()) return e;
   emitters_ = std::move(parsed);
+  flat_.assign(flat.begin(), flat.end());
   bounds_.clear();
   for (const Emitter& e : emitters_) bounds_.push_back(prt::web::emitterBounds(e, meshes_));
-  dirty_ = true;
+  analytic_.setEmitters(emitters_, flat_);
+  selectCubeEmitters();
   return "";
+}
+
+void DynamicLighting::selectCubeEmitters() {
+  std::vector<Emitter> emitters;
+  std::vector<BoundingSphere> bounds;
+  std::vector<float> flat;
+  for (std::size_t k = 0; k < emitters_.size(); ++k) {
+    if (analyticPath() && AnalyticLights::handles(emitters_[k].shape)) continue;
+    emitters.push_back(emitters_[k]);
+    bounds.push_back(bounds_[k]);
+    flat.insert(flat.end(), flat_.begin() + static_cast<std::ptrdiff_t>(k * kFloatsPerEmitter),
+                flat_.begin() + static_cast<std::ptrdiff_t>((k + 1) * kFloatsPerEmitter));
+  }
+  // Moving an analytic light must not re-render the cube: only a change of its own emitters does.
+  if (flat != cubeFlat_ || emitters.empty() != cubeEmitters_.empty()) dirty_ = true;
+  cubeEmitters_ = std::move(emitters);
+  cubeBounds_ = std::move(bounds);
+  cubeFlat_ = std::move(flat);
 }
 
 int DynamicLighting::addLightMesh(std::vector<float> positions, std::vector<std::uint32_t> indices) {
@@ -45,14 +65,22 @@ int DynamicLighting::addLightMesh(std::vector<float> positions, std::vector<std:
 }
 
 std::string DynamicLighting::setProjection(int mode) {
-  if (mode != 0 && mode != 1) return "projection mode must be 0 (GPU) or 1 (CPU)";
+  if (mode < 0 || mode > 2) return "projection mode must be 0 (GPU), 1 (CPU) or 2 (analytic)";
+  const ProjectionPath before = path_;
+  std::string error;
   if (mode == 0 && !gpuProjectionSupported()) {
     path_ = ProjectionPath::kCpu;
-    return "GPU projection needs float render targets (EXT_color_buffer_float), which this device lacks; using the CPU path";
+    error = "GPU projection needs float render targets (EXT_color_buffer_float), which this device lacks; using the CPU path";
+  } else {
+    path_ = static_cast<ProjectionPath>(mode);
   }
-  if (static_cast<int>(path_) != mode) dirty_ = true;
-  path_ = static_cast<ProjectionPath>(mode);
-  return "";
+  if (path_ != before) {
+    dirty_ = true;
+    analytic_.invalidate(-1);
+    std::fill(std::begin(analyticSh_), std::end(analyticSh_), 0.0f);
+    selectCubeEmitters();
+  }
+  return error;
 }
 
 std::string DynamicLighting::setCubeSize(int size) {
@@ -67,7 +95,7 @@ std::string DynamicLighting::setCubeSize(int size) {
 void DynamicLighting::simulateNoFloatTargets(bool on) {
   if (on == simulateNoFloat_) return;
   simulateNoFloat_ = on;
-  if (!gpuProjectionSupported()) path_ = ProjectionPath::kCpu;
+  if (!gpuProjectionSupported() && path_ == ProjectionPath::kGpu) path_ = ProjectionPath::kCpu;
   dirty_ = true;
 }
 
@@ -78,12 +106,13 @@ void DynamicLighting::setView(Vec3 center, float sceneRadius, int order) {
   center_ = center;
   nearZ_ = nearZ;
   order_ = order;
+  (void)analytic_.setView(center, order);  // order is within 1..kMaxClientOrder = kMaxPolygonShOrder
 }
 
 void DynamicLighting::project() {
   dirty_ = false;
   ++cubeVersion_;
-  cubeEmpty_ = emitters_.empty();
+  cubeEmpty_ = cubeEmitters_.empty();
   lastOnGpu_ = false;
   if (cubeEmpty_) {
     std::fill(cpuCubeSh_.begin(), cpuCubeSh_.end(), 0.0f);
@@ -91,7 +120,7 @@ void DynamicLighting::project() {
     return;
   }
   projectionError_.clear();
-  if (path_ == ProjectionPath::kGpu && gpuProjectionSupported()) {
+  if (cubeOnGpu()) {
     const Status s = projectOnGpu();
     if (s.isOk()) {
       lastOnGpu_ = true;
@@ -111,13 +140,13 @@ void DynamicLighting::project() {
 Status DynamicLighting::projectOnGpu() {
   if (Status s = cube_.resize(cubeSize_, true); !s.isOk()) return s;
   if (Status s = reduction_.prepare(cubeSize_, order_); !s.isOk()) return s;
-  cube_.render(renderer_, emitters_, bounds_, center_, nearZ_);
+  cube_.render(renderer_, cubeEmitters_, cubeBounds_, center_, nearZ_);
   // Where emitters can be: a sphere's pixels lie inside the sphere itself (its impostor
   // cube only bounds the ray casting), everything else inside its bounds.
   FaceRect rects[6];
-  for (std::size_t k = 0; k < emitters_.size(); ++k) {
-    const Emitter& e = emitters_[k];
-    const BoundingSphere reach = e.shape == EmitterShape::kSphere ? BoundingSphere{e.position, e.sizeX} : bounds_[k];
+  for (std::size_t k = 0; k < cubeEmitters_.size(); ++k) {
+    const Emitter& e = cubeEmitters_[k];
+    const BoundingSphere reach = e.shape == EmitterShape::kSphere ? BoundingSphere{e.position, e.sizeX} : cubeBounds_[k];
     for (int f = 0; f < 6; ++f) rects[f] = unite(rects[f], sphereFaceRect(f, center_, reach, cubeSize_));
   }
   reduction_.run(cube_.texture(), block_.cubeShFramebuffer(), rects);
@@ -126,7 +155,7 @@ Status DynamicLighting::projectOnGpu() {
 
 Status DynamicLighting::projectOnCpu() {
   if (Status s = cube_.resize(cubeSize_, gpuProjectionSupported()); !s.isOk()) return s;
-  cube_.render(renderer_, emitters_, bounds_, center_, nearZ_);
+  cube_.render(renderer_, cubeEmitters_, cubeBounds_, center_, nearZ_);
   CubeMap cube;
   if (Status s = cube_.read(&cube); !s.isOk()) return s;
   std::vector<Rgb> coeffs;
@@ -138,22 +167,42 @@ Status DynamicLighting::projectOnCpu() {
 
 void DynamicLighting::update(const float* environment, int displayOrder) {
   if (dirty_) project();
+  if (analyticPath() && analytic_.dirty()) analytic_.update(analyticSh_);
+  combine(environment, displayOrder, false);
+}
+
+void DynamicLighting::combine(const float* environment, int displayOrder, bool force) {
+  if (environment != environment_) std::memcpy(environment_, environment, sizeof environment_);
   displayOrder = std::clamp(displayOrder, 1, kMaxClientOrder);
-  if (combinedVersion_ != cubeVersion_ || combinedOrder_ != displayOrder ||
-      std::memcmp(combinedEnvironment_, environment, sizeof combinedEnvironment_) != 0) {
-    block_.combine(environment, displayOrder);
+  // The block adds the cube SH to this input, so the analytic lights ride with the environment.
+  const int cut = shCoeffCount(displayOrder);
+  float input[kPackedLightingFloats];
+  for (int i = 0; i < kPackedLightingFloats; ++i) input[i] = environment[i] + (i % kMaxClientCoeffs < cut ? analyticSh_[i] : 0.0f);
+  if (force || combinedVersion_ != cubeVersion_ || combinedOrder_ != displayOrder ||
+      std::memcmp(combinedEnvironment_, input, sizeof combinedEnvironment_) != 0) {
+    block_.combine(input, displayOrder);
     ++blockVersion_;
     combinedVersion_ = cubeVersion_;
     combinedOrder_ = displayOrder;
-    std::memcpy(combinedEnvironment_, environment, sizeof combinedEnvironment_);
+    std::memcpy(combinedEnvironment_, input, sizeof combinedEnvironment_);
   } else {
     block_.bind();
   }
 }
 
-void DynamicLighting::projectNow() {
-  dirty_ = true;
-  project();
+void DynamicLighting::projectNow(int onlyLight) {
+  if (!analyticPath()) {
+    dirty_ = true;
+    project();
+    return;
+  }
+  if (!cubeEmitters_.empty()) {
+    dirty_ = true;
+    project();
+  }
+  analytic_.invalidate(onlyLight);
+  analytic_.update(analyticSh_);
+  combine(environment_, std::max(1, combinedOrder_ == 0 ? order_ : combinedOrder_), true);
 }
 
 void DynamicLighting::finishGpu() {
@@ -195,6 +244,10 @@ std::vector<float> DynamicLighting::cubeSH() {
   if (dirty_) project();
   float packed[kPackedLightingFloats];
   if (!lastOnGpu_ || !block_.readCubeSh(packed).isOk()) std::memcpy(packed, cpuCubeSh_.data(), sizeof packed);
+  if (analyticPath()) {
+    if (analytic_.dirty()) analytic_.update(analyticSh_);
+    for (int i = 0; i < kPackedLightingFloats; ++i) packed[i] += analyticSh_[i];
+  }
   return unpack(packed, shCoeffCount(order_));
 }
 

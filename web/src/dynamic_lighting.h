@@ -1,14 +1,18 @@
-// Dynamic area lights and the lighting they produce (docs/web-client.md, "Light cube"): the
-// emitters, the light cube rendered from the lighting centre whenever the lights, cube
-// size, projection path or order change, its SH projection on the GPU (CubeShReduction) or
-// on the CPU (readPixels + the shared projectCubeMap), and the lighting block the shading
-// programs read (cube SH + environment). The emitters are also drawn in the main view.
+// Dynamic area lights and the lighting they produce (docs/web-client.md, "Light cube" and
+// "Analytic lights"): the emitters; on the analytic path (the default) spheres, discs and
+// rects projected in closed form (AnalyticLights) and only mesh emitters in the light cube;
+// on the GPU and CPU paths every emitter in the cube, rendered from the lighting centre
+// whenever its emitters, the cube size, the path or the order change and projected on the
+// GPU (CubeShReduction) or the CPU (readPixels + the shared projectCubeMap); and the
+// lighting block the shading programs read (cube SH + analytic SH + environment). The
+// emitters are also drawn in the main view.
 #pragma once
 
 #include <span>
 #include <string>
 #include <vector>
 
+#include "analytic_lights.h"
 #include "cube_sh_reduction.h"
 #include "emitter_renderer.h"
 #include "emitters.h"
@@ -18,7 +22,7 @@
 
 namespace prt::web {
 
-enum class ProjectionPath : int { kGpu = 0, kCpu = 1 };
+enum class ProjectionPath : int { kGpu = 0, kCpu = 1, kAnalytic = 2 };
 
 class DynamicLighting {
  public:
@@ -31,7 +35,7 @@ class DynamicLighting {
 
   std::string setLights(std::span<const float> flat);  // "" or the error (nothing changes)
   int addLightMesh(std::vector<float> positions, std::vector<std::uint32_t> indices);  // id or -1
-  std::string setProjection(int mode);  // 0 GPU, 1 CPU
+  std::string setProjection(int mode);  // 0 GPU, 1 CPU, 2 analytic (meshes on the GPU, else the CPU)
   int projectionMode() const { return static_cast<int>(path_); }
   bool gpuProjectionSupported() const { return floatTargets_ && !simulateNoFloat_; }
   std::string setCubeSize(int size);
@@ -52,8 +56,10 @@ class DynamicLighting {
   unsigned lightingVersion() const { return blockVersion_; }
   // Benchmarks: the next update rebuilds the block as if the lighting had changed.
   void touchBlock() { combinedOrder_ = 0; }
-  // Re-renders and re-projects the cube now, whatever the dirty flag says (benchmarks).
-  void projectNow();
+  // Benchmarks: re-projects the lights now, whatever the dirty flags say. GPU/CPU paths: the
+  // whole cube. Analytic path: light `onlyLight` (every light when < 0), the cached sum, the
+  // cube only if it holds mesh emitters, and the block rebuilt (no finish, no readback).
+  void projectNow(int onlyLight = -1);
   // Waits for all queued GL work: glFinish, then a 1-texel readPixels of the cube-SH
   // texture (Chrome's WebGL finish does not block; a readback does).
   void finishGpu();
@@ -64,7 +70,8 @@ class DynamicLighting {
   const std::vector<BoundingSphere>& emitterBounds() const { return bounds_; }
   // The lighting block of the last update, flat [r,g,b] per coefficient, displayOrder^2 rows.
   std::vector<float> lightSH() const;
-  // The last cube projection alone, flat [r,g,b] per coefficient at the projection order.
+  // The emitters' SH alone (no environment): the last cube projection plus, on the analytic
+  // path, the analytic lights; flat [r,g,b] per coefficient at the projection order.
   std::vector<float> cubeSH();
   std::size_t weightTableBytes() const { return reduction_.weightBytes(); }
   // Why the last projection did not run as asked ("" when it did): e.g. a weight table over
@@ -73,6 +80,13 @@ class DynamicLighting {
 
  private:
   void project();
+  void selectCubeEmitters();
+  bool analyticPath() const { return path_ == ProjectionPath::kAnalytic; }
+  // The cube's SH when it runs on the GPU (mesh emitters on the analytic path), else the CPU.
+  bool cubeOnGpu() const { return (path_ == ProjectionPath::kGpu || analyticPath()) && gpuProjectionSupported(); }
+  // The block's non-cube input: environment + analytic SH cut to displayOrder. Rebuilds the
+  // block (bumping blockVersion_) only if it or the cube changed.
+  void combine(const float* environment, int displayOrder, bool force);
   Status projectOnGpu();
   Status projectOnCpu();
 
@@ -83,8 +97,15 @@ class DynamicLighting {
   std::vector<LightMesh> meshes_;
   std::vector<Emitter> emitters_;
   std::vector<BoundingSphere> bounds_;
+  std::vector<float> flat_;                // emitters_ as given, 16 floats each
+  std::vector<Emitter> cubeEmitters_;      // what the cube renders: all, or the meshes (analytic)
+  std::vector<BoundingSphere> cubeBounds_;
+  std::vector<float> cubeFlat_;            // their 16 floats, to tell whether the cube changed
+  AnalyticLights analytic_;
+  float analyticSh_[kPackedLightingFloats] = {};   // packLighting layout, zero off the analytic path
+  float environment_[kPackedLightingFloats] = {};  // the last update's environment
   bool floatTargets_ = false, simulateNoFloat_ = false;
-  ProjectionPath path_ = ProjectionPath::kGpu;
+  ProjectionPath path_ = ProjectionPath::kAnalytic;
   int cubeSize_ = kDefaultCubeSize, order_ = 5;
   Vec3 center_{};
   float nearZ_ = 1e-4f;
