@@ -10,6 +10,7 @@ const load = (name) => import(pathToFileURL(path.join(shell, name)).href);
 const { parseObj, normaliseToUnitRadius, meshRadius } = await load('obj_loader.js');
 const { torusMesh } = await load('torus_mesh.js');
 const { normaliseLight, normaliseLights, packLights, boundingRadius, FLOATS_PER_LIGHT } = await load('lights.js');
+const { randomLights, seededRandom } = await load('random_lights.js');
 const { raySphere, pickLight, rayHorizontalPlane, worldPerPixel, along } = await load('light_picking.js');
 
 const failures = [];
@@ -194,6 +195,28 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   const a = 0.01;
   const wpp = worldPerPixel({ origin: [0, 0, 0], dir: [0, 0, -1] }, { origin: [0, 0, 0], dir: [Math.sin(a), 0, -Math.cos(a)] }, [0, 0, -10]);
   check(close(wpp, 10 * Math.tan(a), 1e-9), `worldPerPixel ${wpp}`);
+}
+
+// Seeded random lights: reproducible, valid, in front of the centre, bad counts refused.
+{
+  const a = randomLights(50, [1, 2, 3], 2, 9), b = randomLights(50, [1, 2, 3], 2, 9), c = randomLights(50, [1, 2, 3], 2, 10);
+  check(JSON.stringify(a) === JSON.stringify(b) && JSON.stringify(a) !== JSON.stringify(c), 'randomLights: same seed, same lights; other seed, other lights');
+  let ok = true;
+  try { normaliseLights(a, new Map()); } catch (e) { ok = false; check(false, `randomLights gave an invalid light: ${e.message}`); }
+  check(ok && a.length === 50 && ['sphere', 'disc', 'rect'].every((s) => a.some((l) => l.shape === s)), 'randomLights: 50 lights of all three shapes');
+  for (const l of a) {
+    const rel = l.position.map((x, k) => x - [1, 2, 3][k]), d = Math.hypot(...rel);
+    if (!check(d >= 1.2 - 1e-9 && d <= 2.4 + 1e-9 && rel[1] > 0, `random light at distance ${d}, height ${rel[1]}`)) break;
+    if (l.normal && !check(l.normal.reduce((s, x, k) => s + x * rel[k], 0) < 0, 'a one-sided random light faces away from the centre')) break;
+  }
+  const r = seededRandom(3);
+  const xs = Array.from({ length: 1000 }, r);
+  check(xs.every((x) => x >= 0 && x < 1) && Math.abs(xs.reduce((s, x) => s + x, 0) / 1000 - 0.5) < 0.05, 'seededRandom: uniform on [0, 1)');
+  for (const bad of [-1, 1.5, 2000]) {
+    let threw = false;
+    try { randomLights(bad, [0, 0, 0], 1); } catch (e) { threw = /count/.test(e.message); }
+    check(threw, `randomLights(${bad}) should throw naming the count`);
+  }
 }
 
 if (failures.length) {

@@ -15,7 +15,10 @@ export function seededRandom(seed) {
 }
 
 // `count` light specs (lights.js form) at 0.6..1.2 x `radius` from `centre`, in the upper
-// hemisphere, one-sided ones facing the centre, total intensity about that of four lights.
+// hemisphere, one-sided ones facing the centre. Beyond 16 lights sizes shrink as
+// 1/sqrt(count) and intensities as 1/count, so the lights cover about the solid angle of 16
+// and shine about as much as 4 whatever their number: hundreds of full-size lights would
+// tile the sky and mostly hide one another.
 export function randomLights(count, centre, radius, seed = 1) {
   if (!Number.isInteger(count) || count < 0 || count > 1024) throw new Error(`randomLights: count must be an integer 0..1024, got ${JSON.stringify(count)}`);
   if (!(radius > 0)) throw new Error(`randomLights: radius must be > 0, got ${radius}`);
@@ -30,7 +33,7 @@ export function randomLights(count, centre, radius, seed = 1) {
     const position = dir.map((v, k) => centre[k] + d * v);
     const color = [0.5 + 0.5 * rnd(), 0.5 + 0.5 * rnd(), 0.5 + 0.5 * rnd()];
     const shape = shapes[i % 3];
-    const size = radius * (0.03 + 0.05 * rnd());
+    const size = radius * (0.03 + 0.05 * rnd()) * Math.min(1, Math.sqrt(16 / count));
     const normal = dir.map((v) => -v);
     if (shape === 'sphere') out.push({ shape, position, radius: size, color, intensity });
     else if (shape === 'disc') out.push({ shape, position, radius: size, normal, color, intensity });
