@@ -70,20 +70,22 @@ double realGaunt(int l1, int m1, int l2, int m2, int l3, int m3) {
 }
 
 // Below this a computed coefficient is a rounding residue of an exact zero: true non-zeros
-// for l <= 7 are above 1e-4, exact zeros come out below 1e-15.
+// for l <= 7 are above 4e-3 in magnitude, exact zeros come out below 1e-15.
 constexpr double kZero = 1e-12;
 
+// Every non-zero any (order, transferOrder) view needs: i <= j <= k with j < 8^2 and k < 15^2,
+// sorted by (k, j, i).
 struct Table {
-  std::vector<ShTripleEntry> entries;  // order 8, i <= j <= k, sorted by (k, j, i)
-  std::size_t prefix[kMaxTripleProductOrder + 1] = {};  // entries with k < n*n
+  std::vector<ShTripleEntry> entries;
 
   Table() {
-    const int count = shCoeffCount(kMaxTripleProductOrder);
-    int band[shCoeffCount(kMaxTripleProductOrder)];
+    const int pairCount = shCoeffCount(kMaxTripleProductOrder);
+    const int count = shCoeffCount(kMaxTripleTransferOrder);
+    std::vector<int> band(count);
     for (int i = 0; i < count; ++i) band[i] = shBandOf(i);
     for (int k = 0; k < count; ++k) {
       const int lk = band[k], mk = k - lk * (lk + 1);
-      for (int j = 0; j <= k; ++j) {
+      for (int j = 0; j <= k && j < pairCount; ++j) {
         const int lj = band[j], mj = j - lj * (lj + 1);
         for (int i = 0; i <= j; ++i) {
           const int li = band[i], mi = i - li * (li + 1);
@@ -94,11 +96,6 @@ struct Table {
           }
         }
       }
-    }
-    std::size_t e = 0;
-    for (int n = 0; n <= kMaxTripleProductOrder; ++n) {
-      while (e < entries.size() && entries[e].k < shCoeffCount(n)) ++e;
-      prefix[n] = e;
     }
   }
 };
@@ -143,24 +140,34 @@ Status checkSize(std::span<const float> v, std::size_t n, const char* what) {
 
 }  // namespace
 
-Status ShTripleProduct::make(int order, ShTripleProduct* out) {
+Status ShTripleProduct::make(int order, int transferOrder, ShTripleProduct* out) {
   if (order < 1 || order > kMaxTripleProductOrder) {
     return Status::error(StatusCode::kInvalidArgument, "triple-product order " + std::to_string(order) +
                                                            " is outside [1, " +
                                                            std::to_string(kMaxTripleProductOrder) + "]");
   }
+  if (transferOrder < order || transferOrder > 2 * order - 1) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "triple-product transfer order " + std::to_string(transferOrder) + " is outside [" +
+                             std::to_string(order) + ", " + std::to_string(2 * order - 1) + "] for order " +
+                             std::to_string(order));
+  }
   if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "no output tensor");
-  const Table& t = table();
+  const int n2 = shCoeffCount(order), m2 = shCoeffCount(transferOrder);
   out->order_ = order;
-  out->entries_ = std::span<const ShTripleEntry>(t.entries.data(), t.prefix[order]);
+  out->transferOrder_ = transferOrder;
+  out->entries_.clear();
+  for (const ShTripleEntry& e : table().entries) {
+    if (e.k >= m2) break;  // sorted by k first
+    if (e.j < n2) out->entries_.push_back(e);
+  }
   return Status::ok();
 }
 
 double ShTripleProduct::at(int i, int j, int k) const {
-  const int count = shCoeffCount(order_);
-  if (i < 0 || j < 0 || k < 0 || i >= count || j >= count || k >= count) return 0.0;
   int s[3] = {i, j, k};
   std::sort(s, s + 3);
+  if (s[0] < 0 || s[1] >= shCoeffCount(order_) || s[2] >= shCoeffCount(transferOrder_)) return 0.0;
   // Entries are sorted by (k, j, i): compare keys in that order.
   const auto less = [](const ShTripleEntry& e, const int* key) {
     if (e.k != key[2]) return e.k < key[2];
@@ -172,32 +179,41 @@ double ShTripleProduct::at(int i, int j, int k) const {
   return it->value;
 }
 
+template <typename F>
+void ShTripleProduct::forEachOrdered(F&& f) const {
+  const int n2 = shCoeffCount(order_);
+  for (const ShTripleEntry& e : entries_) {
+    assert(e.j < n2 && e.k < shCoeffCount(transferOrder_));
+    if (e.k < n2) {
+      forEachPermutation(e, [&](int p, int q, int r) { f(p, q, r, e.value); });
+    } else {
+      // k is beyond the lighting's and output's range, so it can only sit in the third slot.
+      f(e.i, e.j, e.k, e.value);
+      if (e.i != e.j) f(e.j, e.i, e.k, e.value);
+    }
+  }
+}
+
 void ShTripleProduct::expand(std::vector<ShTripleEntry>* out) const {
   out->clear();
-  for (const ShTripleEntry& e : entries_) {
-    forEachPermutation(e, [&](int p, int q, int r) {
-      out->push_back({static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(q), static_cast<std::uint16_t>(r),
-                      e.value});
-    });
-  }
+  forEachOrdered([&](int p, int q, int r, double v) {
+    out->push_back({static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(q), static_cast<std::uint16_t>(r), v});
+  });
   std::sort(out->begin(), out->end(), [](const ShTripleEntry& x, const ShTripleEntry& y) {
     if (x.i != y.i) return x.i < y.i;
-    if (x.j != y.j) return x.j < y.j;
-    return x.k < y.k;
+    if (x.k != y.k) return x.k < y.k;
+    return x.j < y.j;
   });
 }
 
 void ShTripleProduct::productMatrixUnchecked(int lightingOrder, const float* lighting, float* out) const noexcept {
   assert(lightingOrder >= 1 && lightingOrder <= order_);
-  const int n2 = shCoeffCount(order_);
+  const int m2 = shCoeffCount(transferOrder_);
   // Zero-padding the lighting to the tensor's order keeps the inner loop branch-free.
   float padded[shCoeffCount(kMaxTripleProductOrder)] = {};
   std::copy(lighting, lighting + shCoeffCount(lightingOrder), padded);
-  std::fill(out, out + static_cast<std::size_t>(n2) * n2, 0.0f);
-  for (const ShTripleEntry& e : entries_) {
-    const float v = static_cast<float>(e.value);
-    forEachPermutation(e, [&](int p, int q, int r) { out[p * n2 + q] += v * padded[r]; });
-  }
+  std::fill(out, out + static_cast<std::size_t>(shCoeffCount(order_)) * m2, 0.0f);
+  forEachOrdered([&](int i, int j, int k, double v) { out[i * m2 + k] += static_cast<float>(v) * padded[j]; });
 }
 
 Status ShTripleProduct::productMatrix(int lightingOrder, std::span<const float> lighting,
@@ -211,10 +227,11 @@ Status ShTripleProduct::productMatrix(int lightingOrder, std::span<const float> 
   const std::size_t nl = static_cast<std::size_t>(shCoeffCount(lightingOrder));
   PRT_RETURN_IF_ERROR(checkSize(lighting, nl, "lighting"));
   PRT_RETURN_IF_ERROR(checkFinite(lighting, nl, "lighting"));
-  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order_));
-  if (out.size() < n2 * n2) {
+  const std::size_t cells =
+      static_cast<std::size_t>(shCoeffCount(order_)) * static_cast<std::size_t>(shCoeffCount(transferOrder_));
+  if (out.size() < cells) {
     return Status::error(StatusCode::kSizeMismatch, "product matrix holds " + std::to_string(out.size()) +
-                                                        " floats, " + std::to_string(n2 * n2) + " needed");
+                                                        " floats, " + std::to_string(cells) + " needed");
   }
   productMatrixUnchecked(lightingOrder, lighting.data(), out.data());
   return Status::ok();
@@ -223,18 +240,17 @@ Status ShTripleProduct::productMatrix(int lightingOrder, std::span<const float> 
 Status ShTripleProduct::multiply(std::span<const float> a, std::span<const float> b, std::span<float> out) const {
   if (order_ == 0) return Status::error(StatusCode::kInvalidArgument, "triple-product tensor not made");
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order_));
+  const std::size_t m2 = static_cast<std::size_t>(shCoeffCount(transferOrder_));
   PRT_RETURN_IF_ERROR(checkSize(a, n2, "first factor"));
-  PRT_RETURN_IF_ERROR(checkSize(b, n2, "second factor"));
+  PRT_RETURN_IF_ERROR(checkSize(b, m2, "second factor"));
   if (out.size() < n2) {
     return Status::error(StatusCode::kSizeMismatch, "product holds " + std::to_string(out.size()) + " floats, " +
                                                         std::to_string(n2) + " needed");
   }
   PRT_RETURN_IF_ERROR(checkFinite(a, n2, "first factor"));
-  PRT_RETURN_IF_ERROR(checkFinite(b, n2, "second factor"));
+  PRT_RETURN_IF_ERROR(checkFinite(b, m2, "second factor"));
   double sum[shCoeffCount(kMaxTripleProductOrder)] = {};
-  for (const ShTripleEntry& e : entries_) {
-    forEachPermutation(e, [&](int p, int q, int r) { sum[p] += e.value * a[q] * b[r]; });
-  }
+  forEachOrdered([&](int i, int j, int k, double v) { sum[i] += v * a[j] * b[k]; });
   for (std::size_t i = 0; i < n2; ++i) out[i] = static_cast<float>(sum[i]);
   return Status::ok();
 }

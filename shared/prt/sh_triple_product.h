@@ -4,7 +4,9 @@
 //
 // Products are truncated: two order-n functions multiply into a function of order 2n-1, and
 // everything here projects that product back onto the first n bands, exactly (no aliasing:
-// the dropped bands are orthogonal to the kept ones).
+// the dropped bands are orthogonal to the kept ones). The second factor may have up to
+// 2n-1 bands (transferOrder), which makes the order-n projection of the product with an
+// unlimited function exact (the bands above 2n-2 do not reach the first n).
 #pragma once
 
 #include <cstdint>
@@ -16,6 +18,9 @@
 namespace prt {
 
 inline constexpr int kMaxTripleProductOrder = 8;
+// A product of two order-8 functions has 2*8-1 = 15 bands; a transfer of that order makes the
+// product matrix exact (docs/triple-product.md, "Which order for the transfer").
+inline constexpr int kMaxTripleTransferOrder = 2 * kMaxTripleProductOrder - 1;
 
 // One non-zero coefficient. Indices are flat SH indices l(l+1)+m. Value in units of
 // sr^(-1/2) (each orthonormal y_i carries sr^(-1/2); two of them integrate away).
@@ -24,50 +29,61 @@ struct ShTripleEntry {
   double value = 0.0;
 };
 
-// A view of the tensor of one order. Cheap to copy; the entries are owned by a process-wide
-// table built on first use (a few ms, all orders at once, thread-safe initialisation) and
-// never freed, so views stay valid for the whole program.
+// The tensor restricted to i, j < order^2 (output and lighting) and k < transferOrder^2
+// (the function the lighting multiplies, e.g. a texel's visibility). Values come from a
+// process-wide table built on first use (a few ms, thread-safe initialisation); each object
+// owns a copy of its part (kilobytes), so it is self-contained and cheap to keep.
 class ShTripleProduct {
  public:
-  // The tensor of order `order` (n bands, n*n indices), 1 <= order <= kMaxTripleProductOrder;
-  // otherwise an error naming the value. Safe on untrusted input.
-  static Status make(int order, ShTripleProduct* out);
+  // 1 <= order <= kMaxTripleProductOrder and order <= transferOrder <= 2*order-1; otherwise
+  // an error naming the value. Safe on untrusted input.
+  static Status make(int order, int transferOrder, ShTripleProduct* out);
+  // The square tensor: transferOrder = order.
+  static Status make(int order, ShTripleProduct* out) { return make(order, order, out); }
 
   int order() const { return order_; }
+  int transferOrder() const { return transferOrder_; }
 
-  // The non-zero coefficients with i <= j <= k, each once, sorted by k, then j, then i. Every
-  // other non-zero is a permutation of one of these (C is fully symmetric). Because of the
-  // sort, the order-n tensor is a prefix of the order-8 one.
+  // The non-zero coefficients, each unordered index triple once, as i <= j <= k (so i, j <
+  // order^2 and k < transferOrder^2), sorted by k, then j, then i. C is fully symmetric: every
+  // other non-zero of the restricted tensor is a permutation of one of these that keeps the
+  // first two indices below order^2.
   std::span<const ShTripleEntry> entries() const { return entries_; }
 
-  // C_ijk for any index order; 0 for a zero coefficient and for an index outside
-  // [0, order*order). Safe on any input.
+  // C_ijk for any index order when the sorted triple is stored (two smaller indices below
+  // order^2, the largest below transferOrder^2), else 0. Symmetric in its arguments. Safe on
+  // any input.
   double at(int i, int j, int k) const;
 
-  // Every non-zero as an ordered triple (all distinct permutations of each entry), sorted
-  // by i, then j, then k: for each row-major product-matrix cell (i, j), its k run is
-  // contiguous, the gather layout a shader forming P wants. Replaces *out.
+  // Every non-zero (i, j, k) with i, j < order^2 and k < transferOrder^2 as an ordered triple,
+  // sorted by i, then k, then j: the j run of each product-matrix cell (i, k) is contiguous,
+  // the gather layout a shader forming P wants. Replaces *out.
   void expand(std::vector<ShTripleEntry>* out) const;
 
-  // Product matrix P_ij = sum_k C_ijk L_k, so that (P t)_i is the order-n projection of the
-  // product of the functions with coefficients L and t. `lighting` holds lightingOrder^2
-  // coefficients (1 <= lightingOrder <= order; bands above lightingOrder count as zero);
-  // `out` receives order^2 x order^2 floats, row-major (P is symmetric), and must hold at
-  // least that many. Non-finite lighting is rejected. Safe on untrusted input.
+  // Product matrix P_ik = sum_j C_ijk L_j, so that (P t)_i is the order-n projection of the
+  // product of the lighting (coefficients L) and the function with coefficients t (order
+  // transferOrder). `lighting` holds lightingOrder^2 coefficients (1 <= lightingOrder <=
+  // order; bands above lightingOrder count as zero); `out` receives order^2 rows of
+  // transferOrder^2 floats, row-major, and must hold at least that many (symmetric when
+  // transferOrder = order). Non-finite lighting is rejected. Safe on untrusted input.
   Status productMatrix(int lightingOrder, std::span<const float> lighting, std::span<float> out) const;
 
   // Fast path of productMatrix for trusted callers: same layout, no checks (debug asserts).
   // Float accumulation in entry order, so native and wasm results agree bit for bit.
   void productMatrixUnchecked(int lightingOrder, const float* lighting, float* out) const noexcept;
 
-  // out = order-n projection of the product of the functions with coefficients a and b
-  // (each order^2 floats used; sizes >= order^2). Double accumulation. out may alias a or b.
-  // Non-finite inputs are rejected. Safe on untrusted input.
+  // out = order-n projection of the product of a (order^2 floats used) and b
+  // (transferOrder^2 floats used); out holds order^2. Double accumulation. out may alias a
+  // or b. Non-finite inputs are rejected. Safe on untrusted input.
   Status multiply(std::span<const float> a, std::span<const float> b, std::span<float> out) const;
 
  private:
-  int order_ = 0;
-  std::span<const ShTripleEntry> entries_;
+  // Calls f(i, j, k, value) for each ordered non-zero of the restricted tensor.
+  template <typename F>
+  void forEachOrdered(F&& f) const;
+
+  int order_ = 0, transferOrder_ = 0;
+  std::vector<ShTripleEntry> entries_;
 };
 
 }  // namespace prt

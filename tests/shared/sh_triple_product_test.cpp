@@ -20,18 +20,19 @@ namespace prt {
 namespace {
 
 constexpr int kN = kMaxTripleProductOrder;
-constexpr int kCount = kN * kN;
+constexpr int kCount = kN * kN;                                           // 64: i, j
+constexpr int kCountT = kMaxTripleTransferOrder * kMaxTripleTransferOrder;  // 225: k
 
 // Brute-force reference, independent of the Racah/Wigner route the library takes: textbook SH
 // (acos/atan2, explicit Legendre power sums) on a Gauss-Legendre x equispaced-azimuth product
 // rule, all in double. 16 nodes in z integrate z-polynomials of degree <= 31 exactly and 32
-// azimuths integrate frequencies <= 31 exactly; y_i y_j y_k for l <= 7 has degree <= 21 and
-// frequency <= 21, so the only error is rounding.
+// azimuths integrate frequencies <= 31 exactly; y_i y_j y_k for l_i, l_j <= 7, l_k <= 14 has
+// degree <= 28 and frequency <= 28, so the only error is rounding.
 struct BruteForce {
   std::vector<double> weight;
   std::vector<std::vector<double>> basis;  // basis[i][p] = y_i at node p
 
-  BruteForce() : basis(kCount) {
+  BruteForce() : basis(kCountT) {
     std::vector<double> z, w;
     ref::gaussLegendre(16, &z, &w);
     const int nphi = 32;
@@ -40,7 +41,7 @@ struct BruteForce {
       for (int b = 0; b < nphi; ++b) {
         const double phi = 2.0 * kPi * (b + 0.5) / nphi;
         weight.push_back(w[a] * 2.0 * kPi / nphi);
-        for (int l = 0; l < kN; ++l) {
+        for (int l = 0; l < kMaxTripleTransferOrder; ++l) {
           for (int m = -l; m <= l; ++m) {
             basis[shIndex(l, m)].push_back(ref::shTextbook(l, m, r * std::cos(phi), r * std::sin(phi), z[a]));
           }
@@ -74,18 +75,14 @@ const BruteForce& bruteForce() {
   return b;
 }
 
-// C[i][j][k] for all i, j, k < 64 by brute force, computed once for the tests below.
+// C for every sorted triple a <= b <= c with b < 64, c < 225 by brute force, computed once for
+// the tests below; brute() sorts its arguments.
 const std::vector<double>& bruteTensor() {
   static const std::vector<double> t = [] {
-    std::vector<double> c(static_cast<std::size_t>(kCount) * kCount * kCount);
-    for (int k = 0; k < kCount; ++k) {
-      for (int j = 0; j <= k; ++j) {
-        for (int i = 0; i <= j; ++i) {
-          const double v = bruteForce().triple(i, j, k);
-          for (auto [p, q, r] : {std::array{i, j, k}, {i, k, j}, {j, i, k}, {j, k, i}, {k, i, j}, {k, j, i}}) {
-            c[(static_cast<std::size_t>(p) * kCount + q) * kCount + r] = v;
-          }
-        }
+    std::vector<double> c(static_cast<std::size_t>(kCount) * kCount * kCountT, 0.0);
+    for (int k = 0; k < kCountT; ++k) {
+      for (int j = 0; j <= k && j < kCount; ++j) {
+        for (int i = 0; i <= j; ++i) c[(static_cast<std::size_t>(i) * kCount + j) * kCountT + k] = bruteForce().triple(i, j, k);
       }
     }
     return c;
@@ -93,15 +90,21 @@ const std::vector<double>& bruteTensor() {
   return t;
 }
 
-double brute(int i, int j, int k) { return bruteTensor()[(static_cast<std::size_t>(i) * kCount + j) * kCount + k]; }
+double brute(int i, int j, int k) {
+  int s[3] = {i, j, k};
+  std::sort(s, s + 3);
+  EXPECT_LT(s[1], kCount);
+  EXPECT_LT(s[2], kCountT);
+  return bruteTensor()[(static_cast<std::size_t>(s[0]) * kCount + s[1]) * kCountT + s[2]];
+}
 
 // An exact zero comes out of the quadrature below 1e-14; the smallest true non-zero for
-// l <= 7 is above 1e-4.
+// l <= 7 is 4.8e-3 in magnitude.
 constexpr double kBruteZero = 1e-9;
 
-ShTripleProduct tensor(int order) {
+ShTripleProduct tensor(int order, int transferOrder = 0) {
   ShTripleProduct t;
-  EXPECT_TRUE(ShTripleProduct::make(order, &t).isOk());
+  EXPECT_TRUE(ShTripleProduct::make(order, transferOrder == 0 ? order : transferOrder, &t).isOk());
   return t;
 }
 
@@ -146,64 +149,85 @@ TEST(Wigner3j, OrthogonalityUpToJ14) {
 }
 
 TEST(ShTripleProduct, EntriesMatchBruteForceQuadratureForEveryOrder) {
-  // Tolerance: both sides are exact up to double rounding (observed ~1e-15); a wrong sign,
-  // phase or normalisation is off by at least the smallest non-zero, ~1e-4.
+  // Tolerance: both sides are exact up to double rounding (the textbook power sums lose a
+  // little at l = 14; observed worst ~1e-14); a wrong sign, phase or normalisation is off by
+  // at least the smallest non-zero, 4.8e-3 for l <= 7.
   for (int order = 1; order <= kN; ++order) {
-    const ShTripleProduct t = tensor(order);
-    const int n2 = shCoeffCount(order);
-    double worst = 0.0;
-    for (int i = 0; i < n2; ++i) {
-      for (int j = 0; j < n2; ++j) {
-        for (int k = 0; k < n2; ++k) worst = std::max(worst, std::fabs(t.at(i, j, k) - brute(i, j, k)));
+    for (int transferOrder : {order, 2 * order - 1}) {
+      const ShTripleProduct t = tensor(order, transferOrder);
+      const int n2 = shCoeffCount(order), m2 = shCoeffCount(transferOrder);
+      double worst = 0.0;
+      for (int i = 0; i < n2; ++i) {
+        for (int j = 0; j < n2; ++j) {
+          for (int k = 0; k < m2; ++k) worst = std::max(worst, std::fabs(t.at(i, j, k) - brute(i, j, k)));
+        }
       }
-    }
-    EXPECT_LT(worst, 1e-12) << "order " << order;
-    for (const ShTripleEntry& e : t.entries()) {
-      ASSERT_LE(e.i, e.j);
-      ASSERT_LE(e.j, e.k);
-      ASSERT_LT(e.k, n2);
-      EXPECT_NEAR(e.value, brute(e.i, e.j, e.k), 1e-12);
+      EXPECT_LT(worst, 1e-12) << "order " << order << " transfer order " << transferOrder;
+      for (const ShTripleEntry& e : t.entries()) {
+        ASSERT_LE(e.i, e.j);
+        ASSERT_LE(e.j, e.k);
+        ASSERT_LT(e.j, n2);
+        ASSERT_LT(e.k, m2);
+        EXPECT_NEAR(e.value, brute(e.i, e.j, e.k), 1e-12);
+      }
     }
   }
 }
 
 TEST(ShTripleProduct, NonZeroCountsMatchBruteForceCounts) {
-  // Canonical (i <= j <= k) and all ordered non-zeros per order 1..8; recorded in
-  // docs/triple-product.md.
+  // Canonical (i <= j <= k) and all ordered non-zeros (i, j < n^2, k < m^2) per order n = 1..8,
+  // for m = n and m = 2n-1; recorded in docs/triple-product.md.
   const std::size_t canonical[kN] = {1, 4, 25, 77, 238, 549, 1196, 2300};
   const std::size_t ordered[kN] = {1, 10, 83, 353, 1158, 2907, 6460, 12868};
+  const std::size_t canonicalWide[kN] = {1, 12, 69, 271, 796, 1949, 4190, 8164};
+  const std::size_t orderedWide[kN] = {1, 21, 162, 708, 2229, 5605, 12322, 24366};
   for (int order = 1; order <= kN; ++order) {
-    const int n2 = shCoeffCount(order);
-    std::size_t bruteCanonical = 0, bruteOrdered = 0;
-    for (int i = 0; i < n2; ++i) {
-      for (int j = 0; j < n2; ++j) {
-        for (int k = 0; k < n2; ++k) {
-          if (std::fabs(brute(i, j, k)) <= kBruteZero) continue;
-          ++bruteOrdered;
-          if (i <= j && j <= k) ++bruteCanonical;
+    for (int transferOrder : {order, 2 * order - 1}) {
+      const int n2 = shCoeffCount(order), m2 = shCoeffCount(transferOrder);
+      std::size_t bruteCanonical = 0, bruteOrdered = 0;
+      for (int i = 0; i < n2; ++i) {
+        for (int j = 0; j < n2; ++j) {
+          for (int k = 0; k < m2; ++k) {
+            if (std::fabs(brute(i, j, k)) <= kBruteZero) continue;
+            ++bruteOrdered;
+            // The canonical form of this triple is stored once; count it at its sorted slot.
+            int s[3] = {i, j, k};
+            std::sort(s, s + 3);
+            if (s[0] == i && s[1] == j && s[2] == k) ++bruteCanonical;
+          }
         }
       }
+      const ShTripleProduct t = tensor(order, transferOrder);
+      std::vector<ShTripleEntry> all;
+      t.expand(&all);
+      EXPECT_EQ(t.entries().size(), bruteCanonical) << "order " << order << " transfer order " << transferOrder;
+      EXPECT_EQ(all.size(), bruteOrdered) << "order " << order << " transfer order " << transferOrder;
+      const bool square = transferOrder == order;
+      EXPECT_EQ(t.entries().size(), (square ? canonical : canonicalWide)[order - 1])
+          << "order " << order << " transfer order " << transferOrder;
+      EXPECT_EQ(all.size(), (square ? ordered : orderedWide)[order - 1])
+          << "order " << order << " transfer order " << transferOrder;
     }
-    const ShTripleProduct t = tensor(order);
-    std::vector<ShTripleEntry> all;
-    t.expand(&all);
-    EXPECT_EQ(t.entries().size(), bruteCanonical) << "order " << order;
-    EXPECT_EQ(all.size(), bruteOrdered) << "order " << order;
-    EXPECT_EQ(t.entries().size(), canonical[order - 1]) << "order " << order;
-    EXPECT_EQ(all.size(), ordered[order - 1]) << "order " << order;
   }
 }
 
-TEST(ShTripleProduct, LowerOrdersArePrefixesOfOrderEight) {
-  const ShTripleProduct top = tensor(kN);
-  for (int order = 1; order < kN; ++order) {
-    const ShTripleProduct t = tensor(order);
-    ASSERT_LE(t.entries().size(), top.entries().size());
-    EXPECT_EQ(t.entries().data(), top.entries().data());
-    const std::size_t inRange = static_cast<std::size_t>(
-        std::count_if(top.entries().begin(), top.entries().end(),
-                      [&](const ShTripleEntry& e) { return e.k < shCoeffCount(order); }));
-    EXPECT_EQ(t.entries().size(), inRange);
+TEST(ShTripleProduct, EveryViewIsARestrictionOfTheLargest) {
+  const ShTripleProduct top = tensor(kN, kMaxTripleTransferOrder);
+  for (int order = 1; order <= kN; ++order) {
+    for (int transferOrder = order; transferOrder <= 2 * order - 1; ++transferOrder) {
+      const ShTripleProduct t = tensor(order, transferOrder);
+      std::vector<ShTripleEntry> want;
+      for (const ShTripleEntry& e : top.entries()) {
+        if (e.j < shCoeffCount(order) && e.k < shCoeffCount(transferOrder)) want.push_back(e);
+      }
+      ASSERT_EQ(t.entries().size(), want.size());
+      for (std::size_t e = 0; e < want.size(); ++e) {
+        ASSERT_EQ(t.entries()[e].i, want[e].i);
+        ASSERT_EQ(t.entries()[e].j, want[e].j);
+        ASSERT_EQ(t.entries()[e].k, want[e].k);
+        ASSERT_EQ(t.entries()[e].value, want[e].value);
+      }
+    }
   }
 }
 
@@ -223,18 +247,26 @@ TEST(ShTripleProduct, SymmetricUnderEveryIndexPermutation) {
   }
   EXPECT_EQ(t.at(-1, 0, 0), 0.0);
   EXPECT_EQ(t.at(0, 0, kCount), 0.0);
-  EXPECT_EQ(tensor(2).at(0, 4, 4), 0.0);  // index outside order 2
+  EXPECT_EQ(tensor(2).at(0, 4, 4), 0.0);     // index outside order 2
+  EXPECT_EQ(tensor(2, 3).at(4, 4, 0), 0.0);  // two indices outside the order
+  EXPECT_NE(tensor(2, 3).at(1, 1, 6), 0.0);  // one within the transfer order: y_1,-1^2 has a y_20 part
+  EXPECT_EQ(tensor(2, 3).at(6, 1, 1), tensor(2, 3).at(1, 6, 1));
 }
 
-TEST(ShTripleProduct, ExpandedLayoutIsSortedRowMajorAndComplete) {
-  const ShTripleProduct t = tensor(5);
-  std::vector<ShTripleEntry> all;
-  t.expand(&all);
-  for (std::size_t e = 1; e < all.size(); ++e) {
-    const auto key = [](const ShTripleEntry& x) { return (x.i * 64 + x.j) * 64 + x.k; };
-    ASSERT_LT(key(all[e - 1]), key(all[e]));
+TEST(ShTripleProduct, ExpandedLayoutIsSortedByProductCell) {
+  for (int transferOrder : {5, 9}) {
+    const ShTripleProduct t = tensor(5, transferOrder);
+    std::vector<ShTripleEntry> all;
+    t.expand(&all);
+    const auto key = [](const ShTripleEntry& x) { return (x.i * 256 + x.k) * 256 + x.j; };
+    for (std::size_t e = 1; e < all.size(); ++e) ASSERT_LT(key(all[e - 1]), key(all[e]));
+    for (const ShTripleEntry& e : all) {
+      ASSERT_LT(e.i, 25);
+      ASSERT_LT(e.j, 25);
+      ASSERT_LT(e.k, shCoeffCount(transferOrder));
+      EXPECT_EQ(e.value, t.at(e.i, e.j, e.k));
+    }
   }
-  for (const ShTripleEntry& e : all) EXPECT_EQ(e.value, t.at(e.i, e.j, e.k));
 }
 
 TEST(ShTripleProduct, DcRowIsIdentityOverSqrt4Pi) {
@@ -246,11 +278,11 @@ TEST(ShTripleProduct, DcRowIsIdentityOverSqrt4Pi) {
 }
 
 TEST(ShTripleProduct, ZeroWhereParityOrTriangleRulesForbid) {
-  const ShTripleProduct t = tensor(kN);
+  const ShTripleProduct t = tensor(kN, kMaxTripleTransferOrder);
   int forbidden = 0;
   for (int i = 0; i < kCount; ++i) {
     for (int j = 0; j < kCount; ++j) {
-      for (int k = 0; k < kCount; ++k) {
+      for (int k = 0; k < kCountT; ++k) {
         const int a = shBandOf(i), b = shBandOf(j), c = shBandOf(k);
         if ((a + b + c) % 2 == 0 && c <= a + b && c >= std::abs(a - b)) continue;
         ++forbidden;
@@ -259,7 +291,7 @@ TEST(ShTripleProduct, ZeroWhereParityOrTriangleRulesForbid) {
       }
     }
   }
-  EXPECT_GT(forbidden, kCount * kCount * kCount / 2);
+  EXPECT_GT(forbidden, kCount * kCount * kCountT / 2);
   for (const ShTripleEntry& e : t.entries()) {
     const int a = shBandOf(e.i), b = shBandOf(e.j), c = shBandOf(e.k);
     EXPECT_EQ((a + b + c) % 2, 0);
@@ -268,50 +300,81 @@ TEST(ShTripleProduct, ZeroWhereParityOrTriangleRulesForbid) {
 }
 
 TEST(ShTripleProduct, ProductMatrixProjectsThePointwiseProduct) {
-  // (P t)_i against the quadrature projection of L(w) t(w). Float P and float accumulation over
-  // at most a few hundred terms of size O(1): 1e-5 relative to the largest coefficient.
+  // (P t)_i against the quadrature projection of L(w) t(w). Float P and float sums of at most
+  // a few hundred O(1) terms: 1e-5 relative to the largest coefficient.
   for (int order = 1; order <= kN; ++order) {
-    const ShTripleProduct t = tensor(order);
-    const int n2 = shCoeffCount(order);
-    for (int lightingOrder = 1; lightingOrder <= order; ++lightingOrder) {
-      const std::vector<float> light = randomCoeffs(shCoeffCount(lightingOrder), 100 + order * 10 + lightingOrder);
-      const std::vector<float> transfer = randomCoeffs(n2, 7 + order);
-      std::vector<float> p(static_cast<std::size_t>(n2) * n2);
-      ASSERT_TRUE(t.productMatrix(lightingOrder, light, p).isOk());
-      const std::vector<double> want = bruteForce().projectProduct(order, light, transfer);
-      double scale = 0.0;
-      for (double v : want) scale = std::max(scale, std::fabs(v));
-      std::vector<float> viaMultiply(n2);
-      std::vector<float> lightPadded = light;
-      lightPadded.resize(n2, 0.0f);
-      ASSERT_TRUE(t.multiply(lightPadded, transfer, viaMultiply).isOk());
-      for (int i = 0; i < n2; ++i) {
-        double got = 0.0;
-        for (int j = 0; j < n2; ++j) got += p[i * n2 + j] * transfer[j];
-        EXPECT_NEAR(got, want[i], 1e-5 * scale) << "order " << order << " lighting order " << lightingOrder;
-        EXPECT_NEAR(viaMultiply[i], want[i], 1e-6 * scale) << "order " << order;
-        for (int j = 0; j < n2; ++j) ASSERT_EQ(p[i * n2 + j], p[j * n2 + i]);
+    for (int transferOrder : {order, 2 * order - 1}) {
+      const ShTripleProduct t = tensor(order, transferOrder);
+      const int n2 = shCoeffCount(order), m2 = shCoeffCount(transferOrder);
+      for (int lightingOrder = 1; lightingOrder <= order; ++lightingOrder) {
+        const std::vector<float> light = randomCoeffs(shCoeffCount(lightingOrder), 100 + order * 10 + lightingOrder);
+        const std::vector<float> transfer = randomCoeffs(m2, 7 + order);
+        std::vector<float> p(static_cast<std::size_t>(n2) * m2);
+        ASSERT_TRUE(t.productMatrix(lightingOrder, light, p).isOk());
+        const std::vector<double> want = bruteForce().projectProduct(order, light, transfer);
+        double scale = 0.0;
+        for (double v : want) scale = std::max(scale, std::fabs(v));
+        std::vector<float> viaMultiply(n2);
+        std::vector<float> lightPadded = light;
+        lightPadded.resize(n2, 0.0f);
+        ASSERT_TRUE(t.multiply(lightPadded, transfer, viaMultiply).isOk());
+        for (int i = 0; i < n2; ++i) {
+          double got = 0.0;
+          for (int k = 0; k < m2; ++k) got += p[i * m2 + k] * transfer[k];
+          EXPECT_NEAR(got, want[i], 1e-5 * scale) << "order " << order << " lighting order " << lightingOrder;
+          EXPECT_NEAR(viaMultiply[i], want[i], 1e-6 * scale) << "order " << order;
+        }
+        if (transferOrder == order) {
+          for (int i = 0; i < n2 * n2; ++i) ASSERT_EQ(p[i], p[(i % n2) * n2 + i / n2]);
+        }
       }
     }
+  }
+}
+
+TEST(ShTripleProduct, TransferOfOrder2nMinus1MakesTheProductExact) {
+  // The order-n projection of L t for a transfer t with more bands than 2n-1 equals the
+  // product with t truncated to 2n-1 bands: the higher bands cannot reach the first n. With
+  // t truncated to n bands (the square tensor) it does not, which is the truncation TPFL
+  // takes when a texel stores only n^2 coefficients.
+  for (int order = 2; order <= 7; ++order) {
+    const int n2 = shCoeffCount(order), wide = shCoeffCount(2 * order - 1);
+    const std::vector<float> light = randomCoeffs(n2, 500 + order);
+    const std::vector<float> transfer = randomCoeffs(shCoeffCount(2 * order), 600 + order);  // 2n bands
+    const std::vector<double> want = bruteForce().projectProduct(order, light, transfer);
+    double scale = 0.0;
+    for (double v : want) scale = std::max(scale, std::fabs(v));
+    std::vector<float> exact(n2), truncated(n2);
+    const ShTripleProduct t = tensor(order, 2 * order - 1);
+    ASSERT_TRUE(t.multiply(light, std::span<const float>(transfer.data(), wide), exact).isOk());
+    ASSERT_TRUE(tensor(order).multiply(light, std::span<const float>(transfer.data(), n2), truncated).isOk());
+    double truncationError = 0.0;
+    for (int i = 0; i < n2; ++i) {
+      EXPECT_NEAR(exact[i], want[i], 1e-6 * scale) << "order " << order;
+      truncationError = std::max(truncationError, std::fabs(truncated[i] - want[i]));
+    }
+    EXPECT_GT(truncationError, 1e-2 * scale) << "order " << order;
   }
 }
 
 TEST(ShTripleProduct, MultiplyingByAConstantScales) {
   const float s = 1.75f;
   for (int order = 1; order <= kN; ++order) {
-    const ShTripleProduct t = tensor(order);
-    const int n2 = shCoeffCount(order);
-    // The constant function s has the single coefficient s sqrt(4pi).
-    std::vector<float> constant(n2, 0.0f);
-    constant[0] = static_cast<float>(s * std::sqrt(4.0 * kPi));
-    const std::vector<float> f = randomCoeffs(n2, 99 + order);
-    std::vector<float> out(n2);
-    ASSERT_TRUE(t.multiply(constant, f, out).isOk());
-    for (int i = 0; i < n2; ++i) EXPECT_NEAR(out[i], s * f[i], 1e-6);
-    std::vector<float> p(static_cast<std::size_t>(n2) * n2);
-    ASSERT_TRUE(t.productMatrix(1, std::span<const float>(constant.data(), 1), p).isOk());
-    for (int i = 0; i < n2; ++i) {
-      for (int j = 0; j < n2; ++j) EXPECT_NEAR(p[i * n2 + j], i == j ? s : 0.0f, 1e-6);
+    for (int transferOrder : {order, 2 * order - 1}) {
+      const ShTripleProduct t = tensor(order, transferOrder);
+      const int n2 = shCoeffCount(order), m2 = shCoeffCount(transferOrder);
+      // The constant function s has the single coefficient s sqrt(4pi).
+      std::vector<float> constant(n2, 0.0f);
+      constant[0] = static_cast<float>(s * std::sqrt(4.0 * kPi));
+      const std::vector<float> f = randomCoeffs(m2, 99 + order);
+      std::vector<float> out(n2);
+      ASSERT_TRUE(t.multiply(constant, f, out).isOk());
+      for (int i = 0; i < n2; ++i) EXPECT_NEAR(out[i], s * f[i], 1e-6);
+      std::vector<float> p(static_cast<std::size_t>(n2) * m2);
+      ASSERT_TRUE(t.productMatrix(1, std::span<const float>(constant.data(), 1), p).isOk());
+      for (int i = 0; i < n2; ++i) {
+        for (int k = 0; k < m2; ++k) EXPECT_NEAR(p[i * m2 + k], i == k ? s : 0.0f, 1e-6);
+      }
     }
   }
 }
@@ -325,6 +388,16 @@ TEST(ShTripleProduct, RejectsInvalidOrdersAndInputs) {
   }
   EXPECT_EQ(ShTripleProduct::make(3, nullptr).code(), StatusCode::kInvalidArgument);
   std::vector<float> p(81), light(9, 0.5f), f(9, 0.5f), out(9);
+  EXPECT_EQ(ShTripleProduct::make(3, 2, &t).code(), StatusCode::kInvalidArgument);  // below the order
+  EXPECT_EQ(ShTripleProduct::make(3, 6, &t).code(), StatusCode::kInvalidArgument);  // above 2n-1
+  EXPECT_EQ(ShTripleProduct::make(8, 16, &t).code(), StatusCode::kInvalidArgument);
+  ASSERT_TRUE(ShTripleProduct::make(2, 3, &t).isOk());
+  std::vector<float> wide(9, 0.25f), narrow(4, 0.25f), small(4);
+  EXPECT_TRUE(t.multiply(narrow, wide, small).isOk());
+  EXPECT_EQ(t.multiply(narrow, narrow, small).code(), StatusCode::kSizeMismatch);  // b needs 3^2
+  EXPECT_EQ(t.productMatrix(2, narrow, std::span<float>(p.data(), 35)).code(), StatusCode::kSizeMismatch);
+  EXPECT_TRUE(t.productMatrix(2, narrow, std::span<float>(p.data(), 36)).isOk());
+  t = ShTripleProduct();
   EXPECT_EQ(t.productMatrix(1, light, p).code(), StatusCode::kInvalidArgument);  // not made
   EXPECT_EQ(t.multiply(f, f, out).code(), StatusCode::kInvalidArgument);
   ASSERT_TRUE(ShTripleProduct::make(3, &t).isOk());
