@@ -70,7 +70,8 @@ double realGaunt(int l1, int m1, int l2, int m2, int l3, int m3) {
 }
 
 // Below this a computed coefficient is a rounding residue of an exact zero: true non-zeros
-// for l <= 7 are above 4e-3 in magnitude, exact zeros come out below 1e-15.
+// (l <= 7 for two indices, <= 14 for the third) are above 6e-5 in magnitude, exact zeros come
+// out below 1e-15.
 constexpr double kZero = 1e-12;
 
 // Every non-zero any (order, transferOrder) view needs: i <= j <= k with j < 8^2 and k < 15^2,

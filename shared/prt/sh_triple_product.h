@@ -31,7 +31,7 @@ struct ShTripleEntry {
 
 // The tensor restricted to i, j < order^2 (output and lighting) and k < transferOrder^2
 // (the function the lighting multiplies, e.g. a texel's visibility). Values come from a
-// process-wide table built on first use (a few ms, thread-safe initialisation); each object
+// process-wide table built on first use (tens of ms, thread-safe initialisation); each object
 // owns a copy of its part (kilobytes), so it is self-contained and cheap to keep.
 class ShTripleProduct {
  public:
