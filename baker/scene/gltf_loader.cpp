@@ -234,6 +234,7 @@ class SceneBuilder {
   Status addMesh(int meshIndex, const glm::dmat4& world);
   Status addPrimitive(int meshIndex, int primitiveIndex, const glm::dmat4& world);
   Status baseColorFor(int materialIndex, BaseColor* out);
+  void addTexcoords(const tinygltf::Primitive& prim, const std::string& label, std::size_t vertexCount);
   void readMetallicRoughness(const tinygltf::Material& material, const std::string& label, PbrVertex* out);
   const LinearTexture* textureFor(int textureIndex, const std::string& user, BaseColor* out);
   std::string meshLabel(int meshIndex) const;
@@ -249,6 +250,10 @@ class SceneBuilder {
   std::vector<PbrVertex> pbr_;
   std::vector<std::uint8_t> needsNormal_;
   std::vector<std::uint32_t> indices_;
+  // TEXCOORD_0/1 of every vertex so far; a set is dropped (cleared, with the reason) at the
+  // first triangle primitive that lacks it or stores it in a type glTF does not allow.
+  std::vector<Uv> texcoord_[2];
+  std::string texcoordAbsent_[2];
 
   Counters counters_;
   std::set<std::string> notes_;            // one-off warnings (textures, materials), deduplicated
@@ -462,6 +467,61 @@ Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
   return Status::ok();
 }
 
+// glTF 2.0 §3.7.2.1 allows TEXCOORD_n as float or normalised unsigned byte/short;
+// KHR_mesh_quantization adds normalised signed and unnormalised integer types.
+std::string texcoordTypeProblem(const tinygltf::Model& model, const tinygltf::Accessor& acc) {
+  if (acc.type != TINYGLTF_TYPE_VEC2) return "not VEC2";
+  if (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return "";
+  const bool unsignedSmall = acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                             acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const bool signedSmall =
+      acc.componentType == TINYGLTF_COMPONENT_TYPE_BYTE || acc.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
+  if (unsignedSmall && acc.normalized) return "";
+  const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                   "KHR_mesh_quantization") != model.extensionsUsed.end();
+  if (quantized && (unsignedSmall || signedSmall)) return "";
+  return "component type " + std::to_string(acc.componentType) + (acc.normalized ? " normalized" : "") +
+         ", which glTF does not allow for TEXCOORD" + (quantized ? "" : " without KHR_mesh_quantization");
+}
+
+// Appends the primitive's TEXCOORD_0/1 (vertexCount each) to the sets still intact. A set
+// that is missing, mistyped or unreadable here is dropped with the reason rather than failing
+// the load: only the atlas choice reads it, and that falls back to another set.
+void SceneBuilder::addTexcoords(const tinygltf::Primitive& prim, const std::string& label, std::size_t vertexCount) {
+  for (int set = 0; set < 2; ++set) {
+    if (!texcoordAbsent_[set].empty()) continue;
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    auto drop = [&](const std::string& why) {
+      texcoordAbsent_[set] = label + ": " + why;
+      texcoord_[set] = {};
+    };
+    const auto it = prim.attributes.find(name);
+    if (it == prim.attributes.end()) {
+      drop("no " + name);
+      continue;
+    }
+    if (it->second < 0 || static_cast<std::size_t>(it->second) >= model_.accessors.size()) {
+      drop(name + " accessor " + std::to_string(it->second) + " does not exist");
+      continue;
+    }
+    if (const std::string p = texcoordTypeProblem(model_, model_.accessors[static_cast<std::size_t>(it->second)]);
+        !p.empty()) {
+      drop(name + " accessor " + std::to_string(it->second) + " is " + p);
+      continue;
+    }
+    FloatElements uv;
+    if (Status s = readFloatAccessor(model_, it->second, vertexCount, &uv); !s.isOk()) {
+      drop(name + ": " + s.message());
+      continue;
+    }
+    if (uv.count != vertexCount) {
+      drop(name + " has " + std::to_string(uv.count) + " elements, POSITION " + std::to_string(vertexCount));
+      continue;
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v) texcoord_[set].push_back({uv.values[2 * v], uv.values[2 * v + 1]});
+  }
+}
+
 Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::dmat4& world) {
   const tinygltf::Primitive& prim =
       model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
@@ -544,6 +604,7 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
     }
   }
   if (!prim.targets.empty()) ++counters_.morphedPrimitives;
+  addTexcoords(prim, label, n);
 
   // Vertex order of the primitive's triangles, in glTF's front-face (CCW) convention.
   std::vector<std::uint32_t> order;
@@ -709,6 +770,10 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   scene.albedo = std::move(albedo_);
   scene.pbr = std::move(pbr_);
   scene.indices = std::move(indices_);
+  for (int set = 0; set < 2; ++set) {
+    scene.texcoordAbsent[set] = std::move(texcoordAbsent_[set]);
+    if (scene.texcoordAbsent[set].empty()) scene.texcoord[set] = std::move(texcoord_[set]);
+  }
   scene.name = sceneName_.empty() ? fallbackName : sceneName_;
   const std::size_t removed = removeUnreferencedVertices(&scene);
   if (removed) warn("removed " + plural(removed, "vertex", "vertices") + " that no remaining triangle uses");

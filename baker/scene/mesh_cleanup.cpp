@@ -69,6 +69,9 @@ std::size_t removeUnreferencedVertices(Scene* scene) {
     scene->albedo[next] = scene->albedo[v];
     if (scene->pbr.size() == n) scene->pbr[next] = scene->pbr[v];
     if (scene->specular.size() == n) scene->specular[next] = scene->specular[v];
+    for (std::vector<Uv>& uv : scene->texcoord) {
+      if (uv.size() == n) uv[next] = uv[v];
+    }
     ++next;
   }
   scene->positions.resize(next);
@@ -76,6 +79,9 @@ std::size_t removeUnreferencedVertices(Scene* scene) {
   scene->albedo.resize(next);
   if (scene->pbr.size() == n) scene->pbr.resize(next);
   if (scene->specular.size() == n) scene->specular.resize(next);
+  for (std::vector<Uv>& uv : scene->texcoord) {
+    if (uv.size() == n) uv.resize(next);
+  }
   for (std::uint32_t& v : scene->indices) {
     if (v < n) v = remap[v];
   }

@@ -34,6 +34,9 @@ void optimizeMeshOrder(Scene* scene) {
   remapArray(&scene->albedo, remap, used);
   if (scene->pbr.size() == vertexCount) remapArray(&scene->pbr, remap, used);
   if (scene->specular.size() == vertexCount) remapArray(&scene->specular, remap, used);
+  for (std::vector<Uv>& uv : scene->texcoord) {
+    if (uv.size() == vertexCount) remapArray(&uv, remap, used);
+  }
 }
 
 }  // namespace prt::bake

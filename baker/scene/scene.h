@@ -25,6 +25,11 @@ struct PbrVertex {
   float dielectricF90 = 1.0f;
 };
 
+// A texture coordinate as glTF stores it: u to the right, v down from the image's top.
+struct Uv {
+  float u = 0, v = 0;
+};
+
 struct Scene {
   std::vector<Vec3> positions;       // world space, metres (glTF units), +y up
   std::vector<Vec3> normals;         // unit length, one per position
@@ -36,6 +41,12 @@ struct Scene {
   // The glossy part (docs/glossy.md), one per position, filled by applyGlossyMaterials (or
   // by hand in tests); empty: no glossy part (f0 = 0).
   std::vector<SpecularMaterial> specular;
+  // TEXCOORD_0 and TEXCOORD_1 as the file stores them (no KHR_texture_transform: an atlas is
+  // the raw attribute), one per position, or empty when some triangle primitive lacks the
+  // set or stores it in a type glTF does not allow; texcoordAbsent[k] then says why (empty
+  // when the set is present). Candidates for the transfer-texture atlas (uv_atlas_choice.h).
+  std::vector<Uv> texcoord[2];
+  std::string texcoordAbsent[2];
   std::vector<std::uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
   std::string name;                  // for catalogues and logs
 };

@@ -9,6 +9,8 @@ add_executable(prt_scene_tests
   ${CMAKE_CURRENT_LIST_DIR}/mesh_geometry_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/default_scene_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/glossy_materials_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/uv_atlas_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/uv_texcoord_load_test.cpp
 )
 target_link_libraries(prt_scene_tests PRIVATE prt_scene prt_stb GTest::gtest_main)
 target_compile_options(prt_scene_tests PRIVATE ${PRT_STRICT_WARNINGS})
