@@ -454,7 +454,8 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     return Status::error(StatusCode::kInvalidArgument,
                          "matrix CPCA cannot reach the target relative error " + std::to_string(target) + " with " +
                              std::to_string(bits) + "-bit weights and at most " + std::to_string(kMaxVectors) +
-                             " basis matrices per cluster; use 16-bit weights, more clusters or a larger target");
+                             " basis matrices per cluster; use " + (bits < 16 ? "16-bit weights, " : "") +
+                             "more clusters (the limit was " + std::to_string(maxClusters) + ") or a larger target");
   }
 
   BlobHeader header;
