@@ -19,7 +19,7 @@ namespace prt {
 
 inline constexpr int kMaxTripleProductOrder = 8;
 // A product of two order-8 functions has 2*8-1 = 15 bands; a transfer of that order makes the
-// product matrix exact (docs/triple-product.md, "Which order for the transfer").
+// product matrix exact (docs/triple-product.md, "Orders, truncation and the transfer order").
 inline constexpr int kMaxTripleTransferOrder = 2 * kMaxTripleProductOrder - 1;
 
 // One non-zero coefficient. Indices are flat SH indices l(l+1)+m. Value in units of
@@ -32,7 +32,7 @@ struct ShTripleEntry {
 // The tensor restricted to i, j < order^2 (output and lighting) and k < transferOrder^2
 // (the function the lighting multiplies, e.g. a texel's visibility). Values come from a
 // process-wide table built on first use (tens of ms, thread-safe initialisation); each object
-// owns a copy of its part (kilobytes), so it is self-contained and cheap to keep.
+// owns a copy of its part (at most 128 KiB), so it is self-contained.
 class ShTripleProduct {
  public:
   // 1 <= order <= kMaxTripleProductOrder and order <= transferOrder <= 2*order-1; otherwise
