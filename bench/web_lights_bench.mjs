@@ -65,20 +65,44 @@ const median = (xs) => {
 // Samples of about SAMPLE_MS each (batches of updates when one update is shorter, as the
 // page's timer has 100 us resolution), SAMPLES of them after a warm-up: the median.
 const SAMPLES = 31, SAMPLE_MS = 5, ROUNDS = 3;
-async function timeOurs(page) {
-  const first = median(await page.evaluate(() => window.prtApp.timeLightUpdates(5, 4)));
-  const batch = Math.max(1, Math.min(200, Math.round(SAMPLE_MS / Math.max(first, 0.01))));
-  const samples = await page.evaluate(([n, b]) => window.prtApp.timeLightUpdates(n, b), [SAMPLES, batch]);
+async function timeOurs(page, onlyLight = -1) {
+  const first = median(await page.evaluate((k) => window.prtApp.timeLightUpdates(5, 4, k), onlyLight));
+  const batch = Math.max(1, Math.min(2000, Math.round(SAMPLE_MS / Math.max(first, 0.0025))));
+  const samples = await page.evaluate(([n, b, k]) => window.prtApp.timeLightUpdates(n, b, k), [SAMPLES, batch, onlyLight]);
   return { median_ms: median(samples), min_ms: Math.min(...samples), samples: samples.length, batch };
 }
 
 const results = [];
 const threeRows = [];
+const analyticRows = [];
+const COUNTS = [1, 4, 16, 64, 256];
+// Analytic path against the GPU cube path at 64^2 for N seeded random sphere/disc/rect
+// lights (prtApp.randomLights): every light re-projected, and one light moved (the cached
+// others summed), as a drag does.
+async function timeAnalytic(page, order) {
+  for (const n of COUNTS) {
+    const lights = await page.evaluate((k) => window.prtApp.randomLights(k, 11), n);
+    await page.evaluate((l) => window.prtApp.set({ environment: null, lights: l, projection: 'analytic', cubeSize: 64 }), lights);
+    const row = { order, lights: n };
+    for (let round = 0; round < ROUNDS; round++) {
+      await page.evaluate(() => window.prtApp.set({ projection: 'analytic' }));
+      const all = await timeOurs(page, -1), one = await timeOurs(page, 0);
+      await page.evaluate(() => window.prtApp.set({ projection: 'gpu' }));
+      const cube = await timeOurs(page, -1);
+      if (!row.all || all.median_ms < row.all.median_ms) row.all = all;
+      if (!row.one || one.median_ms < row.one.median_ms) row.one = one;
+      if (!row.cube || cube.median_ms < row.cube.median_ms) row.cube = cube;
+    }
+    analyticRows.push(row);
+    console.log(`analytic order ${order}, ${n} lights: all ${row.all.median_ms.toFixed(4)} ms, one moved ${row.one.median_ms.toFixed(4)} ms; ` +
+      `GPU cube 64^2 ${row.cube.median_ms.toFixed(3)} ms`);
+  }
+}
 let info = null, crossCheck = null;
 const browserVersion = browser.version();
 try {
   const scenes = (await (await fetch(`${base}/api/scenes`)).json()).scenes;
-  for (const order of [3, 5]) {
+  for (const order of [3, 5, 8]) {
     const entry = scenes.find((s) => s.file === `lights${order}.prt`);
     if (!entry) throw new Error(`lights${order}.prt missing under ${root}`);
     // The three.js side needs its inline import map, which the server's CSP forbids.
@@ -108,6 +132,11 @@ try {
     // Our projection order is the baked order; check it is the one this row claims.
     const projected = await page.evaluate(() => window.prtApp.cubeSH().length);
     if (projected !== order * order) throw new Error(`lights${order}.prt projects ${projected} coefficients, expected ${order * order}`);
+    if (order === 8) {
+      await timeAnalytic(page, order);
+      await page.close();
+      continue;
+    }
     // Interleaved rounds, best round per setting: other work on the machine only slows a round.
     const best = new Map();
     const keep = (key, value) => { if (!best.has(key) || value.median_ms < best.get(key).median_ms) best.set(key, value); };
@@ -146,6 +175,8 @@ try {
       console.log(`three.js ${size}^2: LightProbeGenerator as shipped ${shipped.median_ms.toFixed(1)} ms, with sync readback ${sync.median_ms.toFixed(2)} ms; ` +
         `cube render + sync readback alone ${floor.median_ms.toFixed(2)} ms`);
     }
+    await timeAnalytic(page, order);
+    await page.evaluate((l) => window.prtApp.set({ lights: l }), lights);
     if (order === 5) {
       // Same emitters? Compare three's order-3 SH with ours (CPU path, 64^2, first 9 coefficients).
       await page.evaluate(([l, centre]) => window.threeBench.setup(l, centre, 64), [lights, c]);
@@ -184,6 +215,16 @@ const result = {
     'as shipped (7 samples) and with readRenderTargetPixelsAsync swapped for the synchronous readRenderTargetPixels',
   emitters: 'sphere, disc, rect, torus mesh (4 lights)', headline, ours: results, three: threeRows,
   three_vs_ours_order3_sh_relative_l2_at_64: crossCheck,
+  analytic: analyticRows,
+};
+const a5 = (n) => analyticRows.find((r) => r.order === 5 && r.lights === n);
+result.analytic_headline = {
+  one_light_order5_ms: a5(1).all.median_ms,
+  cube_one_light_order5_64_ms: a5(1).cube.median_ms,
+  one_light_speedup_vs_cube: a5(1).cube.median_ms / a5(1).all.median_ms,
+  lights256_all_order5_ms: a5(256).all.median_ms,
+  lights256_one_moved_order5_ms: a5(256).one.median_ms,
+  speedup_vs_three_order3_sync: three64.sync_readback_median_ms / a5(1).all.median_ms,
 };
 fs.writeFileSync(outJson, JSON.stringify(result, null, 2) + '\n');
 
@@ -237,5 +278,19 @@ if (headline.speedup_gpu < 10 && headline.speedup_cpu < 10) {
 }
 md += `Same emitters on both sides: three.js\'s order-3 SH and the first 9 of our coefficients (CPU path, 64²) differ by ${(100 * crossCheck).toFixed(2)}% ` +
   '(relative L2; three.js tessellates the sphere and disc and weighs texels by the differential solid angle, we ray-cast the sphere and use exact texel solid angles).\n';
+const ah = result.analytic_headline;
+md += `\n## Analytic lights (docs/analytic-lights.md)\n\n`;
+md += 'The same page, N seeded random sphere/disc/rect lights (`prtApp.randomLights(N, 11)`) about the light centre. *All*: every light ' +
+  're-projected, the cache summed, the lighting block rebuilt (`projectLightsNow(-1)`); *one moved*: light 0 alone re-projected and the cached ' +
+  'others summed (`projectLightsNow(0)`), what a drag does. One `lightSH()` read-back per sample, no finish. *GPU cube*: the same lights through ' +
+  'the light cube at 64² per face, timed as above.\n\n';
+md += `**One light at order 5: ${f(ah.one_light_order5_ms)} ms analytic vs ${f(ah.cube_one_light_order5_64_ms)} ms through the cube: ` +
+  `${ah.one_light_speedup_vs_cube.toFixed(0)}x (target ≥ 50x). 256 lights at order 5: ${f(ah.lights256_all_order5_ms)} ms all re-projected, ` +
+  `${f(ah.lights256_one_moved_order5_ms)} ms one moved (target: under one cube update, ${f(ah.cube_one_light_order5_64_ms)} ms). ` +
+  `Against three.js order 3 (${f(three64.sync_readback_median_ms)} ms, sync read-back): ${ah.speedup_vs_three_order3_sync.toFixed(0)}x (target ≥ 10x).**\n\n`;
+md += '| order | lights | analytic, all (ms) | analytic, one moved (ms) | GPU cube 64² (ms) | cube / analytic all |\n|---:|---:|---:|---:|---:|---:|\n';
+for (const r of analyticRows) {
+  md += `| ${r.order} | ${r.lights} | ${r.all.median_ms.toFixed(4)} | ${r.one.median_ms.toFixed(4)} | ${f(r.cube.median_ms)} | ${(r.cube.median_ms / r.all.median_ms).toFixed(0)}x |\n`;
+}
 fs.writeFileSync(outMd, md);
 console.log(`\n${md}`);
