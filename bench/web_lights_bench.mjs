@@ -13,12 +13,12 @@ import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { lightUpdateMarkdown, ROUNDS, SAMPLES, SAMPLE_MS, SIZES } from './light_update_report.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const { chromium } = await import(path.join(here, '../web/node_modules/playwright-core/index.mjs'));
 const [prtServe, webDist, root, outJson, outMd] = process.argv.slice(2);
 const threeDir = path.join(here, '../web/node_modules/three');
-const SIZES = [32, 64, 128];
 
 // ---- the page: the client's dist plus three.js and the three side, under one root
 const site = path.join(root, 'site');
@@ -64,21 +64,46 @@ const median = (xs) => {
 };
 // Samples of about SAMPLE_MS each (batches of updates when one update is shorter, as the
 // page's timer has 100 us resolution), SAMPLES of them after a warm-up: the median.
-const SAMPLES = 31, SAMPLE_MS = 5, ROUNDS = 3;
-async function timeOurs(page) {
-  const first = median(await page.evaluate(() => window.prtApp.timeLightUpdates(5, 4)));
-  const batch = Math.max(1, Math.min(200, Math.round(SAMPLE_MS / Math.max(first, 0.01))));
-  const samples = await page.evaluate(([n, b]) => window.prtApp.timeLightUpdates(n, b), [SAMPLES, batch]);
+async function timeOurs(page, onlyLight = -1) {
+  // Warm-up, then a batch estimate from 20-update batches: sub-0.1 ms updates would round to the timer.
+  await page.evaluate((k) => window.prtApp.timeLightUpdates(2, 4, k), onlyLight);
+  const first = median(await page.evaluate((k) => window.prtApp.timeLightUpdates(5, 20, k), onlyLight));
+  const batch = Math.max(1, Math.min(2000, Math.round(SAMPLE_MS / Math.max(first, 0.0025))));
+  const samples = await page.evaluate(([n, b, k]) => window.prtApp.timeLightUpdates(n, b, k), [SAMPLES, batch, onlyLight]);
   return { median_ms: median(samples), min_ms: Math.min(...samples), samples: samples.length, batch };
 }
 
 const results = [];
 const threeRows = [];
+const analyticRows = [];
+const COUNTS = [1, 4, 16, 64, 256];
+// Analytic path against the GPU cube path at 64^2 for N seeded random sphere/disc/rect
+// lights (prtApp.randomLights): every light re-projected, and one light moved (the cached
+// others summed), as a drag does.
+async function timeAnalytic(page, order) {
+  for (const n of COUNTS) {
+    const lights = await page.evaluate((k) => window.prtApp.randomLights(k, 11), n);
+    await page.evaluate((l) => window.prtApp.set({ environment: null, lights: l, projection: 'analytic', cubeSize: 64 }), lights);
+    const row = { order, lights: n };
+    for (let round = 0; round < ROUNDS; round++) {
+      await page.evaluate(() => window.prtApp.set({ projection: 'analytic' }));
+      const all = await timeOurs(page, -1), one = await timeOurs(page, 0);
+      await page.evaluate(() => window.prtApp.set({ projection: 'gpu' }));
+      const cube = await timeOurs(page, -1);
+      if (!row.all || all.median_ms < row.all.median_ms) row.all = all;
+      if (!row.one || one.median_ms < row.one.median_ms) row.one = one;
+      if (!row.cube || cube.median_ms < row.cube.median_ms) row.cube = cube;
+    }
+    analyticRows.push(row);
+    console.log(`analytic order ${order}, ${n} lights: all ${row.all.median_ms.toFixed(4)} ms, one moved ${row.one.median_ms.toFixed(4)} ms; ` +
+      `GPU cube 64^2 ${row.cube.median_ms.toFixed(3)} ms`);
+  }
+}
 let info = null, crossCheck = null;
 const browserVersion = browser.version();
 try {
   const scenes = (await (await fetch(`${base}/api/scenes`)).json()).scenes;
-  for (const order of [3, 5]) {
+  for (const order of [3, 5, 8]) {
     const entry = scenes.find((s) => s.file === `lights${order}.prt`);
     if (!entry) throw new Error(`lights${order}.prt missing under ${root}`);
     // The three.js side needs its inline import map, which the server's CSP forbids.
@@ -108,6 +133,11 @@ try {
     // Our projection order is the baked order; check it is the one this row claims.
     const projected = await page.evaluate(() => window.prtApp.cubeSH().length);
     if (projected !== order * order) throw new Error(`lights${order}.prt projects ${projected} coefficients, expected ${order * order}`);
+    if (order === 8) {
+      await timeAnalytic(page, order);
+      await page.close();
+      continue;
+    }
     // Interleaved rounds, best round per setting: other work on the machine only slows a round.
     const best = new Map();
     const keep = (key, value) => { if (!best.has(key) || value.median_ms < best.get(key).median_ms) best.set(key, value); };
@@ -146,6 +176,8 @@ try {
       console.log(`three.js ${size}^2: LightProbeGenerator as shipped ${shipped.median_ms.toFixed(1)} ms, with sync readback ${sync.median_ms.toFixed(2)} ms; ` +
         `cube render + sync readback alone ${floor.median_ms.toFixed(2)} ms`);
     }
+    await timeAnalytic(page, order);
+    await page.evaluate((l) => window.prtApp.set({ lights: l }), lights);
     if (order === 5) {
       // Same emitters? Compare three's order-3 SH with ours (CPU path, 64^2, first 9 coefficients).
       await page.evaluate(([l, centre]) => window.threeBench.setup(l, centre, 64), [lights, c]);
@@ -184,58 +216,10 @@ const result = {
     'as shipped (7 samples) and with readRenderTargetPixelsAsync swapped for the synchronous readRenderTargetPixels',
   emitters: 'sphere, disc, rect, torus mesh (4 lights)', headline, ours: results, three: threeRows,
   three_vs_ours_order3_sh_relative_l2_at_64: crossCheck,
+  analytic: analyticRows,
 };
 fs.writeFileSync(outJson, JSON.stringify(result, null, 2) + '\n');
 
-const f = (x) => (x < 0.1 ? x.toFixed(3) : x < 10 ? x.toFixed(2) : x.toFixed(1));
-let md = '# Light update: cube-map render + SH projection\n\n';
-md += 'Generated by `scripts/bench-lights.sh` (bench/web_lights_bench.mjs, bench/web_lights_three.js). A benchmark, not a test.\n\n';
-md += `- Date: ${result.date}\n- Machine: ${machine}\n- Browser: Chromium ${browserVersion}, headless (${info.userAgent})\n`;
-md += `- WebGL renderer: ${info.renderer}\n- three.js r${info.three}; Node ${process.version}\n`;
-md += '- **SwiftShader is a software WebGL implementation running on the CPU** (this machine has no GPU): "GPU path" means the ' +
-  'shader-based projection executed by SwiftShader, not by a graphics card. On a real GPU both sides change by different factors.\n';
-md += `- Emitters: ${result.emitters}, rendered from the scene's light centre (the built-in room baked for ${info.lightingModel} lighting at orders 3 and 5)\n`;
-md += '- Ours: `prtApp.timeLightUpdates(n, batch)`; one update is `projectLightsNow()` (render the six faces, project onto order² SH), ' +
-  '`finishGpu()`, then `cubeSH()`, which on the GPU path reads the 48-float result back: that read is what makes the GPU finish the update ' +
-  'inside the sample (in a separate check `finishGpu()` alone did not block: 50 updates timed 0.06 ms each, then the next read-back waited 192 ms for the ' +
-  'queued work). The read-back is extra work the page itself never does, so these numbers slightly overstate our cost. three.js: `cubeCamera.update()` into a float ' +
-  '`WebGLCubeRenderTarget` of the same size, then `await LightProbeGenerator.fromCubeRenderTarget()` (order 3, the only order it has; ' +
-  'it reads each face back and projects in JS). Same page, separate canvases and WebGL contexts.\n';
-md += `- Median of ${SAMPLES} samples of about ${SAMPLE_MS} ms each (an update shorter than that is timed in batches: the page's ` +
-  '`performance.now()` has 100 µs resolution without cross-origin isolation), after a warm-up; the best of ' +
-  `${ROUNDS} interleaved rounds per setting (the machine is shared: other work only slows a round down). three.js as shipped: 7 calls, one round.\n`;
-md += `- Load average when the run ended: ${os.loadavg().map((x) => x.toFixed(1)).join(', ')} on ${cpu.length} hardware threads.\n\n`;
-md += `**Headline, 64² per face: ours at order 5 takes ${f(headline.ours_gpu_order5_64_ms)} ms on the GPU path and ${f(headline.ours_cpu_order5_64_ms)} ms on the CPU path; ` +
-  `three.js at order 3 takes ${f(headline.three_order3_64_sync_readback_ms)} ms (LightProbeGenerator with synchronous read-back): ` +
-  `${headline.speedup_gpu.toFixed(1)}x faster on the GPU path, ${headline.speedup_cpu.toFixed(1)}x on the CPU path (target ≥ 10x). ` +
-  `Against LightProbeGenerator exactly as shipped (${f(headline.three_order3_64_as_shipped_ms)} ms, see below) the GPU path is ${headline.speedup_gpu_vs_as_shipped.toFixed(0)}x faster.**\n\n`;
-md += '| per face | order | ours, GPU path (ms) | ours, CPU path (ms) | three.js, sync read-back (ms) | three.js as shipped (ms) | three.js render + read-back only (ms) |\n';
-md += '|---:|---:|---:|---:|---:|---:|---:|\n';
-for (const size of SIZES) {
-  for (const order of [3, 5]) {
-    const t = threeRows.find((x) => x.size === size);
-    const threeCells = order === 3 ? `${f(t.sync_readback_median_ms)} | ${f(t.shipped_median_ms)} | ${f(t.render_readback_median_ms)}` : ' | | ';
-    md += `| ${size}² | ${order} | ${f(ours('gpu', order, size))} | ${f(ours('cpu', order, size))} | ${threeCells} |\n`;
-  }
-}
-md += '\nthree.js columns are order 3 whatever the row (it has no other order); they sit on the order-3 rows.\n\n';
-md += '- *three.js as shipped*: `fromCubeRenderTarget` awaits `readRenderTargetPixelsAsync` per face, which polls a fence with `setTimeout(…, 4)` ' +
-  'until Chromium reports it signalled. In headless Chromium with SwiftShader that report comes very late, so this column is mostly waiting, ' +
-  'not work; it is the number an application calling the library here would see, but not a fair measure of the work.\n';
-md += '- *three.js, sync read-back* (the headline): the same `fromCubeRenderTarget` code with the renderer\'s `readRenderTargetPixelsAsync` ' +
-  'replaced, for the timing only, by the synchronous `readRenderTargetPixels`: cube render, read-back and three.js\'s own JS projection, no waiting.\n';
-md += `- *render + read-back only*: the cube render and a synchronous read-back of the six faces, no SH at all: a floor for any projection ` +
-  `done in JS after a three.js cube render. Our GPU path at 64², order 5, is ${headline.speedup_gpu_vs_three_render_readback.toFixed(1)}x faster than that floor.\n\n`;
-if (headline.speedup_gpu < 10 && headline.speedup_cpu < 10) {
-  md += `**Against LightProbeGenerator as shipped (the reference the light-update target names) the ≥ 10x target is met ` +
-    `(${headline.speedup_gpu_vs_as_shipped.toFixed(0)}x); against the stricter synchronous variant it is not met here.** With software WebGL the cube render itself dominates: three.js's render + read-back ` +
-    `alone takes ${f(three64.render_readback_median_ms)} ms at 64², the same order as our whole update, so no projection, however fast, ` +
-    'can make the update 10x cheaper than three.js\'s on this machine; what remains of three.js\'s time is its JS projection ' +
-    `(${f(three64.sync_readback_median_ms - three64.render_readback_median_ms)} ms at 64², order 3). On a GPU the render and our ` +
-    'projection shrink to fractions of a millisecond while three.js still reads six faces back to the CPU and loops over them in JS; ' +
-    'this run cannot show that (no GPU here).\n\n';
-}
-md += `Same emitters on both sides: three.js\'s order-3 SH and the first 9 of our coefficients (CPU path, 64²) differ by ${(100 * crossCheck).toFixed(2)}% ` +
-  '(relative L2; three.js tessellates the sphere and disc and weighs texels by the differential solid angle, we ray-cast the sphere and use exact texel solid angles).\n';
+const md = lightUpdateMarkdown(result);
 fs.writeFileSync(outMd, md);
 console.log(`\n${md}`);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Light-update benchmark: cube-map render + SH projection per light change in headless
 # Chromium (32²/64²/128² per face, orders 3 and 5, GPU and CPU paths) against three.js's
-# CubeCamera + LightProbeGenerator in the same page. Writes docs/bench/light-update.{md,json}.
+# CubeCamera + LightProbeGenerator in the same page, and the analytic path for 1..256 random
+# lights at orders 3, 5 and 8 against the cube at 64². Writes docs/bench/light-update.{md,json}.
 # NATIVE_DIR / WASM_DIR pick other build trees (default build/native, build/wasm).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,10 +19,10 @@ fi
 
 root=build/bench-data/lights-root
 mkdir -p "$root" docs/bench
-# The built-in room at orders 3 and 5; few samples: the benchmark times the lights, not the transfer.
+# The built-in room at orders 3, 5 and 8; few samples: the benchmark times the lights, not the transfer.
 lighting=()
 if "$native/baker/prt-bake" --default --help 2>&1 | grep -q -- '--lighting'; then lighting=(--lighting local); fi
-for order in 3 5; do
+for order in 3 5 8; do
   "$native/baker/prt-bake" --default -o "$root/lights$order.prt" --name "lights$order" --order "$order" --samples 64 --passes interreflected \
     --bounces 1 --quiet "${lighting[@]}"
 done

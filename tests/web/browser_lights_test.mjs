@@ -228,7 +228,8 @@ const cases = {
         console.log(`  ${light.shape}: analytic vs 8x8-supersampled 64^2 cube ${eSuper.toExponential(2)}; GPU cube 64^2 vs analytic ${eGpu.toExponential(2)}` +
           ` (texel-centre vs supersampled ${discretisation.toExponential(2)})`);
         // The supersampled cube is itself ~1e-3 from the exact SH (docs/web-client.md, "Accuracy").
-        check(eSuper < 5e-3, `${light.shape}: analytic SH is ${eSuper.toExponential(3)} from the 8x8-supersampled cube (relative L2), allowed 5e-3`);
+        // Measured: sphere 1.6e-4, disc 2.2e-4, rect 8.8e-4 (its edges lie across texel rows).
+        check(eSuper < 2e-3, `${light.shape}: analytic SH is ${eSuper.toExponential(3)} from the 8x8-supersampled cube (relative L2), allowed 2e-3`);
         const tolerance = 2 * discretisation + 0.015;
         check(eGpu <= tolerance, `${light.shape}: GPU cube is ${eGpu.toExponential(3)} from the analytic SH, allowed ${tolerance.toExponential(3)}`);
         if (light.shape !== 'sphere') {
