@@ -54,6 +54,17 @@ for (const r of codec.rows) {
 md += smallest
   ? `\nSmallest setting at >= 40 dB (worst case): **${smallest.setting}, ${f(smallest.zstd_bytes_per_vertex)} B/vertex after zstd** (${f(3 * 4 * bake.order ** 4 / smallest.zstd_bytes_per_vertex, 0)}x below float32).\n\n`
   : `\nNo setting reached 40 dB in the worst case.\n\n`;
+// Where a CPCA blob's bytes go, from its header counts (docs/transfer-codec.md, "CPCA over
+// whole matrices"): float32 means K*D, binary16 basis K*N'*D, weights V*N' at 1 or 2 bytes.
+const split = (r) => {
+  const D = codec.channels * codec.order ** 4, K = r.clusters, N = r.vectors_per_band[0] ?? 0, V = codec.vertices;
+  const weightBytes = r.setting.startsWith('cpca16') ? 2 : 1;
+  const parts = { means: 4 * K * D, basis: 2 * K * N * D, weights: weightBytes * N * V };
+  const pct = (x) => f((100 * x) / r.bytes, 0);
+  return `${r.setting}: of its ${f(r.bytes_per_vertex, 1)} raw B/vertex, the basis matrices are ${pct(parts.basis)}% (${K} clusters x ${N} x ${D} binary16), the means ${pct(parts.means)}%, the per-vertex weights ${pct(parts.weights)}%`;
+};
+const cpcaRows = codec.rows.filter((r) => !r.error && r.setting.startsWith('cpca'));
+if (cpcaRows.length) md += `Where the bytes go: ${cpcaRows.map(split).join('; ')}.\n\n`;
 
 if (frame) {
   md += `## Frame time at ${frame.viewport} (target: diffuse + glossy <= 2x diffuse PRT)\n\n`;
@@ -64,5 +75,19 @@ if (frame) {
 } else {
   md += `## Frame time\n\nNot measured in this run (no ${framePath}).\n\n`;
 }
+// The issue's targets, read off the numbers above.
+const yes = (ok) => (ok ? 'met' : '**missed**');
+md += `## Targets\n\n`;
+md += `- Bake under 5 min: ${yes(bake.total_seconds < 300)} (${f(bake.total_seconds, 0)} s); under 4 GB: ${yes(bake.peak_memory_mib < 4096)} (${f(bake.peak_memory_mib, 0)} MiB).\n`;
+md += `- At most 64 B/vertex after zstd at >= 40 dB worst-case PSNR: ${yes(smallest && smallest.zstd_bytes_per_vertex <= 64)}`;
+md += smallest ? ` (${f(smallest.zstd_bytes_per_vertex)} B/vertex, ${smallest.setting}).\n` : ` (no setting reached 40 dB).\n`;
+if (frame) {
+  const row = (name) => frame.rows.find((r) => r.setting === name);
+  for (const name of ['diffuse + glossy, camera moving', 'diffuse + glossy, lights moving']) {
+    const r = row(name);
+    if (r) md += `- ${name} at most 2x diffuse PRT: ${yes(r.over_diffuse_prt <= 2)} (${f(r.over_diffuse_prt)}x).\n`;
+  }
+}
+md += `\n`;
 fs.writeFileSync(outMd, md);
 fs.writeFileSync(outJson, JSON.stringify({ date, machine, bake_command: bakeCommand, bake, rank_update: rank, codec, frame }, null, 2) + '\n');
