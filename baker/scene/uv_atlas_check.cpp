@@ -24,11 +24,13 @@ using Tri2 = std::array<P2, 3>;
 // too thin to matter for any texel.
 constexpr double kOverlapEpsilon = 1e-7;
 
-// Separating-axis test on two convex polygons: true when their interiors intersect by more
-// than `eps` along every edge normal of either polygon. Polygons that only share an edge or a
+// Separating-axis test on two convex polygons: how deep their interiors intersect (the
+// smallest overlap of their projections on any edge normal of either, in their units), or 0
+// when some axis separates them by more than -eps. Polygons that only share an edge or a
 // vertex are separated by that edge's normal, so they do not count.
 template <std::size_t N, std::size_t M>
-bool interiorsOverlap(const std::array<P2, N>& a, const std::array<P2, M>& b, double eps) {
+double overlapDepth(const std::array<P2, N>& a, const std::array<P2, M>& b, double eps) {
+  double depth = INFINITY;
   auto separatedBy = [&](P2 p, P2 q) {
     const double nx = q.y - p.y, ny = p.x - q.x;
     const double len = std::hypot(nx, ny);
@@ -45,13 +47,14 @@ bool interiorsOverlap(const std::array<P2, N>& a, const std::array<P2, M>& b, do
       maxB = std::max(maxB, d);
     }
     const double margin = eps * len;
+    depth = std::min(depth, (std::min(maxA, maxB) - std::max(minA, minB)) / len);
     return maxA <= minB + margin || maxB <= minA + margin;
   };
   for (std::size_t i = 0; i < N; ++i)
-    if (separatedBy(a[i], a[(i + 1) % N])) return false;
+    if (separatedBy(a[i], a[(i + 1) % N])) return 0.0;
   for (std::size_t i = 0; i < M; ++i)
-    if (separatedBy(b[i], b[(i + 1) % M])) return false;
-  return true;
+    if (separatedBy(b[i], b[(i + 1) % M])) return 0.0;
+  return depth;
 }
 
 double twiceArea(P2 a, P2 b, P2 c) { return std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)); }
@@ -250,7 +253,10 @@ void Checker::findOverlaps() {
           const std::uint32_t b = entries[j];
           // Each pair is tested once, in the first cell both boxes cover.
           if (std::max(boxes[a].x0, boxes[b].x0) != cx || std::max(boxes[a].y0, boxes[b].y0) != cy) continue;
-          if (!interiorsOverlap(pa, tri(b), kOverlapEpsilon)) continue;
+          const double depth = overlapDepth(pa, tri(b), kOverlapEpsilon);
+          if (depth <= 0.0) continue;
+          r_.deepestOverlapTexels =
+              std::max(r_.deepestOverlapTexels, depth * std::max(target_.width, target_.height));
           if (r_.overlappingPairs++ < 3)
             note("triangles " + std::to_string(std::min(a, b)) + " and " + std::to_string(std::max(a, b)) +
                  " overlap in UV space");
@@ -283,7 +289,7 @@ void Checker::rasterise() {
         const std::array<P2, 4> texel{P2{double(x), double(y)}, P2{x + 1.0, double(y)}, P2{x + 1.0, y + 1.0},
                                       P2{double(x), y + 1.0}};
         // Conservative: any texel the triangle's interior reaches gets a sample.
-        if (!interiorsOverlap(p, texel, 1e-9)) continue;
+        if (overlapDepth(p, texel, 1e-9) <= 0.0) continue;
         std::int32_t& o = owner_[static_cast<std::size_t>(y) * w + x];
         if (o == -1) {
           o = c;
@@ -361,9 +367,12 @@ std::string UvAtlasReport::summary() const {
   add(nonFinite, "triangles with non-finite UVs");
   add(outOfRange, "triangles outside [0, 1]");
   add(degenerate, "zero-area UV triangles");
-  if (overlappingPairs)
+  if (overlappingPairs) {
+    char deepest[64];
+    std::snprintf(deepest, sizeof deepest, " (deepest %.3g texels)", deepestOverlapTexels);
     s += (s.empty() ? "" : ", ") + std::string(overlapCountCapped ? "at least " : "") +
-         std::to_string(overlappingPairs) + " overlapping triangle pairs";
+         std::to_string(overlappingPairs) + " overlapping triangle pairs" + deepest;
+  }
   add(paddingConflicts, "texels without the required gutter");
   if (s.empty()) s = "valid";
   char use[96];

@@ -39,6 +39,9 @@ struct UvAtlasReport {
   std::size_t degenerate = 0;        // zero UV area where the 3D triangle has area
   std::size_t overlappingPairs = 0;  // pairs of triangles whose UV interiors intersect
   bool overlapCountCapped = false;   // overlappingPairs reached kMaxOverlapsCounted
+  // How far the worst pair interpenetrates (smallest projection overlap, in texels at the
+  // target): tells a sub-texel sliver fold from a stacked chart. 0 without overlaps.
+  double deepestOverlapTexels = 0.0;
   std::size_t paddingConflicts = 0;  // texels of one chart within `padding` texels of another chart's
   std::size_t charts = 0;            // connected components (triangles sharing an edge in 3D and in UV)
   std::size_t usedTexels = 0;        // texels some triangle touches (conservative rasterisation)

@@ -82,6 +82,8 @@ TEST(UvAtlasCheck, StackedAndMirroredChartsAreReported) {
     // stacked, plus a half-overlap with the other): at least 2 pairs.
     EXPECT_GE(r.overlappingPairs, 2u) << r.summary();
     EXPECT_EQ(r.charts, 2u) << "the copy shares UVs but not positions: a chart of its own";
+    // The rectangles are 25.6 texels wide: the worst pair overlaps by many texels.
+    EXPECT_GT(r.deepestOverlapTexels, 5.0) << r.summary();
   }
 }
 
