@@ -57,6 +57,9 @@ double overlapDepth(const std::array<P2, N>& a, const std::array<P2, M>& b, doub
   return depth;
 }
 
+// floor(x) clamped to [0, last], clamped before the conversion: a UV of 1e30 would overflow int.
+int toIndex(double x, int last) { return static_cast<int>(std::clamp(std::floor(x), 0.0, static_cast<double>(last))); }
+
 double twiceArea(P2 a, P2 b, P2 c) { return std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)); }
 
 double longestEdgeSquared(P2 a, P2 b, P2 c) {
@@ -195,11 +198,17 @@ void Checker::checkCorners() {
       if (r_.nonFinite++ == 0) note("triangle " + std::to_string(t) + " has a non-finite (NaN or infinite) UV");
       continue;
     }
-    if (!inRange && r_.outOfRange++ == 0) {
-      const Tri2 p = tri(t);
-      note("triangle " + std::to_string(t) + " has a UV outside [0, 1] (" + std::to_string(p[0].x) + ", " +
+    if (!inRange) {
+      // Reported and left out of the overlap scan and the rasterisation: a tiled set's
+      // triangles reach far beyond [0, 1], and clamped into the grid they would pile up in
+      // its border cells.
+      if (r_.outOfRange++ == 0) {
+        const Tri2 p = tri(t);
+        note("triangle " + std::to_string(t) + " has a UV outside [0, 1] (" + std::to_string(p[0].x) + ", " +
            std::to_string(p[0].y) + "), (" + std::to_string(p[1].x) + ", " + std::to_string(p[1].y) + "), (" +
            std::to_string(p[2].x) + ", " + std::to_string(p[2].y) + ")");
+      }
+      continue;
     }
     const Tri2 p = tri(t);
     const Vec3 a = positions_[indices_[3 * t]], b = positions_[indices_[3 * t + 1]], c = positions_[indices_[3 * t + 2]];
@@ -218,19 +227,31 @@ void Checker::findOverlaps() {
   const std::size_t n = r_.triangles;
   // Uniform grid over [0, 1]² with about one triangle per cell; out-of-range corners are
   // clamped into the border cells, which keeps them in the test.
-  const int g = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(n)), 1.0, 2048.0));
-  auto cellOf = [g](double x) { return std::clamp(static_cast<int>(std::floor(x * g)), 0, g - 1); };
+  // Large triangles enter many cells: the grid is coarsened until the entries stay within a
+  // budget, so that a layout of many full-square triangles cannot exhaust memory.
   struct Box {
     int x0, y0, x1, y1;
   };
   std::vector<Box> boxes(n);
+  int g = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(n)), 1.0, 2048.0));
+  const double entryBudget = 16.0 * static_cast<double>(n) + 1e6;
+  for (;;) {
+    auto cellOf = [g](double x) { return toIndex(x * g, g - 1); };
+    double entries = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      if (!usable_[t]) continue;
+      const Tri2 p = tri(t);
+      const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
+      const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
+      boxes[t] = {cellOf(minX), cellOf(minY), cellOf(maxX), cellOf(maxY)};
+      entries += (boxes[t].x1 - boxes[t].x0 + 1.0) * (boxes[t].y1 - boxes[t].y0 + 1.0);
+    }
+    if (entries <= entryBudget || g == 1) break;
+    g = std::max(1, g / 2);
+  }
   std::vector<std::size_t> start(static_cast<std::size_t>(g) * g + 1, 0);
   for (std::size_t t = 0; t < n; ++t) {
     if (!usable_[t]) continue;
-    const Tri2 p = tri(t);
-    const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
-    const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
-    boxes[t] = {cellOf(minX), cellOf(minY), cellOf(maxX), cellOf(maxY)};
     for (int y = boxes[t].y0; y <= boxes[t].y1; ++y)
       for (int x = boxes[t].x0; x <= boxes[t].x1; ++x) ++start[static_cast<std::size_t>(y) * g + x + 1];
   }
@@ -273,17 +294,27 @@ void Checker::findOverlaps() {
 void Checker::rasterise() {
   const int w = target_.width, h = target_.height;
   owner_.assign(static_cast<std::size_t>(w) * h, -1);
+  // A layout that covers the texture many times over (stacked charts) would cost that many
+  // texel tests; past the budget the rasterisation stops, with its statistics incomplete.
+  const double budget = 64.0 * w * h + 64.0 * static_cast<double>(r_.triangles);
+  double tests = 0;
   for (std::size_t t = 0; t < r_.triangles; ++t) {
     if (!usable_[t]) continue;
     Tri2 p = tri(t);
     for (P2& v : p) v = {v.x * w, v.y * h};  // texel units
     const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
     const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
-    const int x0 = std::clamp(static_cast<int>(std::floor(minX)), 0, w - 1);
-    const int x1 = std::clamp(static_cast<int>(std::ceil(maxX)) - 1, 0, w - 1);
-    const int y0 = std::clamp(static_cast<int>(std::floor(minY)), 0, h - 1);
-    const int y1 = std::clamp(static_cast<int>(std::ceil(maxY)) - 1, 0, h - 1);
+    const int x0 = toIndex(minX, w - 1);
+    const int x1 = toIndex(std::ceil(maxX) - 1.0, w - 1);
+    const int y0 = toIndex(minY, h - 1);
+    const int y1 = toIndex(std::ceil(maxY) - 1.0, h - 1);
     const auto c = static_cast<std::int32_t>(chart_[t]);
+    tests += (x1 - x0 + 1.0) * (y1 - y0 + 1.0);
+    if (tests > budget) {
+      r_.rasterIncomplete = true;
+      note("the layout covers the texture more than 64 times over; texel statistics are incomplete");
+      break;
+    }
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
         const std::array<P2, 4> texel{P2{double(x), double(y)}, P2{x + 1.0, double(y)}, P2{x + 1.0, y + 1.0},
@@ -374,6 +405,7 @@ std::string UvAtlasReport::summary() const {
          std::to_string(overlappingPairs) + " overlapping triangle pairs" + deepest;
   }
   add(paddingConflicts, "texels without the required gutter");
+  if (rasterIncomplete) s += (s.empty() ? "" : ", ") + std::string("texel statistics incomplete");
   if (s.empty()) s = "valid";
   char use[96];
   std::snprintf(use, sizeof use, "; %zu chart%s, %.1f%% of texels used", charts, charts == 1 ? "" : "s",
