@@ -24,11 +24,13 @@ using Tri2 = std::array<P2, 3>;
 // too thin to matter for any texel.
 constexpr double kOverlapEpsilon = 1e-7;
 
-// Separating-axis test on two convex polygons: true when their interiors intersect by more
-// than `eps` along every edge normal of either polygon. Polygons that only share an edge or a
+// Separating-axis test on two convex polygons: how deep their interiors intersect (the
+// smallest overlap of their projections on any edge normal of either, in their units), or 0
+// when some axis separates them by more than -eps. Polygons that only share an edge or a
 // vertex are separated by that edge's normal, so they do not count.
 template <std::size_t N, std::size_t M>
-bool interiorsOverlap(const std::array<P2, N>& a, const std::array<P2, M>& b, double eps) {
+double overlapDepth(const std::array<P2, N>& a, const std::array<P2, M>& b, double eps) {
+  double depth = INFINITY;
   auto separatedBy = [&](P2 p, P2 q) {
     const double nx = q.y - p.y, ny = p.x - q.x;
     const double len = std::hypot(nx, ny);
@@ -45,14 +47,18 @@ bool interiorsOverlap(const std::array<P2, N>& a, const std::array<P2, M>& b, do
       maxB = std::max(maxB, d);
     }
     const double margin = eps * len;
+    depth = std::min(depth, (std::min(maxA, maxB) - std::max(minA, minB)) / len);
     return maxA <= minB + margin || maxB <= minA + margin;
   };
   for (std::size_t i = 0; i < N; ++i)
-    if (separatedBy(a[i], a[(i + 1) % N])) return false;
+    if (separatedBy(a[i], a[(i + 1) % N])) return 0.0;
   for (std::size_t i = 0; i < M; ++i)
-    if (separatedBy(b[i], b[(i + 1) % M])) return false;
-  return true;
+    if (separatedBy(b[i], b[(i + 1) % M])) return 0.0;
+  return depth;
 }
+
+// floor(x) clamped to [0, last], clamped before the conversion: a UV of 1e30 would overflow int.
+int toIndex(double x, int last) { return static_cast<int>(std::clamp(std::floor(x), 0.0, static_cast<double>(last))); }
 
 double twiceArea(P2 a, P2 b, P2 c) { return std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)); }
 
@@ -192,11 +198,17 @@ void Checker::checkCorners() {
       if (r_.nonFinite++ == 0) note("triangle " + std::to_string(t) + " has a non-finite (NaN or infinite) UV");
       continue;
     }
-    if (!inRange && r_.outOfRange++ == 0) {
-      const Tri2 p = tri(t);
-      note("triangle " + std::to_string(t) + " has a UV outside [0, 1] (" + std::to_string(p[0].x) + ", " +
+    if (!inRange) {
+      // Reported and left out of the overlap scan and the rasterisation: a tiled set's
+      // triangles reach far beyond [0, 1], and clamped into the grid they would pile up in
+      // its border cells.
+      if (r_.outOfRange++ == 0) {
+        const Tri2 p = tri(t);
+        note("triangle " + std::to_string(t) + " has a UV outside [0, 1] (" + std::to_string(p[0].x) + ", " +
            std::to_string(p[0].y) + "), (" + std::to_string(p[1].x) + ", " + std::to_string(p[1].y) + "), (" +
            std::to_string(p[2].x) + ", " + std::to_string(p[2].y) + ")");
+      }
+      continue;
     }
     const Tri2 p = tri(t);
     const Vec3 a = positions_[indices_[3 * t]], b = positions_[indices_[3 * t + 1]], c = positions_[indices_[3 * t + 2]];
@@ -215,19 +227,31 @@ void Checker::findOverlaps() {
   const std::size_t n = r_.triangles;
   // Uniform grid over [0, 1]² with about one triangle per cell; out-of-range corners are
   // clamped into the border cells, which keeps them in the test.
-  const int g = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(n)), 1.0, 2048.0));
-  auto cellOf = [g](double x) { return std::clamp(static_cast<int>(std::floor(x * g)), 0, g - 1); };
+  // Large triangles enter many cells: the grid is coarsened until the entries stay within a
+  // budget, so that a layout of many full-square triangles cannot exhaust memory.
   struct Box {
     int x0, y0, x1, y1;
   };
   std::vector<Box> boxes(n);
+  int g = static_cast<int>(std::clamp(std::sqrt(static_cast<double>(n)), 1.0, 2048.0));
+  const double entryBudget = 16.0 * static_cast<double>(n) + 1e6;
+  for (;;) {
+    auto cellOf = [g](double x) { return toIndex(x * g, g - 1); };
+    double entries = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      if (!usable_[t]) continue;
+      const Tri2 p = tri(t);
+      const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
+      const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
+      boxes[t] = {cellOf(minX), cellOf(minY), cellOf(maxX), cellOf(maxY)};
+      entries += (boxes[t].x1 - boxes[t].x0 + 1.0) * (boxes[t].y1 - boxes[t].y0 + 1.0);
+    }
+    if (entries <= entryBudget || g == 1) break;
+    g = std::max(1, g / 2);
+  }
   std::vector<std::size_t> start(static_cast<std::size_t>(g) * g + 1, 0);
   for (std::size_t t = 0; t < n; ++t) {
     if (!usable_[t]) continue;
-    const Tri2 p = tri(t);
-    const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
-    const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
-    boxes[t] = {cellOf(minX), cellOf(minY), cellOf(maxX), cellOf(maxY)};
     for (int y = boxes[t].y0; y <= boxes[t].y1; ++y)
       for (int x = boxes[t].x0; x <= boxes[t].x1; ++x) ++start[static_cast<std::size_t>(y) * g + x + 1];
   }
@@ -250,7 +274,10 @@ void Checker::findOverlaps() {
           const std::uint32_t b = entries[j];
           // Each pair is tested once, in the first cell both boxes cover.
           if (std::max(boxes[a].x0, boxes[b].x0) != cx || std::max(boxes[a].y0, boxes[b].y0) != cy) continue;
-          if (!interiorsOverlap(pa, tri(b), kOverlapEpsilon)) continue;
+          const double depth = overlapDepth(pa, tri(b), kOverlapEpsilon);
+          if (depth <= 0.0) continue;
+          r_.deepestOverlapTexels =
+              std::max(r_.deepestOverlapTexels, depth * std::max(target_.width, target_.height));
           if (r_.overlappingPairs++ < 3)
             note("triangles " + std::to_string(std::min(a, b)) + " and " + std::to_string(std::max(a, b)) +
                  " overlap in UV space");
@@ -267,23 +294,33 @@ void Checker::findOverlaps() {
 void Checker::rasterise() {
   const int w = target_.width, h = target_.height;
   owner_.assign(static_cast<std::size_t>(w) * h, -1);
+  // A layout that covers the texture many times over (stacked charts) would cost that many
+  // texel tests; past the budget the rasterisation stops, with its statistics incomplete.
+  const double budget = 64.0 * w * h + 64.0 * static_cast<double>(r_.triangles);
+  double tests = 0;
   for (std::size_t t = 0; t < r_.triangles; ++t) {
     if (!usable_[t]) continue;
     Tri2 p = tri(t);
     for (P2& v : p) v = {v.x * w, v.y * h};  // texel units
     const double minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
     const double minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
-    const int x0 = std::clamp(static_cast<int>(std::floor(minX)), 0, w - 1);
-    const int x1 = std::clamp(static_cast<int>(std::ceil(maxX)) - 1, 0, w - 1);
-    const int y0 = std::clamp(static_cast<int>(std::floor(minY)), 0, h - 1);
-    const int y1 = std::clamp(static_cast<int>(std::ceil(maxY)) - 1, 0, h - 1);
+    const int x0 = toIndex(minX, w - 1);
+    const int x1 = toIndex(std::ceil(maxX) - 1.0, w - 1);
+    const int y0 = toIndex(minY, h - 1);
+    const int y1 = toIndex(std::ceil(maxY) - 1.0, h - 1);
     const auto c = static_cast<std::int32_t>(chart_[t]);
+    tests += (x1 - x0 + 1.0) * (y1 - y0 + 1.0);
+    if (tests > budget) {
+      r_.rasterIncomplete = true;
+      note("the layout covers the texture more than 64 times over; texel statistics are incomplete");
+      break;
+    }
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
         const std::array<P2, 4> texel{P2{double(x), double(y)}, P2{x + 1.0, double(y)}, P2{x + 1.0, y + 1.0},
                                       P2{double(x), y + 1.0}};
         // Conservative: any texel the triangle's interior reaches gets a sample.
-        if (!interiorsOverlap(p, texel, 1e-9)) continue;
+        if (overlapDepth(p, texel, 1e-9) <= 0.0) continue;
         std::int32_t& o = owner_[static_cast<std::size_t>(y) * w + x];
         if (o == -1) {
           o = c;
@@ -361,10 +398,14 @@ std::string UvAtlasReport::summary() const {
   add(nonFinite, "triangles with non-finite UVs");
   add(outOfRange, "triangles outside [0, 1]");
   add(degenerate, "zero-area UV triangles");
-  if (overlappingPairs)
+  if (overlappingPairs) {
+    char deepest[64];
+    std::snprintf(deepest, sizeof deepest, " (deepest %.3g texels)", deepestOverlapTexels);
     s += (s.empty() ? "" : ", ") + std::string(overlapCountCapped ? "at least " : "") +
-         std::to_string(overlappingPairs) + " overlapping triangle pairs";
+         std::to_string(overlappingPairs) + " overlapping triangle pairs" + deepest;
+  }
   add(paddingConflicts, "texels without the required gutter");
+  if (rasterIncomplete) s += (s.empty() ? "" : ", ") + std::string("texel statistics incomplete");
   if (s.empty()) s = "valid";
   char use[96];
   std::snprintf(use, sizeof use, "; %zu chart%s, %.1f%% of texels used", charts, charts == 1 ? "" : "s",

@@ -35,11 +35,18 @@ inline constexpr std::size_t kMaxOverlapsCounted = 10000;
 struct UvAtlasReport {
   std::size_t triangles = 0;
   std::size_t nonFinite = 0;         // a corner's UV is NaN or infinite
-  std::size_t outOfRange = 0;        // a corner's UV lies outside [0, 1]
+  std::size_t outOfRange = 0;        // a corner's UV lies outside [0, 1] (such triangles are left
+                                     // out of the overlap and gutter checks)
   std::size_t degenerate = 0;        // zero UV area where the 3D triangle has area
   std::size_t overlappingPairs = 0;  // pairs of triangles whose UV interiors intersect
   bool overlapCountCapped = false;   // overlappingPairs reached kMaxOverlapsCounted
+  // How far the worst pair interpenetrates (smallest projection overlap, in texels at the
+  // target): tells a sub-texel sliver fold from a stacked chart. 0 without overlaps.
+  double deepestOverlapTexels = 0.0;
   std::size_t paddingConflicts = 0;  // texels of one chart within `padding` texels of another chart's
+  // The rasterisation stopped at its budget (a layout covering the texture over 64 times, only
+  // possible with overlaps): usedTexels and paddingConflicts count what was reached.
+  bool rasterIncomplete = false;
   std::size_t charts = 0;            // connected components (triangles sharing an edge in 3D and in UV)
   std::size_t usedTexels = 0;        // texels some triangle touches (conservative rasterisation)
   double usedTexelFraction = 0.0;    // usedTexels / (width × height)

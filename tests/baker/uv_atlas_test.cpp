@@ -82,6 +82,8 @@ TEST(UvAtlasCheck, StackedAndMirroredChartsAreReported) {
     // stacked, plus a half-overlap with the other): at least 2 pairs.
     EXPECT_GE(r.overlappingPairs, 2u) << r.summary();
     EXPECT_EQ(r.charts, 2u) << "the copy shares UVs but not positions: a chart of its own";
+    // The rectangles are 25.6 texels wide: the worst pair overlaps by many texels.
+    EXPECT_GT(r.deepestOverlapTexels, 5.0) << r.summary();
   }
 }
 
@@ -109,6 +111,9 @@ TEST(UvAtlasCheck, OutOfRangeUvIsReported) {
   EXPECT_EQ(r.outOfRange, 2u);
   EXPECT_TRUE(anyContains(r.problems, "TEXCOORD_1: triangle 2 has a UV outside [0, 1]")) << joined(r.problems);
   s.uvs[6].u = -0.01f;
+  EXPECT_EQ(check(s).outOfRange, 2u);
+  // Far outside: the grid and texel indices are clamped before any conversion to int.
+  s.uvs[6] = {1e30f, -1e30f};
   EXPECT_EQ(check(s).outOfRange, 2u);
 }
 
@@ -170,6 +175,24 @@ TEST(UvAtlasCheck, FullyStackedLayoutStopsCounting) {
   EXPECT_TRUE(r.overlapCountCapped);
   EXPECT_EQ(r.overlappingPairs, kMaxOverlapsCounted);
   EXPECT_NE(r.summary().find("at least"), std::string::npos) << r.summary();
+}
+
+TEST(UvAtlasCheck, ManyFullSquareTrianglesStayWithinBudget) {
+  // 20 000 triangles each covering half of [0, 1]²: without the grid and texel budgets this
+  // is 4·10^8 grid entries and 8·10^7 texel tests.
+  TwoSquares s;
+  for (int t = 0; t < 20000; ++t) {
+    const auto base = static_cast<std::uint32_t>(s.positions.size());
+    const float z = static_cast<float>(t);
+    s.positions.insert(s.positions.end(), {{0, 0, z}, {1, 0, z}, {0, 1, z}});
+    s.uvs.insert(s.uvs.end(), {{0, 0}, {1, 0}, {0, 1}});
+    s.indices.insert(s.indices.end(), {base, base + 1, base + 2});
+  }
+  const UvAtlasReport r = check(s);
+  EXPECT_TRUE(r.overlapCountCapped);
+  EXPECT_TRUE(r.rasterIncomplete);
+  EXPECT_FALSE(r.valid());
+  EXPECT_NE(r.summary().find("texel statistics incomplete"), std::string::npos) << r.summary();
 }
 
 Scene sceneOf(const TwoSquares& s) {
