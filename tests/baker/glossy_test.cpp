@@ -492,20 +492,21 @@ TEST(GlossyBake, ShadowedMatrixIsTheVisibleGramMatrixAndLosesEnergy) {
 // under uniform white light: the floor's radiance is rho (it sees the sky but for the small
 // patch), so bounce 1 of the receiver is rho x the lobe's mass above its horizon, the closed
 // form of test 1 (s = 1: (1 + cos theta)/2).
-TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
-  const int order = 6;
-  const float rho = 0.5f, h = 0.1f;
-  Scene s;
-  test::addPlane(&s, 10.0f, 40, 0.0f, {rho, rho, rho});  // floor, 100 h wide each way
-  const auto base = static_cast<std::uint32_t>(s.positions.size());
-  test::addPlane(&s, 0.01f, 1, h, {0, 0, 0});  // receiver patch, facing down
-  for (std::size_t v = base; v < s.positions.size(); ++v) s.normals[v] = {0, -1, 0};
-  for (std::size_t i = 0; i < s.indices.size(); i += 3) {
-    if (s.indices[i] >= base) std::swap(s.indices[i + 1], s.indices[i + 2]);
+// A 10 x 10 floor of 40 x 40 quads at y = 0 and a 0.01-wide receiver patch at height h facing
+// down (normals -y, triangles flipped). Returns the patch's first vertex.
+std::uint32_t addFloorAndPatchFacingDown(Scene* s, Rgb floorAlbedo, Rgb patchAlbedo, float h) {
+  test::addPlane(s, 10.0f, 40, 0.0f, floorAlbedo);
+  const auto base = static_cast<std::uint32_t>(s->positions.size());
+  test::addPlane(s, 0.01f, 1, h, patchAlbedo);
+  for (std::size_t v = base; v < s->positions.size(); ++v) s->normals[v] = {0, -1, 0};
+  for (std::size_t i = 0; i < s->indices.size(); i += 3) {
+    if (s->indices[i] >= base) std::swap(s->indices[i + 1], s->indices[i + 2]);
   }
-  // The floor has no specular part at all (f0 = f90 = 0): a purely diffuse sender.
-  s.specular.assign(s.positions.size(), SpecularMaterial{{0, 0, 0}, 1.0f, 0.0f});
-  for (std::size_t v = base; v < s.positions.size(); ++v) s.specular[v] = {{1, 1, 1}, 1.0f};
+  return base;
+}
+
+// Glossy bake options with one bounce of each kind, 16384 samples.
+BakeOptions oneGlossyBounce(int order) {
   BakeOptions o;
   o.order = order;
   o.samples = 16384;
@@ -513,6 +514,18 @@ TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
   o.glossyBounces = 1;
   o.maxBounces = 1;
   o.threads = 2;
+  return o;
+}
+
+TEST(GlossyBake, FirstBounceOffADiffuseFloorIsAlbedoTimesTheLobeMass) {
+  const int order = 6;
+  const float rho = 0.5f, h = 0.1f;
+  Scene s;
+  const std::uint32_t base = addFloorAndPatchFacingDown(&s, {rho, rho, rho}, {0, 0, 0}, h);  // floor 100 h wide
+  // The floor has no specular part at all (f0 = f90 = 0): a purely diffuse sender.
+  s.specular.assign(s.positions.size(), SpecularMaterial{{0, 0, 0}, 1.0f, 0.0f});
+  for (std::size_t v = base; v < s.positions.size(); ++v) s.specular[v] = {{1, 1, 1}, 1.0f};
+  const BakeOptions o = oneGlossyBounce(order);
   BakeResult r;
   ASSERT_TRUE(bakeTransfer(s, o, &r).isOk());
   ASSERT_EQ(r.glossyBounces, 1);
@@ -551,21 +564,9 @@ TEST(GlossyBake, FirstBounceOffAGlossyFloorGathersItsLobe) {
   const int order = 8, s = 1;
   const float h = 0.1f;
   Scene scene;
-  test::addPlane(&scene, 10.0f, 40, 0.0f, {0, 0, 0});
-  const auto base = static_cast<std::uint32_t>(scene.positions.size());
-  test::addPlane(&scene, 0.01f, 1, h, {0, 0, 0});
-  for (std::size_t v = base; v < scene.positions.size(); ++v) scene.normals[v] = {0, -1, 0};
-  for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
-    if (scene.indices[i] >= base) std::swap(scene.indices[i + 1], scene.indices[i + 2]);
-  }
+  const std::uint32_t base = addFloorAndPatchFacingDown(&scene, {0, 0, 0}, {0, 0, 0}, h);
   scene.specular.assign(scene.positions.size(), SpecularMaterial{{1, 1, 1}, static_cast<float>(s)});
-  BakeOptions o;
-  o.order = order;
-  o.samples = 16384;
-  o.glossy = true;
-  o.glossyBounces = 1;
-  o.maxBounces = 1;
-  o.threads = 2;
+  const BakeOptions o = oneGlossyBounce(order);
   BakeResult r;
   ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
   // The receiver's own lobe truncation (Cauchy-Schwarz, as in the circular-light test):
@@ -621,22 +622,10 @@ TEST(GlossyBake, FirstBounceOffAGlossyFloorLightsADiffuseReceiver) {
   const int order = 4;
   const float rho = 0.5f, h = 0.1f;
   Scene scene;
-  test::addPlane(&scene, 10.0f, 40, 0.0f, {0, 0, 0});
-  const auto base = static_cast<std::uint32_t>(scene.positions.size());
-  test::addPlane(&scene, 0.01f, 1, h, {rho, rho, rho});
-  for (std::size_t v = base; v < scene.positions.size(); ++v) scene.normals[v] = {0, -1, 0};
-  for (std::size_t i = 0; i < scene.indices.size(); i += 3) {
-    if (scene.indices[i] >= base) std::swap(scene.indices[i + 1], scene.indices[i + 2]);
-  }
+  const std::uint32_t base = addFloorAndPatchFacingDown(&scene, {0, 0, 0}, {rho, rho, rho}, h);
   scene.specular.assign(scene.positions.size(), SpecularMaterial{{1, 1, 1}, 1.0f});
   for (std::size_t v = base; v < scene.positions.size(); ++v) scene.specular[v] = {{0, 0, 0}, 1.0f, 0.0f};
-  BakeOptions o;
-  o.order = order;
-  o.samples = 16384;
-  o.glossy = true;
-  o.glossyBounces = 1;
-  o.maxBounces = 1;
-  o.threads = 2;
+  const BakeOptions o = oneGlossyBounce(order);
   BakeResult r;
   ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
   ASSERT_EQ(r.bounces, 1);
