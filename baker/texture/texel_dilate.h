@@ -19,13 +19,14 @@ inline constexpr int kMaxDilationChannels = 4096;
 // a used one: each pass sets each still-unfilled texel that has filled 8-neighbours to the
 // plain average of those (their values before the pass, accumulated in double), so every
 // filled value is a convex combination of used values and a constant chart stays exactly
-// constant. `texels`: width × height texels, row-major, `channels` floats each, interleaved;
-// `coverage`: width × height, non-zero = used (texel_raster.h). Used texels and texels beyond
-// reach are never written. `filled`, if not null, receives width × height flags (1 = used or
-// filled). Errors: kSizeMismatch (texels or coverage not of those sizes), kInvalidArgument (passes outside 0 … kMaxDilationPasses, channels
-// outside 1 … kMaxDilationChannels, size outside 1 … kMaxAtlasSize), kNotFinite (a used texel
-// holds NaN or infinity), both with the texture unchanged; kResourceExhausted (out of memory,
-// the texture possibly part-dilated). Safe on untrusted input; deterministic.
+// constant. `texels`: width × height texels (1 … kMaxAtlasSize each), row-major, `channels`
+// floats each, interleaved; `coverage`: width × height, non-zero = used (TexelRaster's).
+// Used texels and texels out of reach are never written. `filled`, if not null, receives
+// width × height flags: 1 = used or filled, 0 = still empty. Errors, with the texture
+// unchanged: kSizeMismatch (texels or coverage of other sizes), kInvalidArgument (size,
+// `passes` outside 0 … kMaxDilationPasses, `channels` outside 1 … kMaxDilationChannels),
+// kNotFinite (a used texel holds NaN or infinity); kResourceExhausted (out of memory), the
+// texture then possibly part-dilated. Safe on untrusted input; deterministic.
 Status dilateGutters(std::span<float> texels, int width, int height, int channels,
                      std::span<const std::uint8_t> coverage, int passes, std::vector<std::uint8_t>* filled = nullptr);
 

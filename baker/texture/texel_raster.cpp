@@ -32,7 +32,7 @@ Status validate(std::span<const Vec3> positions, std::span<const Vec3> normals, 
     return fail(StatusCode::kInvalidArgument, "atlas size " + std::to_string(width) + "x" + std::to_string(height) +
                                                   " is outside 1 … " + std::to_string(kMaxAtlasSize));
   if (normals.size() != positions.size() || uvs.size() != positions.size())
-    return fail(StatusCode::kInvalidArgument, std::to_string(positions.size()) + " positions, " +
+    return fail(StatusCode::kSizeMismatch, std::to_string(positions.size()) + " positions, " +
                                                   std::to_string(normals.size()) + " normals and " +
                                                   std::to_string(uvs.size()) + " UVs: they must be one per vertex");
   if (indices.size() % 3 != 0)

@@ -53,17 +53,19 @@ struct TexelRaster {
   std::vector<std::uint8_t> coverage;  // width × height, row-major: 1 where a sample exists, else 0
   std::size_t degenerateTriangles = 0; // zero UV area (mesh clean-up's relative test): skipped
   // Samples whose interpolated normal cancelled out (opposed corner normals): they take the
-  // face normal, or, on a zero-area 3D triangle, the normal of their nearest corner.
+  // face normal, or, on a zero-area 3D triangle, the normal of their heaviest corner.
   std::size_t normalFallbacks = 0;
 };
 
-// Rasterises `indices` (3 per triangle, either winding) with `uvs` (one per position, in
-// [0, 1]) into a width × height atlas (1 … kMaxAtlasSize each, uv_atlas_check.h) and writes *out (replaced
-// whole). `positions` (world, metres) and `normals` (non-zero, any length) have one entry per
-// vertex. Errors: kInvalidArgument (sizes, an index out of range, a UV outside [0, 1], a zero
-// normal, atlas size), kNotFinite (NaN or infinite UV, position or normal of a referenced
-// vertex), kResourceExhausted (over the visit budget above, or out of memory); *out is then
-// empty. Safe on untrusted input; deterministic (single-threaded, same input, same bytes).
+// Rasterises `indices` (3 per triangle, either winding) with `uvs` (in [0, 1]) into a
+// width × height atlas (1 … kMaxAtlasSize each, uv_atlas_check.h) and replaces *out with the
+// result. `positions` (world, metres), `normals` (non-zero, any length) and `uvs` have one
+// entry per vertex; only vertices some triangle references are read. Errors: kSizeMismatch
+// (the three of different lengths), kInvalidArgument (an index count not a multiple of 3, an
+// index out of range, a UV outside [0, 1], a zero normal, the atlas size), kNotFinite (a NaN
+// or infinite UV, position or normal), kResourceExhausted (over the visit budget above, or
+// out of memory); *out is then empty. Safe on untrusted input; deterministic (single-threaded:
+// the same input gives the same bytes).
 Status rasteriseTexels(std::span<const Vec3> positions, std::span<const Vec3> normals,
                        std::span<const std::uint32_t> indices, std::span<const Uv> uvs, int width, int height,
                        TexelRaster* out);
