@@ -30,7 +30,8 @@ class Dilator {
   // Calls f(neighbour index) for each in-atlas 8-neighbour of texel i, in a fixed order.
   template <typename F>
   void forNeighbours(std::size_t i, F&& f) const {
-    const int x = static_cast<int>(i % static_cast<std::size_t>(w_)), y = static_cast<int>(i / static_cast<std::size_t>(w_));
+    const int x = static_cast<int>(i % static_cast<std::size_t>(w_)),
+              y = static_cast<int>(i / static_cast<std::size_t>(w_));
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         const int nx = x + dx, ny = y + dy;
@@ -121,8 +122,8 @@ Status dilateGutters(std::span<float> texels, int width, int height, int channel
     if (!coverage[i]) continue;
     for (std::size_t k = 0; k < c; ++k)
       if (!std::isfinite(texels[i * c + k]))
-        return fail(StatusCode::kNotFinite, "used texel " + std::to_string(i) + " channel " + std::to_string(k) +
-                                                " is not finite");
+        return fail(StatusCode::kNotFinite,
+                    "used texel " + std::to_string(i) + " channel " + std::to_string(k) + " is not finite");
   }
   try {
     Dilator d(texels, width, height, channels);

@@ -33,8 +33,8 @@ Status validate(std::span<const Vec3> positions, std::span<const Vec3> normals, 
                                                   " is outside 1 … " + std::to_string(kMaxAtlasSize));
   if (normals.size() != positions.size() || uvs.size() != positions.size())
     return fail(StatusCode::kSizeMismatch, std::to_string(positions.size()) + " positions, " +
-                                                  std::to_string(normals.size()) + " normals and " +
-                                                  std::to_string(uvs.size()) + " UVs: they must be one per vertex");
+                                               std::to_string(normals.size()) + " normals and " +
+                                               std::to_string(uvs.size()) + " UVs: they must be one per vertex");
   if (indices.size() % 3 != 0)
     return fail(StatusCode::kInvalidArgument,
                 "the index count " + std::to_string(indices.size()) + " is not a multiple of 3");
@@ -53,8 +53,10 @@ Status validate(std::span<const Vec3> positions, std::span<const Vec3> normals, 
     if (uv.u < 0.0f || uv.u > 1.0f || uv.v < 0.0f || uv.v > 1.0f)
       return fail(StatusCode::kInvalidArgument, "the UV (" + std::to_string(uv.u) + ", " + std::to_string(uv.v) +
                                                     ") of " + vertexOf(i, v) + " is outside [0, 1]");
-    if (!isFinite(positions[v])) return fail(StatusCode::kNotFinite, "the position of " + vertexOf(i, v) + " is not finite");
-    if (!isFinite(normals[v])) return fail(StatusCode::kNotFinite, "the normal of " + vertexOf(i, v) + " is not finite");
+    if (!isFinite(positions[v]))
+      return fail(StatusCode::kNotFinite, "the position of " + vertexOf(i, v) + " is not finite");
+    if (!isFinite(normals[v]))
+      return fail(StatusCode::kNotFinite, "the normal of " + vertexOf(i, v) + " is not finite");
     const Vec3 n = normals[v];
     if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)
       return fail(StatusCode::kInvalidArgument, "the normal of " + vertexOf(i, v) + " is zero");
@@ -105,11 +107,11 @@ class Rasteriser {
   std::span<const Uv> uvs_;
   TexelRaster& out_;
 
-  std::vector<Prepared> prepared_;       // per triangle
+  std::vector<Prepared> prepared_;         // per triangle
   std::vector<std::uint32_t> byFirstRow_;  // usable triangles, by first row, then index
   std::size_t nextToActivate_ = 0;
-  std::vector<std::uint32_t> active_;    // triangles reaching the current band
-  std::vector<double> bestDistance2_;    // per texel of the band
+  std::vector<std::uint32_t> active_;  // triangles reaching the current band
+  std::vector<double> bestDistance2_;  // per texel of the band
   std::vector<std::uint32_t> bestTriangle_;
   double visits_ = 0, visitBudget_ = 0;
 };
@@ -250,8 +252,8 @@ Status rasteriseTexels(std::span<const Vec3> positions, std::span<const Vec3> no
   try {
     status = Rasteriser(positions, normals, indices, uvs, out).run();
   } catch (const std::bad_alloc&) {
-    status = fail(StatusCode::kResourceExhausted, "out of memory at " + std::to_string(width) + "x" +
-                                                      std::to_string(height));
+    status = fail(StatusCode::kResourceExhausted,
+                  "out of memory at " + std::to_string(width) + "x" + std::to_string(height));
   }
   if (!status.isOk()) *out = TexelRaster();
   return status;

@@ -8,9 +8,9 @@
 // centre is (x + 0.5, y + 0.5); texel index = y × W + x. Distances are in texels.
 //
 // Coverage is conservative: a texel is used iff its square and the triangle overlap with
-// positive area (touching an edge or a corner only does not count), tested exactly per row,
-// so every texel bilinear filtering can read from inside a triangle holds data, and a
-// triangle smaller than a texel still gets at least one.
+// positive area (touching an edge or a corner only does not count), tested per row on the
+// triangle's exact extent in double precision, so every texel a triangle reaches holds data,
+// and a triangle smaller than a texel still gets at least one.
 //
 // Ownership: among the triangles touching a texel, the one whose UV footprint is nearest the
 // texel centre owns it (distance 0 when the centre is inside or on an edge; ties go to the
@@ -39,19 +39,19 @@ inline constexpr double kMaxTexelVisitsPerTexel = 64.0;
 inline constexpr double kMaxTexelVisitsPerTriangle = 64.0;
 
 struct TexelSample {
-  std::uint32_t texel = 0;     // y × width + x
-  std::uint32_t triangle = 0;  // the owner: corners are indices[3 × triangle + 0 … 2]
+  std::uint32_t texel = 0;      // y × width + x
+  std::uint32_t triangle = 0;   // the owner: corners are indices[3 × triangle + 0 … 2]
   std::array<float, 3> bary{};  // weights of the owner's corners in index order, each >= 0, sum 1
-  float uvDistance = 0;        // texels from the texel centre to the sample's UV point; 0 inside
-  Vec3 position;               // world space, on the owner triangle
-  Vec3 normal;                 // unit: the corner normals (normalised) interpolated, normalised
+  float uvDistance = 0;         // texels from the texel centre to the sample's UV point; 0 inside
+  Vec3 position;                // world space, on the owner triangle
+  Vec3 normal;                  // unit: the corner normals (normalised) interpolated, normalised
 };
 
 struct TexelRaster {
   int width = 0, height = 0;
-  std::vector<TexelSample> samples;    // one per used texel, in ascending texel index
-  std::vector<std::uint8_t> coverage;  // width × height, row-major: 1 where a sample exists, else 0
-  std::size_t degenerateTriangles = 0; // zero UV area (mesh clean-up's relative test): skipped
+  std::vector<TexelSample> samples;     // one per used texel, in ascending texel index
+  std::vector<std::uint8_t> coverage;   // width × height, row-major: 1 where a sample exists, else 0
+  std::size_t degenerateTriangles = 0;  // zero UV area (mesh clean-up's relative test): skipped
   // Samples whose interpolated normal cancelled out (opposed corner normals): they take the
   // face normal, or, on a zero-area 3D triangle, the normal of their heaviest corner.
   std::size_t normalFallbacks = 0;

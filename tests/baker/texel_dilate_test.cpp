@@ -2,6 +2,8 @@
 // within N texels (Chebyshev) of a used one are filled with convex combinations of used
 // values, those further away are untouched; a constant stays exactly constant; the averaging
 // rule itself on a case small enough to work by hand; bad arguments are errors.
+#include "baker/texture/texel_dilate.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +13,6 @@
 #include <limits>
 #include <random>
 #include <vector>
-
-#include "baker/texture/texel_dilate.h"
 
 namespace prt::bake {
 namespace {
@@ -36,7 +36,8 @@ int distanceToUsed(const std::vector<std::uint8_t>& coverage, int w, int h, int 
   int best = std::numeric_limits<int>::max();
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u)
-      if (coverage[static_cast<std::size_t>(v) * w + u]) best = std::min(best, std::max(std::abs(u - x), std::abs(v - y)));
+      if (coverage[static_cast<std::size_t>(v) * w + u])
+        best = std::min(best, std::max(std::abs(u - x), std::abs(v - y)));
   return best;
 }
 

@@ -4,6 +4,8 @@
 // covers its rectangle's footprint once per texel; samples interpolate positions affinely
 // inside and land on the triangle outside; normals are unit and interpolated; the nearest
 // triangle owns a shared texel; bad input is an error.
+#include "baker/texture/texel_raster.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,8 +17,6 @@
 #include <random>
 #include <vector>
 
-#include "baker/texture/texel_raster.h"
-
 namespace prt::bake {
 namespace {
 
@@ -27,8 +27,8 @@ struct Mesh {
   std::vector<std::uint32_t> indices;
 
   // Appends a triangle with its own three vertices; normals default to +z.
-  void add(std::array<Uv, 3> uv, std::array<Vec3, 3> p, std::array<Vec3, 3> n = {Vec3{0, 0, 1}, Vec3{0, 0, 1},
-                                                                                Vec3{0, 0, 1}}) {
+  void add(std::array<Uv, 3> uv, std::array<Vec3, 3> p,
+           std::array<Vec3, 3> n = {Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}}) {
     for (int k = 0; k < 3; ++k) {
       indices.push_back(static_cast<std::uint32_t>(positions.size()));
       positions.push_back(p[static_cast<std::size_t>(k)]);
@@ -116,12 +116,12 @@ Uv texelUv(double x, double y, int w, int h) { return {static_cast<float>(x / w)
 TEST(TexelRaster, SingleTrianglesMatchTheClippingReference) {
   const int w = 32, h = 24;
   std::vector<std::array<Uv, 3>> tris{
-      {Uv{0.10f, 0.12f}, Uv{0.83f, 0.31f}, Uv{0.37f, 0.91f}},  // large, generic
-      {Uv{0.02f, 0.03f}, Uv{0.97f, 0.95f}, Uv{0.9705f, 0.9496f}},  // long diagonal sliver
+      {Uv{0.10f, 0.12f}, Uv{0.83f, 0.31f}, Uv{0.37f, 0.91f}},                               // large, generic
+      {Uv{0.02f, 0.03f}, Uv{0.97f, 0.95f}, Uv{0.9705f, 0.9496f}},                           // long diagonal sliver
       {texelUv(1.2, 3.3, w, h), texelUv(30.7, 3.3004, w, h), texelUv(15.0, 3.3011, w, h)},  // flat sliver
-      {texelUv(4.2, 5.3, w, h), texelUv(4.6, 5.35, w, h), texelUv(4.4, 5.8, w, h)},  // inside one texel
-      {texelUv(6.9, 7.9, w, h), texelUv(7.1, 7.92, w, h), texelUv(7.02, 8.1, w, h)},  // across a corner
-      {texelUv(9.3, 9.95, w, h), texelUv(9.7, 9.97, w, h), texelUv(9.5, 10.02, w, h)},  // across an edge
+      {texelUv(4.2, 5.3, w, h), texelUv(4.6, 5.35, w, h), texelUv(4.4, 5.8, w, h)},         // inside one texel
+      {texelUv(6.9, 7.9, w, h), texelUv(7.1, 7.92, w, h), texelUv(7.02, 8.1, w, h)},        // across a corner
+      {texelUv(9.3, 9.95, w, h), texelUv(9.7, 9.97, w, h), texelUv(9.5, 10.02, w, h)},      // across an edge
       // On the grid, exactly (x / 32 and y / 24 for y a multiple of 3 are floats): edges along
       // texel lines and diagonals through texel corners; texels those only touch are not covered.
       {texelUv(2, 3, w, h), texelUv(8, 3, w, h), texelUv(2, 9, w, h)},
@@ -187,10 +187,12 @@ TEST(TexelRaster, QuadCoversItsRectangleOncePerTexel) {
   const int w = 40, h = 30;
   const float u0 = 0.13f, v0 = 0.21f, u1 = 0.71f, v1 = 0.64f;
   const TexelRaster r = raster(quad(u0, v0, u1, v1), w, h);
-  expectRectangleFootprint(r, static_cast<int>(std::floor(double(u0) * w)), static_cast<int>(std::ceil(double(u1) * w)) - 1,
-                           static_cast<int>(std::floor(double(v0) * h)), static_cast<int>(std::ceil(double(v1) * h)) - 1);
+  expectRectangleFootprint(
+      r, static_cast<int>(std::floor(double(u0) * w)), static_cast<int>(std::ceil(double(u1) * w)) - 1,
+      static_cast<int>(std::floor(double(v0) * h)), static_cast<int>(std::ceil(double(v1) * h)) - 1);
   // Both triangles own texels: the diagonal is not given wholly to one of them.
-  const auto owned0 = std::count_if(r.samples.begin(), r.samples.end(), [](const TexelSample& s) { return s.triangle == 0; });
+  const auto owned0 =
+      std::count_if(r.samples.begin(), r.samples.end(), [](const TexelSample& s) { return s.triangle == 0; });
   EXPECT_GT(owned0, 0);
   EXPECT_LT(static_cast<std::size_t>(owned0), r.samples.size());
 }
@@ -252,7 +254,8 @@ TEST(TexelRaster, NearestTriangleOwnsATexelWhoseCentreIsOutsideBoth) {
     m.addFlat(nearFirst ? farTri : nearTri);
     const TexelRaster r = raster(m, w, h);
     expectConsistent(r);
-    const auto it = std::find_if(r.samples.begin(), r.samples.end(), [&](const TexelSample& s) { return s.texel == 5u * w + 5u; });
+    const auto it =
+        std::find_if(r.samples.begin(), r.samples.end(), [&](const TexelSample& s) { return s.texel == 5u * w + 5u; });
     ASSERT_NE(it, r.samples.end());
     EXPECT_EQ(it->triangle, nearFirst ? 0u : 1u);
     EXPECT_NEAR(it->uvDistance, 0.2f, 1e-5f);
@@ -346,8 +349,9 @@ TEST(TexelRaster, NormalsAreUnitAndInterpolated) {
     EXPECT_NEAR(s.normal.z, expected.z, 1e-5f);
   }
   // Not all equal: the normal does vary across the triangle.
-  const auto [lo, hi] = std::minmax_element(r.samples.begin(), r.samples.end(),
-                                            [](const TexelSample& a, const TexelSample& b) { return a.normal.x < b.normal.x; });
+  const auto [lo, hi] =
+      std::minmax_element(r.samples.begin(), r.samples.end(),
+                          [](const TexelSample& a, const TexelSample& b) { return a.normal.x < b.normal.x; });
   EXPECT_GT(hi->normal.x - lo->normal.x, 0.3f);
 }
 
@@ -360,7 +364,8 @@ TEST(TexelRaster, CancellingNormalsFallBackToTheFaceNormal) {
         {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}},
         {Vec3{1, 0, 0}, Vec3{-0.5f, std::sqrt(3.0f) / 2, 0}, Vec3{-0.5f, -std::sqrt(3.0f) / 2, 0}});
   const TexelRaster r = raster(m, w, h);
-  const auto it = std::find_if(r.samples.begin(), r.samples.end(), [&](const TexelSample& s) { return s.texel == 1u * w + 1u; });
+  const auto it =
+      std::find_if(r.samples.begin(), r.samples.end(), [&](const TexelSample& s) { return s.texel == 1u * w + 1u; });
   ASSERT_NE(it, r.samples.end());
   EXPECT_GE(r.normalFallbacks, 1u);
   EXPECT_NEAR(it->normal.z, 1.0f, 1e-6f);
@@ -370,7 +375,8 @@ TEST(TexelRaster, CancellingNormalsFallBackToTheFaceNormal) {
 TEST(TexelRaster, DegenerateUvTrianglesAreSkippedAndCounted) {
   Mesh m;
   m.addFlat({Uv{0.1f, 0.1f}, Uv{0.5f, 0.5f}, Uv{0.9f, 0.9f}});  // collinear
-  m.add({Uv{0.3f, 0.3f}, Uv{0.3f, 0.3f}, Uv{0.6f, 0.2f}}, {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}});  // repeated corner
+  m.add({Uv{0.3f, 0.3f}, Uv{0.3f, 0.3f}, Uv{0.6f, 0.2f}},
+        {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}});  // repeated corner
   m.addFlat({Uv{0.2f, 0.6f}, Uv{0.4f, 0.6f}, Uv{0.2f, 0.9f}});
   const TexelRaster r = raster(m, 16, 16);
   EXPECT_EQ(r.degenerateTriangles, 2u);
