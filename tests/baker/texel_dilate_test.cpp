@@ -1,7 +1,8 @@
 // Gutter dilation (baker/texture/texel_dilate.h): used texels never change; unused texels
 // within N texels (Chebyshev) of a used one are filled with convex combinations of used
 // values, those further away are untouched; a constant stays exactly constant; the averaging
-// rule itself on a case small enough to work by hand; bad arguments are errors.
+// rule itself on a case small enough to work by hand; after rasterisation and one pass, a
+// bilinear fetch anywhere inside a triangle reads only filled texels; bad arguments are errors.
 #include "baker/texture/texel_dilate.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 #include <limits>
 #include <random>
 #include <vector>
+
+#include "baker/texture/texel_raster.h"
 
 namespace prt::bake {
 namespace {
@@ -135,6 +138,46 @@ TEST(TexelDilate, ZeroPassesAndNoUsedTexelsChangeNothing) {
   std::vector<float> empty(coverage.size(), kUntouched);
   ASSERT_TRUE(dilateGutters(empty, 20, 16, 1, std::vector<std::uint8_t>(coverage.size(), 0), 5).isOk());
   EXPECT_EQ(empty, std::vector<float>(coverage.size(), kUntouched));
+}
+
+TEST(TexelDilate, OnePassAfterRasterisationFeedsEveryBilinearFetchInsideTheChart) {
+  // A chart of two triangles away from the atlas border, rasterised at 40 × 32. A bilinear
+  // fetch at UV point p reads the four texels around p - 0.5; without dilation some of those
+  // are outside the coverage, after one pass none are.
+  const int w = 40, h = 32;
+  const std::vector<Vec3> positions{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.5f}};
+  const std::vector<Vec3> normals(4, Vec3{0, 0, 1});
+  const std::vector<Uv> uvs{{0.12f, 0.17f}, {0.81f, 0.23f}, {0.67f, 0.86f}, {0.21f, 0.74f}};
+  const std::vector<std::uint32_t> indices{0, 1, 2, 0, 2, 3};
+  TexelRaster r;
+  ASSERT_TRUE(rasteriseTexels(positions, normals, indices, uvs, w, h, &r).isOk());
+  std::vector<float> tex(r.coverage.size(), kUntouched);
+  for (const TexelSample& s : r.samples) tex[s.texel] = s.position.z;
+  std::vector<std::uint8_t> filled;
+  ASSERT_TRUE(dilateGutters(tex, w, h, 1, r.coverage, 1, &filled).isOk());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int missedBefore = 0;
+  for (int i = 0; i < 4000; ++i) {
+    // A uniform point of triangle i % 2, in texel units.
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) {
+      a = 1 - a;
+      b = 1 - b;
+    }
+    const Uv p0 = uvs[indices[3 * (i % 2)]], p1 = uvs[indices[3 * (i % 2) + 1]], p2 = uvs[indices[3 * (i % 2) + 2]];
+    const double px = (p0.u + a * (p1.u - p0.u) + b * (p2.u - p0.u)) * w;
+    const double py = (p0.v + a * (p1.v - p0.v) + b * (p2.v - p0.v)) * h;
+    const int x0 = static_cast<int>(std::floor(px - 0.5)), y0 = static_cast<int>(std::floor(py - 0.5));
+    for (int dy = 0; dy <= 1; ++dy)
+      for (int dx = 0; dx <= 1; ++dx) {
+        const std::size_t t = static_cast<std::size_t>(y0 + dy) * w + static_cast<std::size_t>(x0 + dx);
+        missedBefore += r.coverage[t] ? 0 : 1;
+        ASSERT_EQ(filled[t], 1) << "bilinear fetch at (" << px << ", " << py << ") reads an empty texel";
+        ASSERT_NE(tex[t], kUntouched);
+      }
+  }
+  EXPECT_GT(missedBefore, 0) << "the fetches near the chart's edges do reach outside the coverage";
 }
 
 TEST(TexelDilate, BadArgumentsAreErrorsAndLeaveTheTextureAlone) {
