@@ -19,7 +19,7 @@ using test::BufferStorage;
 using test::GltfDir;
 using test::GltfWriter;
 
-const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+using test::kTriangle;
 
 Scene loadTriangleWithMaterial(const std::string& material, std::vector<std::string>* warnings = nullptr) {
   GltfDir dir;

@@ -23,7 +23,7 @@ using test::BufferStorage;
 using test::GltfDir;
 using test::GltfWriter;
 
-const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+using test::kTriangle;
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 
 // Loading `path` fails with a message containing `fragment` and the file name, and leaves

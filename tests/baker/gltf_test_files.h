@@ -20,6 +20,10 @@
 
 namespace prt::bake::test {
 
+// One triangle's positions (x, y, z per corner) in the z = 0 plane, facing +z: the smallest
+// valid mesh for the loader tests.
+inline const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
 inline std::string base64(const std::vector<std::uint8_t>& bytes) {
   static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;

@@ -20,7 +20,7 @@ using test::BufferStorage;
 using test::GltfDir;
 using test::GltfWriter;
 
-const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+using test::kTriangle;
 
 // A triangle whose TEXCOORD_0 is normalised unsigned short and TEXCOORD_1 float.
 GltfWriter texturedTriangle(int uv1ComponentType = 5126, bool uv1Normalized = false) {
