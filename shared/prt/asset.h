@@ -39,6 +39,16 @@ enum class TransferForm : std::uint32_t {
 // "vector" | "matrix", or "unknown".
 const char* transferFormName(TransferForm form);
 
+// Where a pass's transfer lives (docs/transfer-textures.md).
+enum class TransferDomain : std::uint32_t {
+  kVertex = 0,  // one transfer per vertex, interpolated across each triangle
+  kTexel = 1,   // one per texel of the asset's atlases (PRTT), filtered bilinearly at the
+                // atlas UV; vector passes only
+};
+
+// "vertex" | "texel", or "unknown".
+const char* transferDomainName(TransferDomain domain);
+
 struct TransferPass {
   TransferKind kind = TransferKind::kUnshadowed;
   // 1: scalar transfer, exit radiance = albedo * sum_i T_i L_i (unshadowed, shadowed);
@@ -57,6 +67,24 @@ struct TransferPass {
   // full decode, encoded with the blob's bytes.
   std::vector<std::uint8_t> encoded;
   TransferForm form = TransferForm::kVector;  // last, so that {kind, channels, bounces, coeffs} still reads
+  // kTexel: coeffs is [texel][channel][coefficient] over every texel of the asset's atlases,
+  // atlas after atlas, texel y * width + x within one (BakedAsset::texelCoverage's order),
+  // unused texels included (0, or a gutter's dilated value).
+  TransferDomain domain = TransferDomain::kVertex;
+};
+
+// One transfer-texture atlas: a width x height texture covering a contiguous run of the
+// asset's triangles (a texture set, PRTT §4.3: one per object or material group).
+struct TextureAtlas {
+  std::uint32_t width = 0, height = 0;                  // texels, 1..kMaxAssetAtlasSize
+  std::uint32_t firstTriangle = 0, triangleCount = 0;  // triangles [first, first + count)
+};
+
+// Per-texel coverage values (BakedAsset::texelCoverage).
+enum class TexelCoverage : std::uint8_t {
+  kEmpty = 0,    // no triangle reaches it and no gutter fill: transfer 0
+  kSampled = 1,  // a surface sample was baked here (baker/texture/texel_raster.h)
+  kGutter = 2,   // filled by dilation from sampled neighbours, for bilinear filtering
 };
 
 // How the transfer is parameterised by the lighting it is multiplied with
@@ -108,18 +136,31 @@ struct BakedAsset {
   std::string sampling;  // "hammersley" | "stratified" (any isValidAssetSamplingName string)
   std::string name;      // for catalogues and logs (isValidAssetName)
   LightingInfo lighting;  // files without a lighting section decode as distant
+  // Transfer textures, all empty unless a pass has domain kTexel (then all required):
+  // atlasUv: 2 floats per vertex, u right and v down from the texture's top-left (glTF), in
+  // [0, 1]; texel (x, y) of an atlas covers uv in [x, x+1)/width x [y, y+1)/height.
+  // atlases: in triangle order, covering every triangle exactly once.
+  // texelCoverage: one TexelCoverage per texel of every atlas, atlas after atlas, row-major.
+  std::vector<float> atlasUv;
+  std::vector<TextureAtlas> atlases;
+  std::vector<std::uint8_t> texelCoverage;
 };
+
+// Texels of all atlases together (sum of width x height); 0 without atlases.
+std::uint64_t assetTexelCount(const BakedAsset& asset);
 
 // Returns the vector pass of `kind`, or nullptr if the asset has none.
 const TransferPass* findPass(const BakedAsset& asset, TransferKind kind);
 // Returns the pass of `kind` and `form`, or nullptr.
 const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form);
+// Returns the pass of `kind`, `form` and `domain`, or nullptr.
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form, TransferDomain domain);
 
 // ---- Format constants (docs/asset-format.md) -------------------------------------------
 
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
-inline constexpr std::uint16_t kAssetVersionMinor = 3;  // new section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular)
+inline constexpr std::uint16_t kAssetVersionMinor = 4;  // new section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular, 4: transfer textures)
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -151,7 +192,21 @@ enum class AssetSectionType : std::uint32_t {
                          // arg0 kind, arg1 channels, arg2 bounces; packing by matrixPackingFor (since 1.3)
   kEncodedMatrixTransfer = 10,  // bytes: a transfer codec blob of matrix layout; args as kMatrixTransfer (since 1.3)
   kSpecular = 11,        // float32 f0 r, g, b, f90, exponent per vertex; required with a matrix pass (since 1.3)
+  // Transfer textures (since 1.4; docs/asset-format.md "Transfer textures"):
+  kAtlasUv = 12,         // float32 u, v per vertex; required with a texel pass
+  kAtlases = 13,         // bytes: u32 width, height, firstTriangle, triangleCount per atlas; arg0 atlas count
+  kTexelCoverage = 14,   // bytes: one TexelCoverage per texel, atlases in order
+  kTexelTransfer = 15,   // float32 [texel][channel][coefficient]; args as kTransfer
+  kEncodedTexelTransfer = 16,  // bytes: a transfer codec blob with texels as its "vertices"; args as kTransfer
 };
+
+// Transfer-texture limits: an atlas side as large as common GPUs' maximum texture size, and
+// totals that keep every derived size (texels x channels x coefficients x 4) far from overflow.
+inline constexpr std::uint32_t kMaxAssetAtlasSize = 16384;
+inline constexpr std::uint32_t kMaxAssetAtlases = 1024;
+inline constexpr std::uint64_t kMaxAssetTexels = 1ull << 28;
+// At most one pass per (kind, form, domain): 3 vector + 3 matrix vertex passes, 3 texel passes.
+inline constexpr std::size_t kMaxAssetPasses = 9;
 
 // Bytes per vertex of the specular section: float32 f0 r, g, b, f90, exponent.
 inline constexpr std::size_t kAssetSpecularBytesPerVertex = 20;
