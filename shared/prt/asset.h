@@ -280,6 +280,7 @@ struct AssetPassInfo {
   std::uint64_t bytes = 0;    // the section's payload size
   std::uint32_t section = 0;  // its index in the section table
   TransferForm form = TransferForm::kVector;
+  TransferDomain domain = TransferDomain::kVertex;
 };
 
 // One entry of the section table, as validated by the reader (offsets from the file start).
