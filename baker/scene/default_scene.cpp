@@ -1,8 +1,10 @@
 #include "baker/scene/default_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "baker/scene/mesh_cleanup.h"
 
@@ -36,6 +38,14 @@ struct Surface {
   PbrVertex pbr = kMatte;
 };
 
+// One grid of the scene as a lightmap chart: its vertices base + j (nu + 1) + i and its
+// extent in metres along i and j, so charts get texels in proportion to their surface.
+struct Chart {
+  std::uint32_t base = 0;
+  int nu = 0, nv = 0;
+  double width = 0, height = 0;  // metres
+};
+
 struct Vertex {
   Vec3 position;
   Vec3 normal;  // unit
@@ -61,8 +71,10 @@ Vec3 normalized(Vec3 v) { return v * (1.0f / length(v)); }
 // (the order is chosen per cell from the analytic normals, so callers need not get their
 // parametrisation's handedness right), and triangles that collapse at a pole are skipped.
 template <typename At>
-void addGrid(Scene* s, int nu, int nv, const Surface& surface, const Placement& where, At at) {
+void addGrid(Scene* s, std::vector<Chart>* charts, double width, double height, int nu, int nv, const Surface& surface,
+             const Placement& where, At at) {
   const auto base = static_cast<std::uint32_t>(s->positions.size());
+  charts->push_back({base, nu, nv, width, height});
   for (int j = 0; j <= nv; ++j) {
     for (int i = 0; i <= nu; ++i) {
       const Vertex v = where.apply(at(i, j));
@@ -93,8 +105,9 @@ void addGrid(Scene* s, int nu, int nv, const Surface& surface, const Placement& 
 }
 
 // A flat rectangle origin + s·edgeU + t·edgeV (s, t in [0, 1]) facing `normal`.
-void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, const Surface& surface, const Placement& where) {
-  addGrid(s, cells(length(edgeU)), cells(length(edgeV)), surface, where, [&](int i, int j) {
+void addRectangle(Scene* s, std::vector<Chart>* charts, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal,
+                  const Surface& surface, const Placement& where) {
+  addGrid(s, charts, length(edgeU), length(edgeV), cells(length(edgeU)), cells(length(edgeV)), surface, where, [&](int i, int j) {
     const float fu = static_cast<float>(i) / static_cast<float>(cells(length(edgeU)));
     const float fv = static_cast<float>(j) / static_cast<float>(cells(length(edgeV)));
     return Vertex{origin + edgeU * fu + edgeV * fv, normal};
@@ -103,19 +116,21 @@ void addRectangle(Scene* s, Vec3 origin, Vec3 edgeU, Vec3 edgeV, Vec3 normal, co
 
 // A box resting on y = 0 with its own vertices on each face (sharp edges). The bottom face
 // is left out: it lies on the floor, where no ray could reach it.
-void addBox(Scene* s, Vec3 size, const Surface& surface, const Placement& where) {
+void addBox(Scene* s, std::vector<Chart>* charts, Vec3 size, const Surface& surface, const Placement& where) {
   const float hx = size.x / 2, hz = size.z / 2, h = size.y;
   const Vec3 x{size.x, 0, 0}, y{0, h, 0}, z{0, 0, size.z};
-  addRectangle(s, {-hx, h, -hz}, x, z, {0, 1, 0}, surface, where);   // top
-  addRectangle(s, {-hx, 0, hz}, x, y, {0, 0, 1}, surface, where);    // +z
-  addRectangle(s, {-hx, 0, -hz}, x, y, {0, 0, -1}, surface, where);  // -z
-  addRectangle(s, {hx, 0, -hz}, z, y, {1, 0, 0}, surface, where);    // +x
-  addRectangle(s, {-hx, 0, -hz}, z, y, {-1, 0, 0}, surface, where);  // -x
+  addRectangle(s, charts, {-hx, h, -hz}, x, z, {0, 1, 0}, surface, where);   // top
+  addRectangle(s, charts, {-hx, 0, hz}, x, y, {0, 0, 1}, surface, where);    // +z
+  addRectangle(s, charts, {-hx, 0, -hz}, x, y, {0, 0, -1}, surface, where);  // -z
+  addRectangle(s, charts, {hx, 0, -hz}, z, y, {1, 0, 0}, surface, where);    // +x
+  addRectangle(s, charts, {-hx, 0, -hz}, z, y, {-1, 0, 0}, surface, where);  // -x
 }
 
 // A UV sphere; the seam column is duplicated with identical normals.
-void addSphere(Scene* s, float radius, int segments, int rings, const Surface& surface, const Placement& where) {
-  addGrid(s, segments, rings, surface, where, [&](int i, int j) {
+// Its chart is the equirectangular (phi, theta) map, 2 pi r by pi r.
+void addSphere(Scene* s, std::vector<Chart>* charts, float radius, int segments, int rings, const Surface& surface,
+               const Placement& where) {
+  addGrid(s, charts, 2.0 * kPi * radius, kPi * radius, segments, rings, surface, where, [&](int i, int j) {
     const double phi = 2.0 * kPi * i / segments;
     const double theta = kPi * j / rings;
     const Vec3 n{static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
@@ -125,8 +140,10 @@ void addSphere(Scene* s, float radius, int segments, int rings, const Surface& s
 }
 
 // A torus around +y (ring radius `major`, tube radius `minor`) centred at the origin.
-void addTorus(Scene* s, float major, float minor, int segments, int sides, const Surface& surface, const Placement& where) {
-  addGrid(s, segments, sides, surface, where, [&](int i, int j) {
+// Its chart is the (phi, psi) map, 2 pi major by 2 pi minor.
+void addTorus(Scene* s, std::vector<Chart>* charts, float major, float minor, int segments, int sides,
+              const Surface& surface, const Placement& where) {
+  addGrid(s, charts, 2.0 * kPi * major, 2.0 * kPi * minor, segments, sides, surface, where, [&](int i, int j) {
     const double phi = 2.0 * kPi * i / segments;
     const double psi = 2.0 * kPi * j / sides;
     const Vec3 n{static_cast<float>(std::cos(psi) * std::cos(phi)), static_cast<float>(std::sin(psi)),
@@ -136,26 +153,80 @@ void addTorus(Scene* s, float major, float minor, int segments, int sides, const
   });
 }
 
+// Shelf-packs `charts` at `scale` UV units per metre with `gap` UV units around each; false
+// when they do not fit in the unit square. Writes each chart's corner into `corner`.
+bool packCharts(const std::vector<Chart>& charts, const std::vector<std::size_t>& order, double scale, double gap,
+                std::vector<std::array<double, 2>>* corner) {
+  double x = gap, y = gap, shelf = 0;
+  for (std::size_t k : order) {
+    const double w = charts[k].width * scale, h = charts[k].height * scale;
+    if (x + w + gap > 1.0) {  // next shelf
+      x = gap;
+      y += shelf + gap;
+      shelf = 0;
+    }
+    if (x + w + gap > 1.0 || y + h + gap > 1.0) return false;
+    (*corner)[k] = {x, y};
+    x += w + gap;
+    shelf = std::max(shelf, h);
+  }
+  return true;
+}
+
+// TEXCOORD_1: every grid its own chart, area-proportional, shelf-packed with a gutter of
+// kAtlasGap (8 texels at 1024², 4 at 512²: padding 2 holds from 512² up, since conservative
+// rasterisation reaches a texel past each chart edge), as large as fits: a lightmap atlas as an
+// exporter would write one, so `prt-bake --default --texels` needs no unwrapper.
+constexpr double kAtlasGap = 1.0 / 128.0;
+
+void addLightmapUvs(Scene* s, const std::vector<Chart>& charts) {
+  std::vector<std::size_t> order(charts.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return charts[a].height > charts[b].height; });
+  std::vector<std::array<double, 2>> corner(charts.size());
+  double lo = 0.0, hi = 1.0;  // UV units per metre: lo fits, hi does not (1 m per atlas is far too big)
+  for (int step = 0; step < 40; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    (packCharts(charts, order, mid, kAtlasGap, &corner) ? lo : hi) = mid;
+  }
+  packCharts(charts, order, lo, kAtlasGap, &corner);
+  s->texcoord[1].assign(s->positions.size(), Uv{});
+  for (std::size_t k = 0; k < charts.size(); ++k) {
+    const Chart& c = charts[k];
+    for (int j = 0; j <= c.nv; ++j) {
+      for (int i = 0; i <= c.nu; ++i) {
+        const double u = corner[k][0] + lo * c.width * i / c.nu, v = corner[k][1] + lo * c.height * j / c.nv;
+        s->texcoord[1][c.base + static_cast<std::uint32_t>(j * (c.nu + 1) + i)] = {static_cast<float>(u),
+                                                                                 static_cast<float>(v)};
+      }
+    }
+  }
+  s->texcoordAbsent[0] = "the default scene has no material textures";
+}
+
 }  // namespace
 
 Scene makeDefaultScene() {
   Scene s;
+  std::vector<Chart> charts;
   s.name = "default-room";
   const Placement room = place(0, {0, 0, 0});
   const float w = 2 * kRoomHalfWidth, r = kRoomHalfWidth;
   // The room: normals point into it.
-  addRectangle(&s, {-r, 0, -r}, {0, 0, w}, {w, 0, 0}, {0, 1, 0}, {kFloor}, room);
-  addRectangle(&s, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, {kBackWall}, room);
-  addRectangle(&s, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, {kRedWall}, room);
-  addRectangle(&s, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, {kGreenWall}, room);
+  addRectangle(&s, &charts, {-r, 0, -r}, {0, 0, w}, {w, 0, 0}, {0, 1, 0}, {kFloor}, room);
+  addRectangle(&s, &charts, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, {kBackWall}, room);
+  addRectangle(&s, &charts, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, {kRedWall}, room);
+  addRectangle(&s, &charts, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, {kGreenWall}, room);
 
   // The objects, spaced so none touches another or a wall: the sphere (touching the floor
   // in one point) near the red wall, the cube near the green one, the tall box casting a
   // long shadow on the back wall, the torus lying flat (self-shadowing in its hole).
-  addSphere(&s, 0.5f, 64, 32, {kSphere, kPolishedDielectric}, place(0, {-0.9f, 0.5f, 0.5f}));
-  addBox(&s, {1.0f, 1.0f, 1.0f}, {kCube}, place(25, {0.9f, 0.0f, 0.6f}));
-  addBox(&s, {0.6f, 1.8f, 0.6f}, {kTallBox}, place(-20, {-0.6f, 0.0f, -1.2f}));
-  addTorus(&s, 0.4f, 0.14f, 64, 24, {kTorus, kBrushedMetal}, place(0, {0.7f, 0.14f, -0.9f}));
+  addSphere(&s, &charts, 0.5f, 64, 32, {kSphere, kPolishedDielectric}, place(0, {-0.9f, 0.5f, 0.5f}));
+  addBox(&s, &charts, {1.0f, 1.0f, 1.0f}, {kCube}, place(25, {0.9f, 0.0f, 0.6f}));
+  addBox(&s, &charts, {0.6f, 1.8f, 0.6f}, {kTallBox}, place(-20, {-0.6f, 0.0f, -1.2f}));
+  addTorus(&s, &charts, 0.4f, 0.14f, 64, 24, {kTorus, kBrushedMetal}, place(0, {0.7f, 0.14f, -0.9f}));
+  addLightmapUvs(&s, charts);
   // The sphere's pole rows have one vertex per column, and the seam column's pole vertex
   // ends up in no triangle (its triangles collapse); drop such vertices.
   removeUnreferencedVertices(&s);

@@ -19,6 +19,9 @@ namespace prt::bake {
 // spanning x and z in [-2, 2]; about 20k vertices; unit normals pointing into the room and
 // out of the objects; counter-clockwise front faces; albedo below 1 on every channel.
 // Vertices on sharp edges are duplicated per face, so each keeps its face's normal.
+// TEXCOORD_1 is a lightmap atlas (every surface grid its own chart, texels in proportion to
+// area, a gutter of 1/128 between charts: valid with padding 2 from 512² up) so transfer textures need no unwrapper;
+// TEXCOORD_0 is absent.
 Scene makeDefaultScene();
 
 }  // namespace prt::bake

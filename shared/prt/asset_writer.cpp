@@ -345,6 +345,11 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
           putFloats(p + kAssetSpecularBytesPerVertex * v, f, 5);
         }
         break;
+      case AssetSectionType::kAtlasUv:  // transfer textures: not planned by this writer yet
+      case AssetSectionType::kAtlases:
+      case AssetSectionType::kTexelCoverage:
+      case AssetSectionType::kTexelTransfer:
+      case AssetSectionType::kEncodedTexelTransfer: break;
     }
     std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
     writeLe32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));

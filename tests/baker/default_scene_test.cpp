@@ -2,6 +2,7 @@
 // consistent with normals, albedo below 1), room-sized, varied, and with normals facing into
 // the room and out of the objects.
 #include "baker/scene/default_scene.h"
+#include "baker/scene/uv_atlas_check.h"
 
 #include <gtest/gtest.h>
 
@@ -150,6 +151,40 @@ TEST(DefaultScene, IsDeterministic) {
     ASSERT_EQ(a.positions[v].y, b.positions[v].y);
     ASSERT_EQ(a.positions[v].z, b.positions[v].z);
   }
+}
+
+// The built-in lightmap atlas passes the same check a glTF's TEXCOORD_1 must pass, at the
+// sizes the demo and the tests bake at, and spends its texels on the surface: one chart per
+// grid (4 room surfaces, 5 + 5 box faces, sphere, torus) and most of the square used.
+TEST(DefaultScene, Texcoord1IsAValidLightmapAtlas) {
+  const Scene s = makeDefaultScene();
+  ASSERT_EQ(s.texcoord[1].size(), s.positions.size());
+  EXPECT_TRUE(s.texcoord[0].empty());
+  EXPECT_FALSE(s.texcoordAbsent[0].empty());
+  for (int size : {512, 1024, 2048}) {
+    UvAtlasTarget target;
+    target.width = target.height = size;
+    target.padding = 2;
+    UvAtlasReport r;
+    ASSERT_TRUE(checkUvAtlas(s.positions, s.indices, s.texcoord[1], target, "TEXCOORD_1", &r).isOk());
+    EXPECT_TRUE(r.valid()) << size << ": " << (r.problems.empty() ? "" : r.problems[0]);
+    EXPECT_EQ(r.charts, 16u) << size;
+    EXPECT_GT(r.usedTexelFraction, 0.6) << size;
+  }
+  // Texel density is uniform across charts: UV area over surface area is the same for the
+  // floor (first chart) and the cube's top, within the rounding of the grids.
+  auto density = [&](std::size_t firstTriangle, std::size_t count) {
+    double uvArea = 0, area = 0;
+    for (std::size_t t = firstTriangle; t < firstTriangle + count; ++t) {
+      const std::uint32_t a = s.indices[3 * t], b = s.indices[3 * t + 1], c = s.indices[3 * t + 2];
+      area += 0.5 * length(cross(s.positions[b] - s.positions[a], s.positions[c] - s.positions[a]));
+      const Uv ua = s.texcoord[1][a], ub = s.texcoord[1][b], uc = s.texcoord[1][c];
+      uvArea += 0.5 * std::abs((ub.u - ua.u) * (uc.v - ua.v) - (ub.v - ua.v) * (uc.u - ua.u));
+    }
+    return uvArea / area;
+  };
+  const std::size_t floorTriangles = 2 * 64 * 64;  // 4 m at 16 cells per metre
+  EXPECT_NEAR(density(0, floorTriangles) / density(floorTriangles, 2 * 64 * 48), 1.0, 1e-3);
 }
 
 }  // namespace
