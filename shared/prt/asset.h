@@ -160,7 +160,10 @@ const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, Transfe
 
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
-inline constexpr std::uint16_t kAssetVersionMinor = 4;  // new section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular, 4: transfer textures)
+// New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular). The
+// transfer-texture sections below are reserved for 1.4; checkAsset refuses them until the
+// writer and reader store them.
+inline constexpr std::uint16_t kAssetVersionMinor = 3;
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this

@@ -708,9 +708,27 @@ const TransferPass* findPass(const BakedAsset& asset, TransferKind kind) {
 }
 
 const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form) {
+  return findPass(asset, kind, form, TransferDomain::kVertex);
+}
+
+const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, TransferForm form, TransferDomain domain) {
   for (const TransferPass& p : asset.passes)
-    if (p.kind == kind && p.form == form) return &p;
+    if (p.kind == kind && p.form == form && p.domain == domain) return &p;
   return nullptr;
+}
+
+const char* transferDomainName(TransferDomain domain) {
+  switch (domain) {
+    case TransferDomain::kVertex: return "vertex";
+    case TransferDomain::kTexel: return "texel";
+  }
+  return "unknown";
+}
+
+std::uint64_t assetTexelCount(const BakedAsset& asset) {
+  std::uint64_t texels = 0;
+  for (const TextureAtlas& a : asset.atlases) texels += std::uint64_t{a.width} * a.height;
+  return texels;
 }
 
 bool isValidAssetSamplingName(std::string_view sampling) {

@@ -141,6 +141,16 @@ Status checkAsset(const BakedAsset& asset) {
     return Status::error(StatusCode::kInvalidArgument,
                          "asset has " + std::to_string(asset.passes.size()) + " transfer passes; 1 to 6 are needed");
   }
+  // Transfer textures are declared (asset.h) but this writer does not store them yet: refuse
+  // them rather than write a file that silently drops the texel passes.
+  if (!asset.atlasUv.empty() || !asset.atlases.empty() || !asset.texelCoverage.empty()) {
+    return Status::error(StatusCode::kInvalidArgument, "transfer-texture atlases cannot be encoded yet (asset format 1.3)");
+  }
+  for (const TransferPass& pass : asset.passes) {
+    if (pass.domain != TransferDomain::kVertex) {
+      return Status::error(StatusCode::kInvalidArgument, "texel transfer passes cannot be encoded yet (asset format 1.3)");
+    }
+  }
   bool anyMatrix = false;
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
   for (std::size_t p = 0; p < asset.passes.size(); ++p) {

@@ -319,6 +319,27 @@ TEST(Asset, RoundTripIsBitExact) {
   }
 }
 
+// Transfer textures are declared but not stored yet: the writer refuses them with a message
+// naming them instead of writing a file without them.
+TEST(Asset, TexelPassesAndAtlasesAreRefusedUntilTheFormatStoresThem) {
+  std::vector<std::uint8_t> bytes;
+  BakedAsset texel = makeAsset(3, 5, 4);
+  texel.passes[0].domain = TransferDomain::kTexel;
+  Status s = encodeAsset(texel, &bytes);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("texel transfer passes"), std::string::npos) << s.message();
+  BakedAsset atlas = makeAsset(3, 5, 4);
+  atlas.atlases.push_back({4, 4, 0, 4});
+  s = encodeAsset(atlas, &bytes);
+  EXPECT_EQ(s.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(s.message().find("atlases"), std::string::npos) << s.message();
+  // findPass without a domain means vertices; with one, it finds the texel pass.
+  EXPECT_EQ(findPass(texel, texel.passes[0].kind, TransferForm::kVector), nullptr);
+  EXPECT_EQ(findPass(texel, texel.passes[0].kind, TransferForm::kVector, TransferDomain::kTexel), &texel.passes[0]);
+  EXPECT_STREQ(transferDomainName(TransferDomain::kTexel), "texel");
+  EXPECT_EQ(assetTexelCount(atlas), 16u);
+}
+
 TEST(Asset, EveryLightingModelRoundTrips) {
   for (const LightingInfo& l : {LightingInfo{}, LightingInfo{LightingModel::kLocalSphere, {0.0f, 1.5f, 0.0f}, 3.2f},
                                 LightingInfo{LightingModel::kLocalSpherePaper, {-1e6f, 2.5e-3f, 7.0f}, 1e-20f}}) {
