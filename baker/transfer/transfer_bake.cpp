@@ -10,6 +10,7 @@
 #include <mutex>
 #include <utility>
 
+#include "baker/transfer/direct_pass.h"
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/hit_record.h"
@@ -23,166 +24,6 @@ namespace {
 
 using Block = HitBlock;
 
-// The shared sample directions and their basis values, coefficient-major.
-struct SampleTable {
-  DirectionSet dirs;
-  std::vector<float> basis;  // [coefficient][sample]
-  std::vector<float> sampleMajor;  // glossy bakes: the same, [sample][coefficient]
-};
-
-Status makeSamples(const BakeOptions& o, SampleTable* t) {
-  if (o.sampling == Sampling::kStratified) {
-    const auto side = static_cast<std::size_t>(std::lround(std::sqrt(static_cast<double>(o.samples))));
-    if (side * side != o.samples) {
-      return Status::error(StatusCode::kInvalidArgument,
-                           "stratified sampling needs a square sample count (got " + std::to_string(o.samples) + ")");
-    }
-    if (Status s = stratifiedSphere(side, o.seed, &t->dirs); !s.isOk()) return s;
-  } else {
-    if (Status s = hammersleySphere(o.samples, &t->dirs); !s.isOk()) return s;
-    if (o.seed != 0) {
-      // A seeded rotation of the whole set: a new, equally well-distributed set per seed.
-      Pcg32 rng(o.seed);
-      const Vec3 axis = squareToSphere(rng.nextFloat(), rng.nextFloat());
-      const Mat3 r = rotationAxisAngle(axis, static_cast<float>(2.0 * kPi) * rng.nextFloat());
-      for (std::size_t k = 0; k < t->dirs.size(); ++k) {
-        Vec3 d = r * t->dirs.at(k);
-        d = d * (1.0f / length(d));
-        t->dirs.x[k] = d.x;
-        t->dirs.y[k] = d.y;
-        t->dirs.z[k] = d.z;
-      }
-    }
-  }
-  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(o.order)), count = t->dirs.size();
-  t->basis.resize(n2 * count);
-  if (Status s = evalShBasisBatch(o.order, t->dirs.x, t->dirs.y, t->dirs.z, t->basis); !s.isOk()) return s;
-  if (o.glossy) {
-    t->sampleMajor.resize(n2 * count);
-    for (std::size_t i = 0; i < n2; ++i) {
-      for (std::size_t k = 0; k < count; ++k) t->sampleMajor[k * n2 + i] = t->basis[i * count + k];
-    }
-  }
-  return Status::ok();
-}
-
-// out[i] = sum_k weights[k] basis[i][k]
-void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out) {
-  for (int i = 0; i < n2; ++i) {
-    const float* __restrict row = basis + static_cast<std::size_t>(i) * count;
-    float acc = 0.0f;
-    for (std::size_t k = 0; k < count; ++k) acc += weights[k] * row[k];
-    out[i] = acc;
-  }
-}
-
-class ProgressReporter {
- public:
-  ProgressReporter(const BakeOptions& o, std::string pass, std::size_t total)
-      : o_(o), pass_(std::move(pass)), total_(total) {}
-  void add(std::size_t vertices, std::uint64_t rays) {
-    const std::size_t done = done_.fetch_add(vertices) + vertices;
-    const std::uint64_t r = rays_.fetch_add(rays) + rays;
-    if (o_.progress) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      o_.progress({pass_.c_str(), done, total_, r});
-    }
-  }
-  std::uint64_t rays() const { return rays_.load(); }
-
- private:
-  const BakeOptions& o_;
-  std::string pass_;
-  std::size_t total_;
-  std::atomic<std::size_t> done_{0};
-  std::atomic<std::uint64_t> rays_{0};
-  std::mutex mutex_;
-};
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Rays of the direct pass for one vertex: one per sample direction above the tangent
-// plane, from `origin` (already offset along n). Writes the clamped-cosine weights
-// w max(0, n.w)/pi of every sample (0 below the plane) and, per ray, its sample index.
-unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 origin, float eps, RTCRayHit* rays, std::uint32_t* sample,
-                  float* cosineWeight) {
-  const std::size_t sampleCount = table.dirs.size();
-  const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
-  unsigned count = 0;
-  for (std::size_t k = 0; k < sampleCount; ++k) {
-    const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
-    cosineWeight[k] = c > 0.0f ? c * sampleWeight : 0.0f;
-    if (c <= 0.0f) continue;
-    RTCRayHit& r = rays[count];
-    r.ray.org_x = origin.x;
-    r.ray.org_y = origin.y;
-    r.ray.org_z = origin.z;
-    r.ray.tnear = eps;
-    r.ray.dir_x = table.dirs.x[k];
-    r.ray.dir_y = table.dirs.y[k];
-    r.ray.dir_z = table.dirs.z[k];
-    r.ray.time = 0.0f;
-    r.ray.tfar = INFINITY;
-    r.ray.mask = 0xFFFFFFFFu;
-    r.ray.id = 0;
-    r.ray.flags = 0;
-    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    sample[count] = static_cast<std::uint32_t>(k);
-    ++count;
-  }
-  return count;
-}
-
-// Offsets relative to the scene: far above float rounding of positions (~1e-7 of the
-// extent), far below any feature the transfer can resolve.
-float rayOffset(const EmbreeScene& embree) { return 1e-5f * std::max(embree.diagonal(), 1e-6f); }
-
-Status checkOptions(const Scene& scene, const BakeOptions& o) {
-  if (o.order < 2 || o.order > 8) {
-    return Status::error(StatusCode::kInvalidArgument, "bake order " + std::to_string(o.order) + " is outside [2, 8]");
-  }
-  if (o.samples < 16 || o.samples > (1u << 20)) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "sample count " + std::to_string(o.samples) + " is outside [16, 1048576]");
-  }
-  if (o.maxBounces < 0 || o.maxBounces > 64) {
-    return Status::error(StatusCode::kInvalidArgument, "bounce count must be in [0, 64]");
-  }
-  if (Status s = checkLightingInfo(o.lighting); !s.isOk()) return Status::error(s.code(), "bake " + s.message());
-  if (o.glossy && (o.glossyBounces < 0 || o.glossyBounces > o.maxBounces)) {
-    return Status::error(StatusCode::kInvalidArgument, "glossy bounce count " + std::to_string(o.glossyBounces) +
-                                                           " is outside [0, maxBounces = " +
-                                                           std::to_string(o.maxBounces) + "]");
-  }
-  if (o.glossy && o.glossyBounces > 0 && !o.interreflection) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "glossy bounces need interreflection (set glossyBounces to 0 or enable interreflection)");
-  }
-  const std::size_t vertexCount = scene.positions.size();
-  if (scene.normals.size() != vertexCount || scene.albedo.size() != vertexCount) {
-    return Status::error(StatusCode::kSizeMismatch, "scene normals/albedo do not match its positions");
-  }
-  if (!scene.specular.empty() && scene.specular.size() != vertexCount) {
-    return Status::error(StatusCode::kSizeMismatch, "scene specular materials do not match its positions");
-  }
-  for (const SpecularMaterial& m : scene.specular) {
-    const float f[4] = {m.f0.r, m.f0.g, m.f0.b, m.f90};
-    for (float x : f) {
-      if (!(x >= 0.0f && x <= 1.0f)) return Status::error(StatusCode::kInvalidArgument, "scene specular f0 or f90 outside [0, 1]");
-    }
-    if (!(m.exponent >= 0.0f) || !std::isfinite(m.exponent)) {
-      return Status::error(StatusCode::kInvalidArgument, "scene specular exponent is negative or not finite");
-    }
-  }
-  for (std::uint32_t index : scene.indices) {
-    if (index >= vertexCount) return Status::error(StatusCode::kInvalidArgument, "scene index out of range");
-  }
-  return Status::ok();
-}
-
 }  // namespace
 
 Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
@@ -195,8 +36,6 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   if (Status s = EmbreeScene::build(scene, &embree); !s.isOk()) return s;
 
   const int n2 = shCoeffCount(o.order);
-  const std::size_t sampleCount = table.dirs.size();
-  const float eps = rayOffset(embree);
   const unsigned threads = o.threads ? o.threads : defaultThreadCount();
   const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
 
@@ -220,136 +59,27 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   }
 
   // Geometric (winding) normals decide whether a ray hit the front of a triangle.
-  std::vector<Vec3> faceNormal(scene.indices.size() / 3);
-  for (std::size_t t = 0; t < faceNormal.size(); ++t) {
-    const Vec3 a = scene.positions[scene.indices[3 * t]], b = scene.positions[scene.indices[3 * t + 1]],
-               c = scene.positions[scene.indices[3 * t + 2]];
-    faceNormal[t] = cross(b - a, c - a);
-  }
+  const std::vector<Vec3> faceNormal = faceNormals(scene);
 
   // ---- direct pass: unshadowed + shadowed, recording front-face hits for the bounces
   std::vector<Block> blocks(o.interreflection ? blockCount : 0);
   std::vector<std::uint8_t> outside(vertexCount, 0);
   {
-    const auto t0 = std::chrono::steady_clock::now();
-    ProgressReporter progress(o, "direct", vertexCount);
-    const bool local = isLocalLighting(o.lighting.model);
-    struct Scratch {
-      std::vector<RTCRayHit> rays;
-      std::vector<std::uint32_t> sample;
-      std::vector<float> unshadowedW, shadowedW;  // per sample k; solid-angle weights w max(0, n.w)/pi
-      // Local lighting, per ray j: w'_j, the lit weights (solid angle x remap weight, 0 for rays
-      // that never reach S) and the basis at w'_j, [coefficient][ray].
-      std::vector<float> lightX, lightY, lightZ, litUnshadowed, litShadowed, basis;
-      // Glossy: visible sample indices (distant) or per-ray weights w q V (local), no cosine.
-      std::vector<std::uint32_t> visible;
-      std::vector<float> litGlossy;
-      std::unique_ptr<GlossyShadowedKernel> kernel;
-      GlossyKernelStats kernelStats;
-    };
-    std::vector<Scratch> scratch(threads);
-    for (auto& s : scratch) {
-      s.rays.resize(sampleCount);
-      s.sample.resize(sampleCount);
-      s.unshadowedW.resize(sampleCount);
-      s.shadowedW.resize(sampleCount);
-      if (local) {
-        for (auto* a : {&s.lightX, &s.lightY, &s.lightZ, &s.litUnshadowed, &s.litShadowed}) a->resize(sampleCount);
-        s.basis.resize(static_cast<std::size_t>(n2) * sampleCount);
-      }
-      if (o.glossy) {
-        s.visible.resize(sampleCount);
-        s.litGlossy.resize(sampleCount);
-        s.kernel = std::make_unique<GlossyShadowedKernel>(o.order, sampleCount);
-      }
-    }
-    parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
-      Scratch& s = scratch[thread];
-      const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
-      Block* rec = o.interreflection ? &blocks[block] : nullptr;
-      if (rec) rec->hitStart.assign(1, 0);
-      std::uint64_t rays = 0;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, many directions
-      for (std::size_t v = begin; v < end; ++v) {
-        const Vec3 n = scene.normals[v];
-        const Vec3 origin = scene.positions[v] + n * eps;
-        const unsigned count = fillRays(table, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
-        if (local) {
-          const SpherePoint sp = locateOnSphere(scene.positions[v], o.lighting.center, o.lighting.radius);
-          outside[v] = sp.outside;
-          for (unsigned j = 0; j < count; ++j) {
-            RTCRay& ray = s.rays[j].ray;
-            const RemappedRay m = remapRay(sp, Vec3{ray.dir_x, ray.dir_y, ray.dir_z}, o.lighting.model);
-            ray.tfar = m.tFar;  // occluders beyond S are part of the lighting, not the scene
-            s.lightX[j] = m.lightDir.x;
-            s.lightY[j] = m.lightDir.y;
-            s.lightZ[j] = m.lightDir.z;
-            s.litUnshadowed[j] = s.litShadowed[j] = s.unshadowedW[s.sample[j]] * m.weight;
-            if (o.glossy) s.litGlossy[j] = static_cast<float>(table.dirs.weight) * m.weight;
-          }
-        } else {
-          std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
-        }
-        if (rec) {
-          rtcIntersect1M(embree.handle(), &context, s.rays.data(), count, sizeof(RTCRayHit));
-        } else {
-          // Occlusion needs only RTCRay; RTCRayHit starts with one, so the stride skips the hit.
-          rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
-        }
-        rays += count;
-        std::size_t visibleCount = 0;
-        for (unsigned j = 0; j < count; ++j) {
-          const RTCRayHit& r = s.rays[j];
-          const bool blocked = rec ? r.hit.geomID != RTC_INVALID_GEOMETRY_ID : r.ray.tfar < 0.0f;
-          if (!blocked) {
-            if (o.glossy) s.visible[visibleCount++] = s.sample[j];
-            continue;
-          }
-          const std::uint32_t k = s.sample[j];
-          if (local) {
-            s.litShadowed[j] = 0.0f;
-            if (o.glossy) s.litGlossy[j] = 0.0f;
-          } else {
-            s.shadowedW[k] = 0.0f;
-          }
-          // Hits keep the solid-angle weight in both models: a bounce gathers radiance over
-          // directions at x from surfaces inside S, which does not involve the remapping.
-          if (rec && dot(faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
-            auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
-            rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
-            if (o.glossy) rec->hitSample.push_back(k);
-          }
-        }
-        if (rec) rec->hitStart.push_back(static_cast<std::uint32_t>(rec->hits.size()));
-        if (local) {
-          // One basis evaluation per ray, batched over the vertex's rays (the distant bake
-          // evaluates each sample's basis once for all vertices).
-          evalShBasisBatchUnchecked(o.order, count, s.lightX.data(), s.lightY.data(), s.lightZ.data(), s.basis.data());
-          projectWeights(n2, count, s.litUnshadowed.data(), s.basis.data(), &out->unshadowed[v * n2]);
-          projectWeights(n2, count, s.litShadowed.data(), s.basis.data(), &out->shadowed[v * n2]);
-          if (o.glossy) {
-            s.kernel->local(table.sampleMajor.data(), s.sample.data(), s.litGlossy.data(), count, s.basis.data(),
-                            &out->glossyShadowed[v * glossyEntries], &s.kernelStats);
-          }
-        } else {
-          projectWeights(n2, sampleCount, s.unshadowedW.data(), table.basis.data(), &out->unshadowed[v * n2]);
-          projectWeights(n2, sampleCount, s.shadowedW.data(), table.basis.data(), &out->shadowed[v * n2]);
-          if (o.glossy) {
-            s.kernel->distant(table.sampleMajor.data(), s.visible.data(), visibleCount,
-                              static_cast<float>(table.dirs.weight), &out->glossyShadowed[v * glossyEntries],
-                              &s.kernelStats);
-          }
-        }
-      }
-      progress.add(end - begin, rays);
-    });
-    out->passes.push_back({"direct", secondsSince(t0), progress.rays()});
-    for (const Scratch& s : scratch) {  // thread order: the sums of flops are exact, seconds are timings
-      out->glossyRankUpdate.flops += s.kernelStats.flops;
-      out->glossyRankUpdate.threadSeconds += s.kernelStats.threadSeconds;
-    }
+    DirectPassJob job;
+    job.embree = &embree;
+    job.table = &table;
+    job.options = &o;
+    job.positions = scene.positions;
+    job.normals = scene.normals;
+    job.faceNormal = faceNormal;
+    job.threads = threads;
+    job.unshadowed = out->unshadowed.data();
+    job.shadowed = out->shadowed.data();
+    job.glossyShadowed = o.glossy ? out->glossyShadowed.data() : nullptr;
+    job.glossyEntries = glossyEntries;
+    job.blocks = o.interreflection ? &blocks : nullptr;
+    job.outside = outside.data();
+    out->passes.push_back(runDirectPass(job, &out->glossyRankUpdate));
   }
   for (std::uint8_t x : outside) out->verticesOutsideLight += x;
   if (!o.interreflection) return Status::ok();
