@@ -17,3 +17,11 @@ add_executable(prt_glossy_bake_tests ${CMAKE_CURRENT_LIST_DIR}/glossy_test.cpp)
 target_include_directories(prt_glossy_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
 target_link_libraries(prt_glossy_bake_tests PRIVATE prt_transfer prt_test_support GTest::gtest_main)
 add_test(NAME glossy_bake_tests COMMAND prt_glossy_bake_tests)
+
+# Transfer textures (docs/transfer-textures.md): closed forms, the vertex bake, light leaks
+# under touching geometry, and seams under bilinear filtering.
+add_executable(prt_texel_bake_tests ${CMAKE_CURRENT_LIST_DIR}/texel_bake_test.cpp)
+target_include_directories(prt_texel_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_texel_bake_tests PRIVATE prt_transfer GTest::gtest_main)
+target_compile_options(prt_texel_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME texel_bake_tests COMMAND prt_texel_bake_tests)
