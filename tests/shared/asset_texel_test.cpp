@@ -235,7 +235,13 @@ TEST(AssetTexel, FloatAndEncodedTexelPassesRoundTripWithVertexPasses) {
   const AssetSectionInfo& atlases = summary.sections[7];
   EXPECT_EQ(atlases.arg0, a.atlases.size());
   EXPECT_EQ(atlases.size, 16 * a.atlases.size());
-  EXPECT_EQ(rd32(file, atlases.offset + 16 + 8), a.atlases[1].firstTriangle);  // u32 LE fields
+  // The document's example of the atlases payload (docs/asset-format.md, "atlases").
+  const Bytes documented = {0x04, 0, 0, 0, 0x03, 0, 0, 0, 0x00, 0, 0, 0, 0x06, 0, 0, 0,
+                            0x02, 0, 0, 0, 0x05, 0, 0, 0, 0x06, 0, 0, 0, 0x04, 0, 0, 0};
+  EXPECT_EQ(Bytes(file.begin() + static_cast<std::ptrdiff_t>(atlases.offset),
+                  file.begin() + static_cast<std::ptrdiff_t>(atlases.offset + atlases.size)),
+            documented);
+  EXPECT_EQ(summary.sections[8].size, 22u);
   AssetSummary peeked;
   ASSERT_TRUE(peekAssetHeader(file, &peeked).isOk());
   EXPECT_EQ(peeked.texelCount, summary.texelCount);
