@@ -11,6 +11,14 @@ constexpr std::uint32_t kTypeTransfer = static_cast<std::uint32_t>(AssetSectionT
 constexpr std::uint32_t kTypeEncodedTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTransfer);
 constexpr std::uint32_t kTypeMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kMatrixTransfer);
 constexpr std::uint32_t kTypeEncodedMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer);
+constexpr std::uint32_t kTypeAtlasUv = static_cast<std::uint32_t>(AssetSectionType::kAtlasUv);
+constexpr std::uint32_t kTypeTexelCoverage = static_cast<std::uint32_t>(AssetSectionType::kTexelCoverage);
+constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kTexelTransfer);
+constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
+
+bool isEncodedTransfer(std::uint32_t type) {
+  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer;
+}
 
 AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind, int section,
                       const AssetSectionInfo& info) {
@@ -20,8 +28,11 @@ AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind
   p.kind = kind;
   p.section = section;
   p.matrix = info.type == kTypeMatrixTransfer || info.type == kTypeEncodedMatrixTransfer;
-  p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer || p.matrix;
-  p.pass = static_cast<TransferKind>(info.arg0);
+  const bool texelPass = info.type == kTypeTexelTransfer || info.type == kTypeEncodedTexelTransfer;
+  p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer || p.matrix || texelPass;
+  p.pass = p.hasPass ? static_cast<TransferKind>(info.arg0) : TransferKind::kUnshadowed;
+  const bool atlasSection = info.type >= kTypeAtlasUv && info.type <= kTypeTexelCoverage;
+  p.domain = texelPass || atlasSection ? TransferDomain::kTexel : TransferDomain::kVertex;
   return p;
 }
 
@@ -105,9 +116,9 @@ std::vector<AssetPart> cutAssetParts(std::span<const std::uint8_t> file, const A
     const std::uint64_t end = k + 1 < order.size() ? sections[static_cast<std::size_t>(order[k + 1])].offset : fileSize;
     if (end == s.offset) continue;
     // A glossy matrix blob is cut like a vector one (its shells are its bands; the weights
-    // part goes with the clusters, as the client needs both before any shell).
-    const bool encoded = s.type == kTypeEncodedTransfer || s.type == kTypeEncodedMatrixTransfer;
-    if (encoded && s.size > 0 && cutEncodedTransfer(file, s, index, end, &parts)) continue;
+    // part goes with the clusters, as the client needs both before any shell), and so is a
+    // texel pass's (its rows are texels).
+    if (isEncodedTransfer(s.type) && s.size > 0 && cutEncodedTransfer(file, s, index, end, &parts)) continue;
     parts.push_back(sectionPart(s.offset, end, AssetPartKind::kSection, index, s));
   }
   return parts;

@@ -136,7 +136,8 @@ std::shared_ptr<const CatalogueEntry> withPublicError(std::shared_ptr<const Cata
   return copy;
 }
 
-// {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P][,"band":l]}
+// {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P[,"form":"matrix"],"domain":D][,"band":l]};
+// the atlas sections' parts carry "domain":"texel" without a pass.
 std::string partJson(const ServedPart& p) {
   const AssetPart& r = p.range;
   std::string j = "{\"offset\":" + std::to_string(r.offset) + ",\"size\":" + std::to_string(r.size) +
@@ -144,6 +145,8 @@ std::string partJson(const ServedPart& p) {
   if (r.section >= 0) j += ",\"section\":" + std::to_string(r.section);
   if (r.hasPass) j += ",\"pass\":" + jsonString(transferKindName(r.pass));
   if (r.matrix) j += ",\"form\":\"matrix\"";
+  // The client needs the domain to leave texel data alone until it renders transfer textures.
+  if (r.hasPass || r.domain == TransferDomain::kTexel) j += ",\"domain\":" + jsonString(transferDomainName(r.domain));
   if (r.band >= 0) j += ",\"band\":" + std::to_string(r.band);
   return j + "}";
 }
@@ -159,12 +162,13 @@ std::string entryJson(const CatalogueEntry& e) {
   j += ",\"shOrder\":" + std::to_string(s.shOrder) + ",\"passes\":[";
   for (std::size_t i = 0; i < s.passes.size(); ++i) {
     const AssetPassInfo& p = s.passes[i];
-    // Glossy matrix passes say so; vector passes keep the listing they always had.
+    // Glossy matrix passes say so; vector passes keep the listing they always had. Every pass
+    // says where its transfer lives: per vertex, or per texel of the atlases.
     j += std::string(i ? "," : "") + "{\"kind\":" + jsonString(transferKindName(p.kind)) +
-         (p.form == TransferForm::kMatrix ? ",\"form\":\"matrix\"" : "") + ",\"channels\":" + std::to_string(p.channels) +
-         ",\"bounces\":" + std::to_string(p.bounces) + "}";
+         (p.form == TransferForm::kMatrix ? ",\"form\":\"matrix\"" : "") + ",\"domain\":" + jsonString(transferDomainName(p.domain)) +
+         ",\"channels\":" + std::to_string(p.channels) + ",\"bounces\":" + std::to_string(p.bounces) + "}";
   }
-  j += "],\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling);
+  j += "],\"texels\":" + std::to_string(s.texelCount) + ",\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling);
   // The client needs the lighting model to light the transfer correctly, and for the local
   // models where to render its light cube map from (docs/spatially-varying.md).
   j += ",\"lighting\":" + jsonString(lightingModelName(s.lighting.model));

@@ -39,7 +39,34 @@ constexpr const char* kInfoHelp =
     "Usage: prt-bake info ASSET [--json]\n"
     "\n"
     "Verifies a baked asset (every checksum and value) and prints its contents, the lighting\n"
-    "model its transfer was baked for included (distant, or a local sphere's centre and radius).\n";
+    "model its transfer was baked for included (distant, or a local sphere's centre and radius),\n"
+    "each pass's domain (per vertex, or per texel of the transfer-texture atlases) and the atlases.\n";
+
+// The atlases of a verified asset as a JSON array: [{"width": W, "height": H,
+// "firstTriangle": F, "triangleCount": C}, ...]; [] without texel passes.
+std::string infoAtlasesJson(const std::vector<TextureAtlas>& atlases) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < atlases.size(); ++i) {
+    const TextureAtlas& a = atlases[i];
+    s += std::string(i ? ", " : "") + "{\"width\": " + std::to_string(a.width) + ", \"height\": " + std::to_string(a.height) +
+         ", \"firstTriangle\": " + std::to_string(a.firstTriangle) + ", \"triangleCount\": " + std::to_string(a.triangleCount) + "}";
+  }
+  return s + "]";
+}
+
+// "atlases: 2, 22 texels: 4x3 (triangles 0-5), 2x5 (triangles 6-9)"; the first few atlases
+// only, as an asset may have up to kMaxAssetAtlases of them.
+std::string infoAtlasesLine(const std::vector<TextureAtlas>& atlases, std::uint64_t texels) {
+  constexpr std::size_t kListed = 8;
+  std::string s = "atlases: " + std::to_string(atlases.size()) + ", " + std::to_string(texels) + " texels:";
+  for (std::size_t i = 0; i < atlases.size() && i < kListed; ++i) {
+    const TextureAtlas& a = atlases[i];
+    s += std::string(i ? ", " : " ") + std::to_string(a.width) + "x" + std::to_string(a.height) + " (triangles " +
+         std::to_string(a.firstTriangle) + "-" + std::to_string(std::uint64_t{a.firstTriangle} + a.triangleCount - 1) + ")";
+  }
+  if (atlases.size() > kListed) s += ", ... " + std::to_string(atlases.size() - kListed) + " more";
+  return s + "\n";
+}
 
 constexpr const char* kShadeHelp =
     "Usage: prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--view X,Y,Z [--glossy-only]]\n"
@@ -118,6 +145,11 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   if (Status s = readAsset(path, &bytes); !s.isOk()) return reportFailure(err, "info", s);
   AssetSummary sum;
   if (Status s = verifyAsset(bytes, &sum); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
+  BakedAsset atlases;  // only the atlas fields are filled
+  if (Status s = decodeAssetAtlases(bytes, &atlases); !s.isOk()) {
+    return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
+  }
+  const std::uint64_t texels = assetTexelCount(atlases);
   if (p.has("--json")) {
     std::string s = "{\n  \"file\": " + jsonString(path) + ",\n  \"bytes\": " + std::to_string(bytes.size()) + ",\n";
     s += "  \"version\": \"" + std::to_string(sum.versionMajor) + "." + std::to_string(sum.versionMinor) + "\",\n";
@@ -138,11 +170,12 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     for (std::size_t i = 0; i < sum.passes.size(); ++i) {
       const auto& ps = sum.passes[i];
       s += std::string(i ? ", " : "") + "{\"kind\": \"" + transferKindName(ps.kind) + "\", \"form\": \"" +
-           transferFormName(ps.form) + "\", \"channels\": " + std::to_string(ps.channels) +
+           transferFormName(ps.form) + "\", \"domain\": \"" + transferDomainName(ps.domain) +
+           "\", \"channels\": " + std::to_string(ps.channels) +
            ", \"bounces\": " + std::to_string(ps.bounces) + ", \"encoded\": " + (ps.encoded ? "true" : "false") +
            ", \"bytes\": " + std::to_string(ps.bytes) + "}";
     }
-    s += "]\n}\n";
+    s += "],\n  \"texels\": " + std::to_string(texels) + ",\n  \"atlases\": " + infoAtlasesJson(atlases.atlases) + "\n}\n";
     std::fputs(s.c_str(), out);
   } else {
     std::fprintf(out, "%s: PRT asset v%u.%u, %zu bytes, checksums ok\n", path.c_str(), sum.versionMajor,
@@ -166,11 +199,13 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                      ps.channels == 3 ? "RGB" : "scalar (one matrix for r, g, b)", matrixPackingName(packing),
                      matrixEntryCount(sum.shOrder, packing));
       } else {
-        std::fprintf(out, "pass: %s, %s", transferKindName(ps.kind), ps.channels == 3 ? "RGB" : "scalar (x albedo)");
+        std::fprintf(out, "pass: %s%s, %s", ps.domain == TransferDomain::kTexel ? "texel " : "", transferKindName(ps.kind),
+                     ps.channels == 3 ? "RGB" : "scalar (x albedo)");
       }
       if (ps.kind == TransferKind::kInterreflected) std::fprintf(out, ", %d bounces", ps.bounces);
       std::fprintf(out, ", %s, %llu bytes\n", ps.encoded ? "encoded" : "float32", static_cast<unsigned long long>(ps.bytes));
     }
+    if (!atlases.atlases.empty()) std::fputs(infoAtlasesLine(atlases.atlases, texels).c_str(), out);
   }
   return kExitOk;
 }

@@ -126,7 +126,7 @@ struct BakedAsset {
   std::vector<Vec3> normals;         // one per position
   std::vector<Rgb> albedo;           // one per position, linear
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
-  std::vector<TransferPass> passes;  // 1..6, at most one per (kind, form); order is kept
+  std::vector<TransferPass> passes;  // 1..kMaxAssetPasses, at most one per (kind, form, domain); order is kept
   // One per position when the asset has a matrix pass (the glossy material), else empty.
   std::vector<SpecularMaterial> specular;
   // Bake metadata. samples and seed are 64-bit because the baker's options are
@@ -160,10 +160,9 @@ const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, Transfe
 
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
-// New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular). The
-// transfer-texture sections below are reserved for 1.4; checkAsset refuses them until the
-// writer and reader store them.
-inline constexpr std::uint16_t kAssetVersionMinor = 3;
+// New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular,
+// 4: transfer textures: atlas uv, atlases, texel coverage, texel transfer float32 and encoded).
+inline constexpr std::uint16_t kAssetVersionMinor = 4;
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -213,6 +212,15 @@ inline constexpr std::size_t kMaxAssetPasses = 9;
 
 // Bytes per vertex of the specular section: float32 f0 r, g, b, f90, exponent.
 inline constexpr std::size_t kAssetSpecularBytesPerVertex = 20;
+
+// Bytes per atlas of the atlases section, and the u32 fields' offsets in one.
+inline constexpr std::size_t kAssetAtlasEntryBytes = 16;
+namespace asset_atlas_layout {
+inline constexpr std::size_t kWidth = 0;
+inline constexpr std::size_t kHeight = 4;
+inline constexpr std::size_t kFirstTriangle = 8;
+inline constexpr std::size_t kTriangleCount = 12;
+}  // namespace asset_atlas_layout
 
 // Size and field offsets of the lighting section's payload (docs/asset-format.md).
 inline constexpr std::size_t kAssetLightingBytes = 20;
@@ -266,10 +274,14 @@ bool isValidAssetSamplingName(std::string_view sampling);
 
 // Ok when `asset` can be encoded: order in range, 1..kMaxAssetVertices vertices with as
 // many normals and albedos, 1..kMaxAssetTriangles triangles with every index in range,
-// every float finite, 1..6 passes of distinct valid (kind, form) with channels 1 or 3, bounces 0
-// except for interreflection, coefficient counts matching, valid name and sampling, and
-// valid lighting (checkLightingInfo). With a matrix pass: one specular material per vertex,
-// f0 and f90 in [0, 1] and exponent finite and >= 0; without one, no specular materials.
+// every float finite, 1..kMaxAssetPasses passes of distinct valid (kind, form, domain) with
+// channels 1 or 3, bounces 0 except for interreflection, coefficient counts matching, valid
+// name and sampling, and valid lighting (checkLightingInfo). With a matrix pass: one specular
+// material per vertex, f0 and f90 in [0, 1] and exponent finite and >= 0; without one, no
+// specular materials. Texel passes are vector form, with assetTexelCount as their vertex
+// count; with one: 1..kMaxAssetAtlases atlases of sides 1..kMaxAssetAtlasSize covering the
+// triangles contiguously in order, at most kMaxAssetTexels texels, atlasUv 2 per vertex in
+// [0, 1], texelCoverage one value (0, 1 or 2) per texel; without one, all three empty.
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.
@@ -279,7 +291,7 @@ struct AssetPassInfo {
   TransferKind kind = TransferKind::kUnshadowed;
   int channels = 0;
   int bounces = 0;
-  bool encoded = false;       // a kEncodedTransfer section (codec blob) rather than float32
+  bool encoded = false;       // a codec blob (types 8, 10, 16) rather than float32
   std::uint64_t bytes = 0;    // the section's payload size
   std::uint32_t section = 0;  // its index in the section table
   TransferForm form = TransferForm::kVector;
@@ -305,6 +317,9 @@ struct AssetSummary {
   std::uint32_t sectionCount = 0;  // including sections of types this reader skips
   std::uint64_t fileSize = 0;      // as the header declares it; compare with the real size
   std::vector<AssetPassInfo> passes;  // in table order
+  // Texels of all atlases (the texel coverage section's size, one byte per texel); 0 without
+  // texel passes. The atlases themselves: decodeAssetAtlases.
+  std::uint64_t texelCount = 0;
   std::uint64_t samples = 0;
   std::uint64_t seed = 0;
   std::string sampling;
@@ -349,7 +364,8 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out);
 // bytes of that pass's section. A float32 section must have arrived whole; an encoded one
 // may hold only the codec's header and the parts of its first `bands` bands (the bands the
 // caller knows have arrived; 0 = all of them), and decodes as an order-`bands` pass (out->coeffs has
-// channels * bands^2 floats per vertex; *bandsDecoded says how many). out->encoded is left empty.
+// channels * bands^2 floats per vertex, or per texel for a texel pass, whose texel count is the
+// coverage section's size; *bandsDecoded says how many). out->encoded is left empty.
 Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded);
 
 // Like decodeAssetPassCpca for an encoded CPCA matrix pass (kEncodedMatrixTransfer): *out gets
@@ -358,6 +374,11 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
 Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, int bands, CpcaMatrixTransfer* out,
                                  TransferPass* info);
 
+// Decodes the atlas uv, atlases and texel coverage sections (they must have arrived) into
+// out->atlasUv, out->atlases and out->texelCoverage, leaving the rest of *out alone; all three
+// empty for a file without texel passes. *out is unchanged on error. Safe on untrusted input.
+Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out);
+
 // Decodes the specular section (it must have arrived) into *out, one per vertex; empty when
 // the file has none. Safe on untrusted input.
 Status decodeAssetSpecular(std::span<const std::uint8_t> file, std::vector<SpecularMaterial>* out);
@@ -365,7 +386,8 @@ Status decodeAssetSpecular(std::span<const std::uint8_t> file, std::vector<Specu
 // Like decodeAssetPass for an encoded CPCA pass, but unexpanded (for rendering straight from
 // the compressed form): *out gets the cluster ids and the first `bands` bands (0 = every band
 // that has arrived), *info the pass's kind, channels and bounces (no coefficients).
-// kInvalidArgument for a float32 pass or a blob of another encoding. Safe on untrusted input.
+// kInvalidArgument for a float32 pass or a blob of another encoding. Texel passes (type 16)
+// work the same, with one row per texel instead of per vertex. Safe on untrusted input.
 Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int bands, CpcaTransfer* out, TransferPass* info);
 
 }  // namespace prt

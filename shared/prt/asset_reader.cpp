@@ -49,7 +49,10 @@ struct Parsed {
   int positions = -1, normals = -1, indices = -1, albedo = -1, metadata = -1;
   int lighting = -1;  // optional (format 1.1); absent means distant
   int specular = -1;  // required exactly when a matrix section exists (format 1.3)
-  std::vector<int> transfer;  // entry indices, table order (vector and matrix passes)
+  // Transfer textures (format 1.4): each required exactly once with a texel pass, else absent.
+  int atlasUv = -1, atlases = -1, coverage = -1;
+  std::uint64_t texelCount = 0;  // the coverage section's size (1 byte per texel); 0 without one
+  std::vector<int> transfer;  // entry indices, table order (vector, matrix and texel passes)
 };
 
 // What the small sections hold: the metadata and the lighting.
@@ -70,9 +73,17 @@ constexpr std::uint32_t kTypeEncodedTransfer = static_cast<std::uint32_t>(AssetS
 constexpr std::uint32_t kTypeMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kMatrixTransfer);
 constexpr std::uint32_t kTypeEncodedMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer);
 constexpr std::uint32_t kTypeSpecular = static_cast<std::uint32_t>(AssetSectionType::kSpecular);
+constexpr std::uint32_t kTypeAtlasUv = static_cast<std::uint32_t>(AssetSectionType::kAtlasUv);
+constexpr std::uint32_t kTypeAtlases = static_cast<std::uint32_t>(AssetSectionType::kAtlases);
+constexpr std::uint32_t kTypeTexelCoverage = static_cast<std::uint32_t>(AssetSectionType::kTexelCoverage);
+constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kTexelTransfer);
+constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
 
 bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
-bool isEncodedType(std::uint32_t type) { return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer; }
+bool isTexelType(std::uint32_t type) { return type == kTypeTexelTransfer || type == kTypeEncodedTexelTransfer; }
+bool isEncodedType(std::uint32_t type) {
+  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer;
+}
 constexpr std::uint32_t kFormatFloat32 = static_cast<std::uint32_t>(AssetElementFormat::kFloat32);
 constexpr std::uint32_t kFormatUint32 = static_cast<std::uint32_t>(AssetElementFormat::kUint32);
 constexpr std::uint32_t kFormatBytes = static_cast<std::uint32_t>(AssetElementFormat::kBytes);
@@ -91,14 +102,20 @@ std::string sectionLabel(const Entry& e) {
     case kTypeEncodedTransfer:
     case kTypeMatrixTransfer:
     case kTypeEncodedMatrixTransfer:
+    case kTypeTexelTransfer:
+    case kTypeEncodedTexelTransfer:
       s += isEncodedType(e.type) ? "encoded " : "";
       s += isMatrixType(e.type) ? "matrix " : "";
+      s += isTexelType(e.type) ? "texel " : "";
       s += e.arg0 <= 2 ? std::string("transfer ") + transferKindName(static_cast<TransferKind>(e.arg0))
                        : "transfer kind " + num(e.arg0);
       break;
     case kTypeMetadata: s += "metadata"; break;
     case kTypeLighting: s += "lighting"; break;
     case kTypeSpecular: s += "specular"; break;
+    case kTypeAtlasUv: s += "atlas uv"; break;
+    case kTypeAtlases: s += "atlases"; break;
+    case kTypeTexelCoverage: s += "texel coverage"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -239,11 +256,35 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
         return s;
       }
       return once(&p->specular);
+    case kTypeAtlasUv:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(v * 8, "u and v per vertex")).isOk()) {
+        return s;
+      }
+      return once(&p->atlasUv);
+    case kTypeAtlases:
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk()) return s;
+      if (e.arg0 < 1 || e.arg0 > kMaxAssetAtlases) {
+        return corrupt(label + " declares " + num(e.arg0) + " atlases; 1 to " + num(kMaxAssetAtlases) + " expected");
+      }
+      if (e.arg1 != 0 || e.arg2 != 0) return corrupt(label + " has non-zero arguments 1 or 2");
+      if (!(s = expectSize(std::uint64_t{e.arg0} * kAssetAtlasEntryBytes, "16 bytes per atlas")).isOk()) return s;
+      return once(&p->atlases);
+    case kTypeTexelCoverage:
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      if (e.size < 1 || e.size > kMaxAssetTexels) {
+        return corrupt(label + " is " + num(e.size) + " bytes; 1 to " + num(kMaxAssetTexels) + " expected (one per texel)");
+      }
+      if (Status t = once(&p->coverage); !t.isOk()) return t;
+      p->texelCount = e.size;
+      return Status::ok();
     case kTypeTransfer:
     case kTypeEncodedTransfer:
     case kTypeMatrixTransfer:
-    case kTypeEncodedMatrixTransfer: {
-      const bool encoded = isEncodedType(e.type), matrix = isMatrixType(e.type);
+    case kTypeEncodedMatrixTransfer:
+    case kTypeTexelTransfer:
+    case kTypeEncodedTexelTransfer: {
+      const bool encoded = isEncodedType(e.type), matrix = isMatrixType(e.type), texel = isTexelType(e.type);
       if (!(s = encoded ? expectFormat(kFormatBytes, "bytes") : expectFormat(kFormatFloat32, "float32")).isOk()) return s;
       if (e.arg0 > 2) return corrupt(label + " has unknown transfer kind " + num(e.arg0));
       if (e.arg1 != 1 && e.arg1 != 3) return corrupt(label + " has " + num(e.arg1) + " channels; 1 or 3 expected");
@@ -260,8 +301,9 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
                        (interreflected ? "at most " + num(kMaxAssetBounces) : std::string("0")) + " expected");
       }
       // v <= 2^28, channels <= 3, order^2 <= 256: the product stays below 2^40. An encoded
-      // section's size is its blob's, checked with its contents.
-      if (!encoded && !matrix &&
+      // section's size is its blob's, checked with its contents. A float32 texel section's
+      // size depends on the texel count, the coverage section's size: checked in parseTable.
+      if (!encoded && !matrix && !texel &&
           !(s = expectSize(v * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p->order))) * 4,
                            "4 bytes per vertex, channel and coefficient"))
                .isOk()) {
@@ -280,7 +322,7 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       }
       for (int other : p->transfer) {
         const Entry& o = p->entries[static_cast<std::size_t>(other)];
-        if (o.arg0 == e.arg0 && isMatrixType(o.type) == matrix) {
+        if (o.arg0 == e.arg0 && isMatrixType(o.type) == matrix && isTexelType(o.type) == texel) {
           return corrupt(label + " repeats the transfer kind of section " + num(static_cast<std::uint64_t>(other)));
         }
       }
@@ -290,6 +332,31 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
     default:
       return Status::ok();  // unknown types are skipped (forward compatibility)
   }
+}
+
+// Transfer textures: atlas uv, atlases and coverage exactly when a texel pass exists, and
+// float32 texel passes sized by the texel count (the coverage section's size).
+Status checkTexelSections(const Parsed& p) {
+  bool anyTexel = false;
+  for (int t : p.transfer) anyTexel = anyTexel || isTexelType(p.entries[static_cast<std::size_t>(t)].type);
+  const std::pair<int, const char*> sections[] = {{p.atlasUv, "atlas uv"}, {p.atlases, "atlases"}, {p.coverage, "texel coverage"}};
+  for (const auto& [slot, name] : sections) {
+    if (anyTexel && slot < 0) return corrupt(std::string("the asset has a texel transfer section but no ") + name + " section");
+    if (!anyTexel && slot >= 0) {
+      return corrupt(sectionLabel(p.entries[static_cast<std::size_t>(slot)]) + " is present without a texel transfer section");
+    }
+  }
+  for (int t : p.transfer) {
+    const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    if (e.type != kTypeTexelTransfer) continue;
+    // texels <= 2^28, channels <= 3, order^2 <= 256: below 2^40.
+    const std::uint64_t want = p.texelCount * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p.order))) * 4;
+    if (e.size != want) {
+      return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(want) + " expected (4 bytes per texel, channel and coefficient, " +
+                     num(p.texelCount) + " texels)");
+    }
+  }
+  return Status::ok();
 }
 
 // Section table: checksum, then each entry's bounds, alignment, known-type rules, then
@@ -364,7 +431,7 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
   if (!anyMatrix && p->specular >= 0) {
     return corrupt(sectionLabel(p->entries[static_cast<std::size_t>(p->specular)]) + " is present without a matrix transfer section");
   }
-  return Status::ok();
+  return checkTexelSections(*p);
 }
 
 // A float32 matrix section's size must match its packing, which the lighting model decides.
@@ -512,6 +579,60 @@ Status checkIndices(std::span<const std::uint8_t> payload, const Entry& e, std::
   return Status::ok();
 }
 
+// The atlases payload: each atlas's sides in range, the atlases tiling the triangles in order,
+// and their texels adding up to the coverage section's size. `out` (may be null) gets them.
+Status parseAtlases(std::span<const std::uint8_t> payload, const Entry& e, const Parsed& p, std::vector<TextureAtlas>* out) {
+  namespace AL = asset_atlas_layout;
+  // The entry check guaranteed size = 16 * arg0 with arg0 <= kMaxAssetAtlases.
+  const std::size_t count = payload.size() / kAssetAtlasEntryBytes;
+  std::vector<TextureAtlas> atlases(count);
+  std::uint64_t next = 0, texels = 0;  // at most 1024 * 2^32 and 1024 * 2^28: no overflow
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint8_t* b = payload.data() + kAssetAtlasEntryBytes * i;
+    TextureAtlas& a = atlases[i];
+    a = {readLe32(b + AL::kWidth), readLe32(b + AL::kHeight), readLe32(b + AL::kFirstTriangle), readLe32(b + AL::kTriangleCount)};
+    const std::string label = sectionLabel(e) + ": atlas " + num(i);
+    if (a.width < 1 || a.width > kMaxAssetAtlasSize || a.height < 1 || a.height > kMaxAssetAtlasSize) {
+      return corrupt(label + " is " + num(a.width) + " x " + num(a.height) + " texels; each side must be 1 to " + num(kMaxAssetAtlasSize));
+    }
+    if (a.triangleCount < 1) return corrupt(label + " covers no triangles");
+    if (a.firstTriangle != next) return corrupt(label + " starts at triangle " + num(a.firstTriangle) + ", expected " + num(next));
+    next += a.triangleCount;
+    texels += std::uint64_t{a.width} * a.height;
+  }
+  if (next != p.triangleCount) {
+    return corrupt(sectionLabel(e) + ": the atlases cover " + num(next) + " triangles, the header says " + num(p.triangleCount));
+  }
+  if (texels != p.texelCount) {
+    return corrupt(sectionLabel(e) + ": the atlases hold " + num(texels) + " texels, the texel coverage section " + num(p.texelCount));
+  }
+  if (out != nullptr) *out = std::move(atlases);
+  return Status::ok();
+}
+
+// Atlas uv: every value finite and in [0, 1] (NaN fails both comparisons).
+Status checkAtlasUv(std::span<const std::uint8_t> payload, const Entry& e) {
+  const std::size_t count = payload.size() / 4;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float x = floatFromBits(readLe32(payload.data() + 4 * i));
+    if (!(x >= 0.0f && x <= 1.0f)) {
+      return corrupt(sectionLabel(e) + ": vertex " + num(i / 2) + (i % 2 ? " v" : " u") + " is " + std::to_string(x) +
+                     ", not in [0, 1]");
+    }
+  }
+  return Status::ok();
+}
+
+// Texel coverage: every byte a TexelCoverage value.
+Status checkCoverage(std::span<const std::uint8_t> payload, const Entry& e) {
+  for (std::size_t i = 0; i < payload.size(); ++i) {
+    if (payload[i] > static_cast<std::uint8_t>(TexelCoverage::kGutter)) {
+      return corrupt(sectionLabel(e) + ": texel " + num(i) + " has coverage " + num(payload[i]) + "; 0, 1 or 2 expected");
+    }
+  }
+  return Status::ok();
+}
+
 // Everything decodeAsset checks; afterwards every section may be read without checks.
 // An encoded transfer section's blob: its header must describe the asset's pass, and it must
 // decode in full (every part's checksum and value). `decoded` (may be null) receives the floats.
@@ -538,12 +659,14 @@ Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& 
                      matrixPackingName(packing) + " packing");
     }
   }
-  if (info.order != static_cast<int>(p.order) || info.channels != static_cast<int>(e.arg1) ||
-      info.vertexCount != p.vertexCount) {
+  // A texel pass's blob has one "vertex" per texel.
+  const bool texel = isTexelType(e.type);
+  const std::uint64_t rows = texel ? p.texelCount : p.vertexCount;
+  const char* rowName = texel ? " texels" : " vertices";
+  if (info.order != static_cast<int>(p.order) || info.channels != static_cast<int>(e.arg1) || info.vertexCount != rows) {
     return corrupt(sectionLabel(e) + ": its blob is order " + num(static_cast<std::uint64_t>(info.order)) + ", " +
                    num(static_cast<std::uint64_t>(info.channels)) + " channels, " + num(info.vertexCount) +
-                   " vertices; the asset says order " + num(p.order) + ", " + num(e.arg1) + " channels, " +
-                   num(p.vertexCount) + " vertices");
+                   " rows; the asset says order " + num(p.order) + ", " + num(e.arg1) + " channels, " + num(rows) + rowName);
   }
   const int available = info.bandsAvailable;
   const int want = bands <= 0 ? available : std::min(bands, available);
@@ -571,6 +694,7 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
   if (Status s = parseHeader(bytes, p); !s.isOk()) return s;
   if (Status s = checkWholeFileSize(bytes, *p); !s.isOk()) return s;
   if (Status s = parseTable(bytes, p); !s.isOk()) return s;
+  if (decoded != nullptr) decoded->assign(p->transfer.size(), {});
   if (Status s = checkPadding(bytes, *p); !s.isOk()) return s;
   // Every section's checksum, unknown ones included, before any content check: damage
   // reads as damage, not as whatever inconsistency it happens to produce.
@@ -592,12 +716,17 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeAlbedo: s = checkFloats(payload, e); break;
       case kTypeSpecular: s = checkSpecularPayload(payload, e); break;
       case kTypeTransfer:
-      case kTypeMatrixTransfer: s = checkTransferFloats(payload, e); break;
+      case kTypeMatrixTransfer:
+      case kTypeTexelTransfer: s = checkTransferFloats(payload, e); break;
       case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
       case kTypeMetadata: s = parseMetadata(payload, e, m); break;
       case kTypeLighting: break;  // parsed above
+      case kTypeAtlasUv: s = checkAtlasUv(payload, e); break;
+      case kTypeAtlases: s = parseAtlases(payload, e, *p, nullptr); break;
+      case kTypeTexelCoverage: s = checkCoverage(payload, e); break;
       case kTypeEncodedTransfer:
-      case kTypeEncodedMatrixTransfer: {
+      case kTypeEncodedMatrixTransfer:
+      case kTypeEncodedTexelTransfer: {
         const std::size_t slot = static_cast<std::size_t>(
             std::find(p->transfer.begin(), p->transfer.end(), static_cast<int>(e.index)) - p->transfer.begin());
         if (payload.size() != e.size) return corrupt(sectionLabel(e) + ": size mismatch");
@@ -633,8 +762,10 @@ void fillSummary(const Parsed& p, Metadata&& m, AssetSummary* out) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
     s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2),
                         isEncodedType(e.type), e.size, e.index,
-                        isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector});
+                        isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector,
+                        isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex});
   }
+  s.texelCount = p.texelCount;
   s.samples = m.samples;
   s.seed = m.seed;
   s.sampling = std::move(m.sampling);
@@ -670,6 +801,18 @@ void readTriples(std::span<const std::uint8_t> payload, std::vector<T>* out) {
       std::memcpy(&(*out)[i], f, sizeof f);
     }
   }
+}
+
+// Copies the three validated atlas sections (they exist: the file has a texel pass) into *out.
+void readAtlasSections(std::span<const std::uint8_t> bytes, const Parsed& p, BakedAsset* out) {
+  const auto payload = [&](int slot) { return payloadOf(bytes, p.entries[static_cast<std::size_t>(slot)]); };
+  const auto uv = payload(p.atlasUv);
+  out->atlasUv.resize(uv.size() / 4);
+  readFloats(uv, out->atlasUv.data());
+  // Validated before: this cannot fail, and *out is all the caller keeps.
+  static_cast<void>(parseAtlases(payload(p.atlases), p.entries[static_cast<std::size_t>(p.atlases)], p, &out->atlases).isOk());
+  const auto coverage = payload(p.coverage);
+  out->texelCoverage.assign(coverage.begin(), coverage.end());
 }
 
 void readSpecular(std::span<const std::uint8_t> payload, std::vector<SpecularMaterial>* out) {
@@ -815,7 +958,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
   if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAsset: out is null");
   Parsed p;
   Metadata m;
-  std::vector<std::vector<float>> decoded(6);  // per transfer slot (one per kind and form), encoded ones only
+  std::vector<std::vector<float>> decoded;  // per transfer section, table order; encoded ones only
   if (Status s = validateAll(bytes, &p, &m, &decoded); !s.isOk()) return s;
   BakedAsset a;
   a.shOrder = static_cast<int>(p.order);
@@ -839,6 +982,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     pass.channels = static_cast<int>(e.arg1);
     pass.bounces = static_cast<int>(e.arg2);
     pass.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
+    pass.domain = isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex;
     if (isEncodedType(e.type)) {
       const std::size_t slot = a.passes.size();
       pass.coeffs = std::move(decoded[slot]);
@@ -851,6 +995,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
     a.passes.push_back(std::move(pass));
   }
   if (p.specular >= 0) readSpecular(payload(p.specular), &a.specular);
+  if (p.atlases >= 0) readAtlasSections(bytes, p, &a);
   a.samples = m.samples;
   a.seed = m.seed;
   a.sampling = std::move(m.sampling);
@@ -925,6 +1070,7 @@ TransferPass passHeader(const Entry& e) {
   t.channels = static_cast<int>(e.arg1);
   t.bounces = static_cast<int>(e.arg2);
   t.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
+  t.domain = isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex;
   return t;
 }
 
@@ -980,7 +1126,7 @@ Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int ban
   Parsed p;
   const Entry* entry = nullptr;
   if (Status s = locatePass(file, pass, bands, "decodeAssetPassCpca", &p, &entry); !s.isOk()) return s;
-  if (entry->type != kTypeEncodedTransfer) {
+  if (entry->type != kTypeEncodedTransfer && entry->type != kTypeEncodedTexelTransfer) {
     return Status::error(StatusCode::kInvalidArgument,
                          sectionLabel(*entry) + (entry->type == kTypeEncodedMatrixTransfer ? " holds matrices: use decodeAssetPassCpcaMatrix"
                                                                                           : " is float32, not CPCA"));
@@ -1016,6 +1162,30 @@ Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, i
   }
   *info = passHeader(*entry);
   *out = std::move(cpca);
+  return Status::ok();
+}
+
+Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetAtlases: out is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  BakedAsset a;
+  if (p.atlases >= 0) {  // parseTable: then all three exist, with a texel pass
+    for (int slot : {p.atlasUv, p.atlases, p.coverage}) {
+      const Entry& e = p.entries[static_cast<std::size_t>(slot)];
+      if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
+      const auto payload = payloadOf(file, e);
+      Status s = e.type == kTypeAtlasUv ? checkAtlasUv(payload, e) : e.type == kTypeAtlases ? parseAtlases(payload, e, p, nullptr)
+                                                                                          : checkCoverage(payload, e);
+      if (!s.isOk()) return s;
+    }
+    readAtlasSections(file, p, &a);
+  }
+  out->atlasUv = std::move(a.atlasUv);
+  out->atlases = std::move(a.atlases);
+  out->texelCoverage = std::move(a.texelCoverage);
   return Status::ok();
 }
 

@@ -96,6 +96,94 @@ Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyMatr
 
 bool isKnownKind(TransferKind kind) { return static_cast<std::uint32_t>(kind) <= 2; }
 
+bool hasTexelPass(const BakedAsset& asset) {
+  for (const TransferPass& pass : asset.passes)
+    if (pass.domain == TransferDomain::kTexel) return true;
+  return false;
+}
+
+// Without a texel pass the atlas data would be dead weight that no reader uses: refuse it
+// rather than silently drop it.
+Status checkNoAtlasData(const BakedAsset& asset) {
+  const auto refuse = [](std::size_t count, const char* what) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(count) + " " + what +
+                                                           " but no texel pass; they are kept only with one");
+  };
+  if (!asset.atlases.empty()) return refuse(asset.atlases.size(), "atlases");
+  if (!asset.atlasUv.empty()) return refuse(asset.atlasUv.size(), "atlas uv floats");
+  if (!asset.texelCoverage.empty()) return refuse(asset.texelCoverage.size(), "texel coverage values");
+  return Status::ok();
+}
+
+// The atlases tile the triangles in order: each starts where the previous ended, the
+// first at 0, the last ends at the triangle count (prt/asset.h).
+Status checkAtlasList(const std::vector<TextureAtlas>& atlases, std::uint64_t triangleCount) {
+  if (atlases.empty() || atlases.size() > kMaxAssetAtlases) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(atlases.size()) + " atlases; a texel pass needs 1 to " +
+                                                           std::to_string(kMaxAssetAtlases));
+  }
+  std::uint64_t next = 0, texels = 0;
+  for (std::size_t i = 0; i < atlases.size(); ++i) {
+    const TextureAtlas& a = atlases[i];
+    const std::string label = "atlas " + std::to_string(i);
+    if (a.width < 1 || a.width > kMaxAssetAtlasSize || a.height < 1 || a.height > kMaxAssetAtlasSize) {
+      return Status::error(StatusCode::kInvalidArgument, label + " is " + std::to_string(a.width) + " x " + std::to_string(a.height) +
+                                                             " texels; each side must be 1 to " + std::to_string(kMaxAssetAtlasSize));
+    }
+    if (a.triangleCount < 1) return Status::error(StatusCode::kInvalidArgument, label + " covers no triangles; at least 1 is needed");
+    if (a.firstTriangle != next) {
+      return Status::error(StatusCode::kInvalidArgument, label + " starts at triangle " + std::to_string(a.firstTriangle) + ", expected " +
+                                                             std::to_string(next) + " (atlases cover the triangles in order)");
+    }
+    next += a.triangleCount;
+    if (next > triangleCount) {
+      return Status::error(StatusCode::kInvalidArgument, label + " ends at triangle " + std::to_string(next) + ", past the " +
+                                                             std::to_string(triangleCount) + " triangles");
+    }
+    texels += std::uint64_t{a.width} * a.height;
+  }
+  if (next != triangleCount) {
+    return Status::error(StatusCode::kInvalidArgument, "the atlases cover " + std::to_string(next) + " of the " +
+                                                           std::to_string(triangleCount) + " triangles; they must cover all");
+  }
+  if (texels > kMaxAssetTexels) {
+    return Status::error(StatusCode::kInvalidArgument, "the atlases hold " + std::to_string(texels) + " texels; at most " +
+                                                           std::to_string(kMaxAssetTexels) + " are allowed");
+  }
+  return Status::ok();
+}
+
+// With a texel pass: the atlases, a uv per vertex in [0, 1] and a coverage value per texel.
+Status checkAtlasData(const BakedAsset& asset) {
+  const std::uint64_t vertexCount = asset.positions.size();
+  if (Status s = checkAtlasList(asset.atlases, asset.indices.size() / 3); !s.isOk()) return s;
+  if (asset.atlasUv.size() != 2 * vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.atlasUv.size()) + " atlas uv floats for " +
+                                                        std::to_string(vertexCount) + " vertices; a texel pass needs 2 per vertex");
+  }
+  for (std::size_t i = 0; i < asset.atlasUv.size(); ++i) {
+    const float x = asset.atlasUv[i];
+    const std::string what = "atlas uv of vertex " + std::to_string(i / 2) + (i % 2 ? " (v)" : " (u)");
+    if (!std::isfinite(x)) return Status::error(StatusCode::kNotFinite, what + " is not finite");
+    if (x < 0.0f || x > 1.0f) {
+      return Status::error(StatusCode::kInvalidArgument, what + " is " + std::to_string(x) + ", outside [0, 1]");
+    }
+  }
+  const std::uint64_t texels = assetTexelCount(asset);
+  if (asset.texelCoverage.size() != texels) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.texelCoverage.size()) +
+                                                        " texel coverage values for " + std::to_string(texels) +
+                                                        " texels; one per texel is needed");
+  }
+  for (std::size_t i = 0; i < asset.texelCoverage.size(); ++i) {
+    if (asset.texelCoverage[i] > static_cast<std::uint8_t>(TexelCoverage::kGutter)) {
+      return Status::error(StatusCode::kInvalidArgument, "texel coverage " + std::to_string(i) + " is " +
+                                                             std::to_string(asset.texelCoverage[i]) + "; 0 (empty), 1 (sampled) or 2 (gutter) expected");
+    }
+  }
+  return Status::ok();
+}
+
 // One section as laid out: table entry fields plus where its payload comes from.
 struct PlannedSection {
   AssetSectionType type;
@@ -103,7 +191,7 @@ struct PlannedSection {
   std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0;
   std::uint64_t size = 0;
   std::uint64_t offset = 0;
-  const TransferPass* pass = nullptr;  // for kTransfer and kEncodedTransfer
+  const TransferPass* pass = nullptr;  // for the transfer sections (5, 8, 9, 10, 15, 16)
 };
 
 std::uint64_t alignUp(std::uint64_t v) { return (v + (kAssetAlignment - 1)) & ~static_cast<std::uint64_t>(kAssetAlignment - 1); }
@@ -137,20 +225,14 @@ Status checkAsset(const BakedAsset& asset) {
   if (Status s = checkTriples(asset.normals, "normal"); !s.isOk()) return s;
   if (Status s = checkTriples(asset.albedo, "albedo"); !s.isOk()) return s;
 
-  if (asset.passes.empty() || asset.passes.size() > 6) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "asset has " + std::to_string(asset.passes.size()) + " transfer passes; 1 to 6 are needed");
+  if (asset.passes.empty() || asset.passes.size() > kMaxAssetPasses) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.passes.size()) +
+                                                           " transfer passes; 1 to " + std::to_string(kMaxAssetPasses) + " are needed");
   }
-  // Transfer textures are declared (asset.h) but this writer does not store them yet: refuse
-  // them rather than write a file that silently drops the texel passes.
-  if (!asset.atlasUv.empty() || !asset.atlases.empty() || !asset.texelCoverage.empty()) {
-    return Status::error(StatusCode::kInvalidArgument, "transfer-texture atlases cannot be encoded yet (asset format 1.3)");
-  }
-  for (const TransferPass& pass : asset.passes) {
-    if (pass.domain != TransferDomain::kVertex) {
-      return Status::error(StatusCode::kInvalidArgument, "texel transfer passes cannot be encoded yet (asset format 1.3)");
-    }
-  }
+  // The atlases first: a texel pass's size depends on their texel count.
+  const bool anyTexel = hasTexelPass(asset);
+  if (Status s = anyTexel ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
+  const std::uint64_t texelCount = assetTexelCount(asset);
   bool anyMatrix = false;
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
   for (std::size_t p = 0; p < asset.passes.size(); ++p) {
@@ -164,15 +246,27 @@ Status checkAsset(const BakedAsset& asset) {
       return Status::error(StatusCode::kInvalidArgument,
                            label + " has unknown form " + std::to_string(static_cast<std::uint32_t>(pass.form)));
     }
+    if (pass.domain != TransferDomain::kVertex && pass.domain != TransferDomain::kTexel) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           label + " has unknown domain " + std::to_string(static_cast<std::uint32_t>(pass.domain)));
+    }
     const bool matrix = pass.form == TransferForm::kMatrix;
+    const bool texel = pass.domain == TransferDomain::kTexel;
     anyMatrix = anyMatrix || matrix;
-    const std::string named = label + " (" + (matrix ? "matrix " : "") + transferKindName(pass.kind) + ")";
+    const std::string named =
+        label + " (" + (texel ? "texel " : "") + (matrix ? "matrix " : "") + transferKindName(pass.kind) + ")";
+    if (texel && matrix) {
+      return Status::error(StatusCode::kInvalidArgument, named + ": texel passes are vector form only (no glossy transfer textures)");
+    }
     for (std::size_t q = 0; q < p; ++q) {
-      if (asset.passes[q].kind == pass.kind && asset.passes[q].form == pass.form) {
-        return Status::error(StatusCode::kInvalidArgument,
-                             named + " repeats the kind of pass " + std::to_string(q) + "; at most one per kind and form");
+      if (asset.passes[q].kind == pass.kind && asset.passes[q].form == pass.form && asset.passes[q].domain == pass.domain) {
+        return Status::error(StatusCode::kInvalidArgument, named + " repeats the kind of pass " + std::to_string(q) +
+                                                               "; at most one per kind, form and domain");
       }
     }
+    // A texel pass is a vertex pass whose "vertices" are the atlases' texels.
+    const std::uint64_t rows = texel ? texelCount : vertexCount;
+    const char* rowName = texel ? "texels" : "vertices";
     if (pass.channels != 1 && pass.channels != 3) {
       return Status::error(StatusCode::kInvalidArgument,
                            named + " has " + std::to_string(pass.channels) + " channels; 1 or 3 are allowed");
@@ -211,26 +305,26 @@ Status checkAsset(const BakedAsset& asset) {
                              named + " encoded blob holds " + (info.matrix ? std::string(matrixPackingName(info.packing)) + " matrices" : "vectors") +
                                  "; the pass needs " + (matrix ? std::string(matrixPackingName(packing)) + " matrices" : "vectors"));
       }
-      if (info.order != asset.shOrder || info.channels != pass.channels || info.vertexCount != vertexCount ||
+      if (info.order != asset.shOrder || info.channels != pass.channels || info.vertexCount != rows ||
           info.blobSize != pass.encoded.size()) {
         return Status::error(StatusCode::kSizeMismatch,
                              named + " encoded blob is order " + std::to_string(info.order) + ", " +
                                  std::to_string(info.channels) + " channels, " + std::to_string(info.vertexCount) +
-                                 " vertices, " + std::to_string(info.blobSize) + " bytes declared of " +
+                                 " rows, " + std::to_string(info.blobSize) + " bytes declared of " +
                                  std::to_string(pass.encoded.size()) + "; the asset needs order " +
                                  std::to_string(asset.shOrder) + ", " + std::to_string(pass.channels) + " channels, " +
-                                 std::to_string(vertexCount) + " vertices");
+                                 std::to_string(rows) + " " + rowName);
       }
       continue;
     }
     const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, packing) : coeffsPerChannel;
-    const std::uint64_t expected = static_cast<std::uint64_t>(vertexCount) * static_cast<std::uint64_t>(pass.channels) * perChannel;
+    const std::uint64_t expected = rows * static_cast<std::uint64_t>(pass.channels) * perChannel;
     if (pass.coeffs.size() != expected) {
       return Status::error(StatusCode::kSizeMismatch,
                            named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " + std::to_string(expected) +
                                (matrix ? " expected (vertices * channels * " + std::to_string(perChannel) + " " +
                                              matrixPackingName(packing) + " packed entries)"
-                                       : std::string(" expected (vertices * channels * order^2)")));
+                                       : " expected (" + std::string(rowName) + " * channels * order^2)"));
     }
     for (std::size_t i = 0; i < pass.coeffs.size(); ++i) {
       if (!std::isfinite(pass.coeffs[i])) {
@@ -280,10 +374,21 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
     sections.push_back({AssetSectionType::kSpecular, AssetElementFormat::kFloat32, 0, 0, 0,
                         vertexCount * kAssetSpecularBytesPerVertex, 0, nullptr});
   }
+  // The atlas sections before the passes: a client needs them before any texel pass is of
+  // use. Only assets with texel passes have them, so other files keep their layout.
+  if (!asset.atlases.empty()) {
+    sections.push_back({AssetSectionType::kAtlasUv, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 8, 0, nullptr});
+    sections.push_back({AssetSectionType::kAtlases, AssetElementFormat::kBytes, static_cast<std::uint32_t>(asset.atlases.size()), 0, 0,
+                        asset.atlases.size() * kAssetAtlasEntryBytes, 0, nullptr});
+    sections.push_back({AssetSectionType::kTexelCoverage, AssetElementFormat::kBytes, 0, 0, 0, asset.texelCoverage.size(), 0, nullptr});
+  }
+  const std::uint64_t texelCount = assetTexelCount(asset);
   for (const TransferPass& pass : asset.passes) {
     const bool matrix = pass.form == TransferForm::kMatrix;
+    const bool texel = pass.domain == TransferDomain::kTexel;  // vector form only (checkAsset)
     if (!pass.encoded.empty()) {
-      sections.push_back({matrix ? AssetSectionType::kEncodedMatrixTransfer : AssetSectionType::kEncodedTransfer,
+      sections.push_back({texel ? AssetSectionType::kEncodedTexelTransfer
+                                : matrix ? AssetSectionType::kEncodedMatrixTransfer : AssetSectionType::kEncodedTransfer,
                           AssetElementFormat::kBytes, static_cast<std::uint32_t>(pass.kind),
                           static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
                           pass.encoded.size(), 0, &pass});
@@ -291,10 +396,10 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
     }
     const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, matrixPackingFor(pass.kind, asset.lighting.model))
                                             : coeffsPerChannel;
-    sections.push_back({matrix ? AssetSectionType::kMatrixTransfer : AssetSectionType::kTransfer, AssetElementFormat::kFloat32,
-                        static_cast<std::uint32_t>(pass.kind), static_cast<std::uint32_t>(pass.channels),
-                        static_cast<std::uint32_t>(pass.bounces),
-                        vertexCount * static_cast<std::uint64_t>(pass.channels) * perChannel * 4, 0, &pass});
+    sections.push_back({texel ? AssetSectionType::kTexelTransfer : matrix ? AssetSectionType::kMatrixTransfer : AssetSectionType::kTransfer,
+                        AssetElementFormat::kFloat32, static_cast<std::uint32_t>(pass.kind),
+                        static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
+                        (texel ? texelCount : vertexCount) * static_cast<std::uint64_t>(pass.channels) * perChannel * 4, 0, &pass});
   }
 
   const std::uint64_t tableEnd = kAssetHeaderSize + sections.size() * kAssetSectionEntrySize;
@@ -345,9 +450,24 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         }
         break;
       case AssetSectionType::kTransfer:
-      case AssetSectionType::kMatrixTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
+      case AssetSectionType::kMatrixTransfer:
+      case AssetSectionType::kTexelTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
       case AssetSectionType::kEncodedTransfer:
-      case AssetSectionType::kEncodedMatrixTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
+      case AssetSectionType::kEncodedMatrixTransfer:
+      case AssetSectionType::kEncodedTexelTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
+      case AssetSectionType::kAtlasUv: putFloats(p, asset.atlasUv.data(), asset.atlasUv.size()); break;
+      case AssetSectionType::kAtlases:
+        for (std::size_t a = 0; a < asset.atlases.size(); ++a) {
+          namespace AL = asset_atlas_layout;
+          const TextureAtlas& atlas = asset.atlases[a];
+          std::uint8_t* q = p + kAssetAtlasEntryBytes * a;
+          writeLe32(q + AL::kWidth, atlas.width);
+          writeLe32(q + AL::kHeight, atlas.height);
+          writeLe32(q + AL::kFirstTriangle, atlas.firstTriangle);
+          writeLe32(q + AL::kTriangleCount, atlas.triangleCount);
+        }
+        break;
+      case AssetSectionType::kTexelCoverage: std::memcpy(p, asset.texelCoverage.data(), asset.texelCoverage.size()); break;
       case AssetSectionType::kSpecular:
         for (std::size_t v = 0; v < asset.specular.size(); ++v) {
           const SpecularMaterial& m = asset.specular[v];
@@ -355,11 +475,6 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
           putFloats(p + kAssetSpecularBytesPerVertex * v, f, 5);
         }
         break;
-      case AssetSectionType::kAtlasUv:  // transfer textures: not planned by this writer yet
-      case AssetSectionType::kAtlases:
-      case AssetSectionType::kTexelCoverage:
-      case AssetSectionType::kTexelTransfer:
-      case AssetSectionType::kEncodedTexelTransfer: break;
     }
     std::uint8_t* e = base + kAssetHeaderSize + i * kAssetSectionEntrySize;
     writeLe32(e + L::kEntryType, static_cast<std::uint32_t>(s.type));
@@ -374,8 +489,8 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
 
   std::memcpy(base + L::kMagic, kAssetMagic, 4);
   writeLe16(base + L::kVersionMajor, kAssetVersionMajor);
-  // Always the current minor version (1.3): older readers skip the section types they do
-  // not know, so a glossy file still shows them its diffuse passes.
+  // Always the current minor version (1.4): older readers skip the section types they do
+  // not know, so a glossy or texel file still shows them its vertex diffuse passes.
   writeLe16(base + L::kVersionMinor, kAssetVersionMinor);
   writeLe32(base + L::kFlags, 0);
   writeLe32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));

@@ -1,12 +1,13 @@
 // End-to-end tests of `prt-bake` baking, `info` and `shade` on the real binary.
-// Usage: node bake_cli_test.mjs CASE PRT_BAKE WORK_DIR
+// Usage: node bake_cli_test.mjs CASE PRT_BAKE WORK_DIR [TEXEL_ASSET_TOOL]
+// (the last only for texel_info: tests/cli/make_texel_asset.cpp's binary)
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 
 import { bowlGltf } from './bowl_gltf.mjs';
 
-const [caseName, bake, workDir] = process.argv.slice(2);
+const [caseName, bake, workDir, texelTool] = process.argv.slice(2);
 if (!workDir) {
   console.error('usage: node bake_cli_test.mjs CASE PRT_BAKE WORK_DIR');
   process.exit(2);
@@ -55,6 +56,38 @@ function bakeDefault(name, extra = []) {
 }
 
 const cases = {
+  texel_info() {
+    // `info` on an asset with transfer textures (no bake writes them yet: the generator does,
+    // and says what it wrote): each pass's domain, the texel count and the atlases.
+    check(Boolean(texelTool), 'texel_info needs the generator as its fourth argument');
+    const out = work('texel.prt');
+    const made = spawnSync(texelTool, [out], { encoding: 'utf8' });
+    if (!check(made.status === 0, `generator failed: ${made.stderr}`)) return;
+    const wrote = JSON.parse(made.stdout);
+    const info = json(expectExit(['info', out, '--json'], 0));
+    if (info) {
+      check(info.version === '1.4', `version ${info.version}`);
+      const seen = info.passes.map((p) => ({ kind: p.kind, domain: p.domain, encoded: p.encoded }));
+      check(JSON.stringify(seen) === JSON.stringify(wrote.passes), `passes ${JSON.stringify(seen)}, wrote ${JSON.stringify(wrote.passes)}`);
+      check(info.texels === wrote.texels, `texels ${info.texels}, wrote ${wrote.texels}`);
+      check(JSON.stringify(info.atlases) === JSON.stringify(wrote.atlases), `atlases ${JSON.stringify(info.atlases)}, wrote ${JSON.stringify(wrote.atlases)}`);
+    }
+    const text = expectExit(['info', out], 0).stdout;
+    const texelLines = text.split('\n').filter((l) => /^pass: texel /.test(l));
+    check(texelLines.length === wrote.passes.filter((p) => p.domain === 'texel').length, `texel pass lines: ${text}`);
+    check(/^pass: texel shadowed, scalar \(x albedo\), float32, /m.test(text), `texel shadowed line: ${text}`);
+    check(/^pass: shadowed, scalar \(x albedo\), float32, /m.test(text), `vertex shadowed line: ${text}`);
+    const a = wrote.atlases;
+    const atlasLine = `atlases: ${a.length}, ${wrote.texels} texels: ` +
+                      a.map((t) => `${t.width}x${t.height} (triangles ${t.firstTriangle}-${t.firstTriangle + t.triangleCount - 1})`).join(', ');
+    check(text.includes(atlasLine + '\n'), `atlases line: expected '${atlasLine}' in ${text}`);
+    // Damage in a texel pass (the last section) is reported as damage.
+    const bytes = fs.readFileSync(out);
+    const damaged = work('texel-damaged.prt');
+    bytes[bytes.length - 1] ^= 1;
+    fs.writeFileSync(damaged, bytes);
+    expectExit(['info', damaged], EXIT_INVALID_INPUT, /checksum/);
+  },
   glossy() {
     // A small glossy bake of the default room: matrix passes in `info`, and `shade` seen from
     // two eyes: the matte room (f0 = 0) has no glossy term at all, the polished sphere has one
@@ -139,6 +172,9 @@ const cases = {
     if (info) {
       check(info.order === 3 && info.vertices === stats?.vertices, `info disagrees with the bake: ${JSON.stringify(info)}`);
       check(info.passes.map((p) => p.kind).join() === 'unshadowed,shadowed,interreflected', `passes: ${JSON.stringify(info.passes)}`);
+      check(info.passes.every((p) => p.domain === 'vertex'), `a vertex bake's passes: ${JSON.stringify(info.passes)}`);
+      check(info.texels === 0 && Array.isArray(info.atlases) && info.atlases.length === 0,
+            `no transfer textures: texels ${info.texels}, atlases ${JSON.stringify(info.atlases)}`);
     }
     // Exit radiance under a constant white sky: shadowed <= unshadowed everywhere, and
     // interreflection stays below 1 (albedo < 1 and sky radiance 1 bound every bounce).
@@ -230,7 +266,7 @@ const cases = {
     }
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.3' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
+      check(info.version === '1.4' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
       check(info.lighting?.model === 'local-sphere' && Math.abs(info.lighting.radius - radius) < 1e-5,
             `info lighting: ${JSON.stringify(info.lighting)}`);
     }

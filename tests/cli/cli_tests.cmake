@@ -63,3 +63,12 @@ foreach(case IN ITEMS default_scene determinism bad_assets bad_scenes usage_erro
                    ${CMAKE_CURRENT_BINARY_DIR}/bake_cli_work/${case})
   set_tests_properties(bake_cli_${case} PROPERTIES TIMEOUT 600)
 endforeach()
+
+# `info` on an asset with transfer textures, written by a generator (no bake writes them yet).
+add_executable(prt_cli_make_texel_asset ${CMAKE_CURRENT_LIST_DIR}/make_texel_asset.cpp)
+target_link_libraries(prt_cli_make_texel_asset PRIVATE prt_shared)
+target_compile_options(prt_cli_make_texel_asset PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME bake_cli_texel_info
+         COMMAND ${PRT_NODE} ${CMAKE_CURRENT_LIST_DIR}/bake_cli_test.mjs texel_info $<TARGET_FILE:prt-bake>
+                 ${CMAKE_CURRENT_BINARY_DIR}/bake_cli_work/texel_info $<TARGET_FILE:prt_cli_make_texel_asset>)
+set_tests_properties(bake_cli_texel_info PROPERTIES TIMEOUT 120)

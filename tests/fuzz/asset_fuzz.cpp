@@ -10,13 +10,17 @@
 // decoded as they are. With bit 1 set, the input instead describes a small glossy asset
 // (order, lighting model, a matrix pass float32 or encoded, specular materials) that is
 // encoded and then damaged by (position, xor) edits, so that the matrix, encoded matrix and
-// specular sections are explored from well-formed files.
+// specular sections are explored from well-formed files. With bit 2 set (and bit 1 clear),
+// the input describes a small asset with transfer textures (atlases, atlas uv, coverage, a
+// texel pass float32 or encoded, optionally a vertex pass), likewise encoded and damaged, so
+// that the atlas and texel sections (format 1.4) are explored from well-formed files.
 //
 // Beyond "no crash, no sanitizer report", it traps when the entry points disagree:
 // decodeAsset and verifyAsset must return the same code; whatever decodes must also pass
 // peekAssetHeader with the same summary, and must re-encode (the encoder accepts
 // everything the decoder does) to bytes that decode to the same asset; every pass decodes
-// progressively to the same floats, and decodeAssetSpecular to the same materials.
+// progressively to the same floats, decodeAssetSpecular to the same materials and
+// decodeAssetAtlases to the same atlases.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -70,6 +74,17 @@ bool sameLighting(const prt::LightingInfo& a, const prt::LightingInfo& b) {
          std::memcmp(&a.radius, &b.radius, sizeof a.radius) == 0;
 }
 
+bool sameAtlases(const prt::BakedAsset& a, const prt::BakedAsset& b) {
+  if (!sameBits(a.atlasUv, b.atlasUv) || a.texelCoverage != b.texelCoverage || a.atlases.size() != b.atlases.size()) return false;
+  for (std::size_t i = 0; i < a.atlases.size(); ++i) {
+    const prt::TextureAtlas &x = a.atlases[i], &y = b.atlases[i];
+    if (x.width != y.width || x.height != y.height || x.firstTriangle != y.firstTriangle || x.triangleCount != y.triangleCount) {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool sameAsset(const prt::BakedAsset& a, const prt::BakedAsset& b) {
   if (a.shOrder != b.shOrder || !sameBits(a.positions, b.positions) || !sameBits(a.normals, b.normals) ||
       !sameBits(a.albedo, b.albedo) || a.indices != b.indices || a.passes.size() != b.passes.size() ||
@@ -80,11 +95,11 @@ bool sameAsset(const prt::BakedAsset& a, const prt::BakedAsset& b) {
   for (std::size_t i = 0; i < a.passes.size(); ++i) {
     const prt::TransferPass &p = a.passes[i], &q = b.passes[i];
     if (p.kind != q.kind || p.channels != q.channels || p.bounces != q.bounces || p.form != q.form ||
-        !sameBits(p.coeffs, q.coeffs) || p.encoded != q.encoded) {
+        p.domain != q.domain || !sameBits(p.coeffs, q.coeffs) || p.encoded != q.encoded) {
       return false;
     }
   }
-  if (a.specular.size() != b.specular.size()) return false;
+  if (a.specular.size() != b.specular.size() || !sameAtlases(a, b)) return false;
   return a.specular.empty() || std::memcmp(a.specular.data(), b.specular.data(), a.specular.size() * sizeof(prt::SpecularMaterial)) == 0;
 }
 
@@ -125,6 +140,55 @@ std::size_t glossyFromInput(const std::uint8_t* data, std::size_t size, std::vec
   return std::min(used, size);
 }
 
+// An asset with transfer textures from the input: [order][flags][triangles][atlas sizes...]
+// [values...]; the rest are edits. One or two atlases of up to 8 x 8 texels over 1 to 4
+// triangles, a texel pass (kind and encoding from the flags), a vertex pass when flags & 1.
+std::size_t texelFromInput(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>* file) {
+  if (size < 3) return 0;
+  prt::BakedAsset a;
+  a.shOrder = 1 + data[0] % 3;
+  const std::uint8_t flags = data[1];
+  const std::uint32_t T = 1 + data[2] % 4, V = T + 2;
+  std::size_t used = 3;
+  auto next = [&]() { return used < size ? data[used++] : static_cast<std::uint8_t>(used++ * 29); };
+  for (std::uint32_t v = 0; v < V; ++v) {
+    a.positions.push_back({static_cast<float>(v), static_cast<float>(v % 2), 0.0f});
+    a.normals.push_back({0.0f, 0.0f, 1.0f});
+    a.albedo.push_back({0.5f, 0.5f, 0.5f});
+    a.atlasUv.push_back(next() / 255.0f);
+    a.atlasUv.push_back(next() / 255.0f);
+  }
+  for (std::uint32_t t = 0; t < T; ++t) a.indices.insert(a.indices.end(), {t, t + 1, t + 2});
+  const std::uint32_t split = (flags & 8) && T > 1 ? 1 + next() % (T - 1) : T;
+  a.atlases.push_back({1u + next() % 8u, 1u + next() % 8u, 0, split});
+  if (split < T) a.atlases.push_back({1u + next() % 8u, 1u + next() % 8u, split, T - split});
+  for (std::uint64_t i = 0; i < prt::assetTexelCount(a); ++i) a.texelCoverage.push_back(next() % 3);
+  const std::size_t n = static_cast<std::size_t>(a.shOrder * a.shOrder);
+  auto pass = [&](prt::TransferKind kind, std::size_t rows, prt::TransferDomain domain) {
+    prt::TransferPass p;
+    p.kind = kind;
+    p.channels = kind == prt::TransferKind::kInterreflected ? 3 : 1;
+    p.bounces = kind == prt::TransferKind::kInterreflected ? 1 : 0;
+    p.domain = domain;
+    p.coeffs.resize(rows * static_cast<std::size_t>(p.channels) * n);
+    for (float& x : p.coeffs) x = static_cast<float>(static_cast<int>(next()) - 128) / 32.0f;
+    return p;
+  };
+  if (flags & 1) a.passes.push_back(pass(prt::TransferKind::kShadowed, V, prt::TransferDomain::kVertex));
+  prt::TransferPass texel = pass((flags & 2) ? prt::TransferKind::kInterreflected : prt::TransferKind::kShadowed,
+                                 static_cast<std::size_t>(prt::assetTexelCount(a)), prt::TransferDomain::kTexel);
+  if (flags & 4) {
+    static const char* const kSettings[] = {"f32", "f16", "q8", "cpca8@0.1", "cpca16@0.01"};
+    prt::TransferCodecSettings s;
+    if (!prt::parseTransferSetting(kSettings[(flags >> 4) % 5], {}, &s).isOk()) return 0;
+    s.cpcaMaxClusters = 3;
+    if (!prt::encodeTransfer(texel.coeffs, a.shOrder, texel.channels, s, &texel.encoded).isOk()) return 0;
+  }
+  a.passes.push_back(std::move(texel));
+  if (!prt::encodeAsset(a, file).isOk()) return 0;
+  return std::min(used, size);
+}
+
 void check(bool condition) {
   if (!condition) __builtin_trap();
 }
@@ -134,8 +198,8 @@ void check(bool condition) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   std::vector<std::uint8_t> bytes;
-  if (data[0] & 2u) {
-    const std::size_t used = glossyFromInput(data + 1, size - 1, &bytes);
+  if (data[0] & 6u) {
+    const std::size_t used = (data[0] & 2u) ? glossyFromInput(data + 1, size - 1, &bytes) : texelFromInput(data + 1, size - 1, &bytes);
     if (used == 0) return 0;
     for (std::size_t i = 1 + used; i + 2 < size && !bytes.empty(); i += 3) {
       const std::size_t at = (static_cast<std::size_t>(data[i]) | static_cast<std::size_t>(data[i + 1]) << 8) % bytes.size();
@@ -166,6 +230,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   for (std::size_t i = 0; i < verified.passes.size(); ++i) {
     check(peeked.passes[i].form == verified.passes[i].form && asset.passes[i].form == verified.passes[i].form);
+    check(peeked.passes[i].domain == verified.passes[i].domain && asset.passes[i].domain == verified.passes[i].domain);
     prt::TransferPass pass;
     int bands = 0;
     check(prt::decodeAssetPass(bytes, static_cast<int>(i), 0, &pass, &bands).isOk());
@@ -173,6 +238,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::vector<prt::SpecularMaterial> specular;
   check(prt::decodeAssetSpecular(bytes, &specular).isOk() && specular.size() == asset.specular.size());
+  prt::BakedAsset atlases;
+  check(prt::decodeAssetAtlases(bytes, &atlases).isOk() && sameAtlases(atlases, asset));
+  check(peeked.texelCount == prt::assetTexelCount(asset) && verified.texelCount == peeked.texelCount);
 
   std::vector<std::uint8_t> again;
   check(prt::encodeAsset(asset, &again).isOk());

@@ -217,6 +217,49 @@ TEST(AssetParts, EncodedMatrixTransferIsCutAtItsShells) {
   }
 }
 
+// Transfer textures (format 1.4): an encoded texel pass is cut at its bands like a vertex
+// one; its parts and the atlas sections' are marked texel, the vertex passes' vertex.
+TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
+  const TexelTransferAsset texel = makeTexelTransferAsset(60, 3, 5);
+  const AssetSummary summary = verified(texel.bytes);
+  const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
+  expectTiling(parts, texel.bytes.size());
+  int texelSection = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer)) texelSection = static_cast<int>(i);
+  }
+  ASSERT_GE(texelSection, 0);
+  const auto mine = partsOfSection(parts, texelSection);
+  ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + texel.order));  // blob head, bands (q8: no clusters)
+  EXPECT_EQ(mine[0]->kind, AssetPartKind::kTransferHead);
+  for (int l = 0; l < texel.order; ++l) {
+    EXPECT_EQ(mine[1 + static_cast<std::size_t>(l)]->kind, AssetPartKind::kTransferBand);
+    EXPECT_EQ(mine[1 + static_cast<std::size_t>(l)]->band, l);
+  }
+  for (const AssetPart& p : parts) {
+    if (p.section < 0) continue;
+    const std::uint32_t type = summary.sections[static_cast<std::size_t>(p.section)].type;
+    const bool texelData = type >= static_cast<std::uint32_t>(AssetSectionType::kAtlasUv);
+    EXPECT_EQ(p.domain, texelData ? TransferDomain::kTexel : TransferDomain::kVertex) << "section " << p.section;
+    EXPECT_EQ(p.hasPass, p.section == texelSection || type == static_cast<std::uint32_t>(AssetSectionType::kTransfer))
+        << "section " << p.section;
+    if (p.section == texelSection) {
+      EXPECT_EQ(p.pass, TransferKind::kShadowed);
+    }
+    EXPECT_FALSE(p.matrix);
+  }
+  // Head and bands 0..b-1 form a blob prefix that decodes like the whole blob at b bands.
+  for (int b = 1; b <= texel.order; ++b) {
+    std::vector<std::uint8_t> prefix = joined(texel.bytes, {mine.begin(), mine.begin() + 1 + b});
+    if (b == texel.order) prefix.resize(texel.blob.size());
+    std::vector<float> fromPrefix, fromWhole;
+    ASSERT_TRUE(decodeTransfer(prefix, b, &fromPrefix).isOk()) << b << " bands";
+    ASSERT_TRUE(decodeTransfer(texel.blob, b, &fromWhole).isOk());
+    EXPECT_EQ(fromPrefix.size(), summary.texelCount * static_cast<std::size_t>(b * b));
+    EXPECT_TRUE(fromPrefix == fromWhole) << b << " bands";
+  }
+}
+
 TEST(AssetParts, UnreadableBlobsAndEmptySectionsStayWhole) {
   const std::vector<std::uint8_t> plain = makeAssetBytes(40, 2, 4, "odd sections");
   ExtraSection garbage;  // a type-8 payload that is no blob

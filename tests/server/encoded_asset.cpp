@@ -117,4 +117,31 @@ EncodedTransferAsset makeEncodedTransferAsset(int vertices, int order, std::uint
   return out;
 }
 
+TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed) {
+  BakedAsset asset;
+  if (Status s = decodeAsset(makeAssetBytes(vertices, order, seed, "texel transfer"), &asset); !s.isOk()) {
+    throw std::runtime_error("decodeAsset: " + s.toString());
+  }
+  const auto triangles = static_cast<std::uint32_t>(asset.indices.size() / 3);
+  TexelTransferAsset out;
+  out.order = order;
+  out.atlases = {{16, 8, 0, triangles / 2}, {8, 8, triangles / 2, triangles - triangles / 2}};
+  asset.atlases = out.atlases;
+  for (std::size_t v = 0; v < asset.positions.size(); ++v) {
+    const float t = static_cast<float>(v) / static_cast<float>(asset.positions.size() - 1);
+    asset.atlasUv.insert(asset.atlasUv.end(), {t, 1.0f - t});
+  }
+  const std::uint64_t texels = assetTexelCount(asset);
+  asset.texelCoverage.assign(texels, static_cast<std::uint8_t>(TexelCoverage::kSampled));
+  std::vector<float> coeffs;
+  const auto n = static_cast<std::uint64_t>(order * order);
+  for (std::uint64_t i = 0; i < texels * n; ++i) coeffs.push_back(0.25f + 0.125f * static_cast<float>((i * 7 + seed) % 5) / static_cast<float>(i % n + 1));
+  out.blob = encode(coeffs, order, 1, "q8");
+  TransferPass texel{TransferKind::kShadowed, 1, 0, {}, out.blob};
+  texel.domain = TransferDomain::kTexel;
+  asset.passes.push_back(std::move(texel));
+  if (Status s = encodeAsset(asset, &out.bytes); !s.isOk()) throw std::runtime_error("encodeAsset: " + s.toString());
+  return out;
+}
+
 }  // namespace prt::serve::test

@@ -36,4 +36,17 @@ struct EncodedTransferAsset {
 // blob, shadowed as a q8 blob. Throws std::runtime_error on an encoder failure.
 EncodedTransferAsset makeEncodedTransferAsset(int vertices, int order, std::uint32_t seed);
 
+struct TexelTransferAsset {
+  std::vector<std::uint8_t> bytes;   // the asset file (format 1.4, written by encodeAsset)
+  std::vector<std::uint8_t> blob;    // its texel shadowed pass: q8, one codec "vertex" per texel
+  std::vector<TextureAtlas> atlases;
+  int order = 0;
+};
+
+// makeAssetBytes' strip of `vertices` vertices with its vertex passes, plus transfer
+// textures: two atlases (the first half of the triangles in a 16 x 8 atlas, the rest in
+// 8 x 8), atlas uv and coverage, and a texel shadowed pass encoded q8. Throws
+// std::runtime_error on an encoder failure.
+TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed);
+
 }  // namespace prt::serve::test

@@ -72,6 +72,8 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   EXPECT_EQ(room->at("passes").at(1).at("kind").get<std::string>(), "interreflected");
   EXPECT_EQ(room->at("passes").at(1).at("channels").get<double>(), 3);
   EXPECT_EQ(room->at("passes").at(1).at("bounces").get<double>(), 2);
+  for (const Json& p : asArray(room->at("passes"))) EXPECT_EQ(p.at("domain").get<std::string>(), "vertex");
+  EXPECT_EQ(room->at("texels").get<double>(), 0);
   EXPECT_EQ(room->at("samples").get<double>(), 64);
   EXPECT_EQ(room->at("lighting").get<std::string>(), "distant");
   EXPECT_FALSE(room->contains("lightCenter"));
@@ -81,7 +83,7 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   ASSERT_NE(small, nullptr);
   EXPECT_TRUE(small->at("usable").get<bool>());
   EXPECT_EQ(small->at("url").get<std::string>(), "/assets/" + hexHash(s.tree.small) + "/small.prt");
-  EXPECT_EQ(small->at("version").get<std::string>(), "1.3");
+  EXPECT_EQ(small->at("version").get<std::string>(), "1.4");
   EXPECT_EQ(small->at("lighting").get<std::string>(), "local-sphere");
   ASSERT_EQ(asArray(small->at("lightCenter")).size(), 3u);
   EXPECT_EQ(small->at("lightCenter").at(0).get<double>(), 0.5);

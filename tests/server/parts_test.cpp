@@ -21,11 +21,13 @@ constexpr const char* kImmutable = "public, max-age=31536000, immutable";
 
 std::string asString(const std::vector<std::uint8_t>& v) { return std::string(v.begin(), v.end()); }
 
-// A tree with the usual assets plus an asset holding encoded transfers (encoded.prt) and
-// a twin of room.prt that differs only in its name (twin.prt), and a server on it.
+// A tree with the usual assets plus an asset holding encoded transfers (encoded.prt), one
+// with transfer textures (texel.prt), a twin of room.prt that differs only in its name
+// (twin.prt), and a server on it.
 struct PartsServer {
   TestTree tree;
   EncodedTransferAsset encoded;
+  TexelTransferAsset texel;
   std::vector<std::uint8_t> twin;
   std::unique_ptr<ServerProcess> server;
   int port = 0;
@@ -37,6 +39,8 @@ PartsServer& partsServer() {
     s.tree = makeTestTree(workDir());
     s.encoded = makeEncodedTransferAsset(3000, 4, 7);
     writeFile(s.tree.root + "/encoded.prt", s.encoded.bytes);
+    s.texel = makeTexelTransferAsset(400, 3, 9);
+    writeFile(s.tree.root + "/texel.prt", s.texel.bytes);
     s.twin = makeAssetBytes(6000, 4, 1, "twin of the room");
     writeFile(s.tree.root + "/twin.prt", s.twin);
     s.server = startServer(s.tree, {"--threads", "2"}, "parts.log");
@@ -101,7 +105,8 @@ TEST(Parts, CatalogueListsPartsThatTileEveryAsset) {
     const std::vector<std::uint8_t>* bytes;
   };
   for (const Expect& x : {Expect{"room.prt", &s.tree.room}, Expect{"sub/small.prt", &s.tree.small},
-                          Expect{"encoded.prt", &s.encoded.bytes}, Expect{"twin.prt", &s.twin}}) {
+                          Expect{"encoded.prt", &s.encoded.bytes}, Expect{"texel.prt", &s.texel.bytes},
+                          Expect{"twin.prt", &s.twin}}) {
     SCOPED_TRACE(x.file);
     const Json* e = entry(cat, x.file);
     ASSERT_NE(e, nullptr);
@@ -273,6 +278,47 @@ TEST(Parts, EncodedTransferIsCutAtBandBoundaries) {
       EXPECT_TRUE(got == want) << bands << " bands";
     }
   }
+}
+
+// Transfer textures in the catalogue: every pass names its domain, the entry its texel
+// count; the texel pass's parts and the atlas sections' say "domain":"texel" (a client that
+// renders vertex passes only skips them), the vertex passes' parts "domain":"vertex".
+TEST(Parts, TexelPassesAndAtlasSectionsAreMarkedInTheCatalogue) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const Json* e = entry(cat, "texel.prt");
+  ASSERT_NE(e, nullptr);
+  AssetSummary summary;
+  ASSERT_TRUE(verifyAsset(s.texel.bytes, &summary).isOk());
+  EXPECT_EQ(e->at("version").get<std::string>(), "1.4");
+  EXPECT_EQ(e->at("texels").get<double>(), static_cast<double>(summary.texelCount));
+  const Json& passes = e->at("passes");
+  ASSERT_EQ(asArray(passes).size(), summary.passes.size());
+  for (std::size_t i = 0; i < summary.passes.size(); ++i) {
+    EXPECT_EQ(passes.at(i).at("domain").get<std::string>(), transferDomainName(summary.passes[i].domain)) << i;
+    EXPECT_EQ(passes.at(i).at("kind").get<std::string>(), transferKindName(summary.passes[i].kind)) << i;
+  }
+  int texelParts = 0, texelBands = 0;
+  for (const Json& p : asArray(e->at("parts"))) {
+    if (!p.contains("section")) {
+      EXPECT_FALSE(p.contains("domain"));  // the head
+      continue;
+    }
+    const std::uint32_t type = summary.sections.at(static_cast<std::size_t>(p.at("section").get<double>())).type;
+    const bool texel = type >= static_cast<std::uint32_t>(AssetSectionType::kAtlasUv);
+    const bool pass = p.contains("pass");
+    if (texel) {
+      EXPECT_EQ(p.value("domain", ""), "texel") << "section type " << type;
+      ++texelParts;
+      if (p.at("kind").get<std::string>() == "transfer-band") ++texelBands;
+    } else if (pass) {
+      EXPECT_EQ(p.value("domain", ""), "vertex") << "section type " << type;
+    } else {
+      EXPECT_FALSE(p.contains("domain")) << "section type " << type;  // geometry and metadata
+    }
+  }
+  EXPECT_EQ(texelBands, s.texel.order);
+  EXPECT_EQ(texelParts, 3 + 1 + s.texel.order);  // uv, atlases, coverage; blob head and bands
 }
 
 TEST(Parts, IdenticalPartsShareOneUrl) {

@@ -101,7 +101,7 @@ TEST(AssetGlossy, FloatMatrixPassesRoundTripUnderBothLightingModels) {
     expectSameAsset(a, b);
     AssetSummary sum;
     ASSERT_TRUE(verifyAsset(file, &sum).isOk());
-    EXPECT_EQ(sum.versionMinor, 3);
+    EXPECT_EQ(sum.versionMinor, 4);
     ASSERT_EQ(sum.passes.size(), 3u);
     EXPECT_EQ(sum.passes[0].form, TransferForm::kVector);
     EXPECT_EQ(sum.passes[1].form, TransferForm::kMatrix);
@@ -204,7 +204,7 @@ TEST(AssetGlossy, CheckAssetEnforcesTheMatrixAndSpecularRules) {
   expectRefused(a, StatusCode::kNotFinite, "exponent");
   a = good;
   a.passes.push_back(a.passes[1]);
-  expectRefused(a, StatusCode::kInvalidArgument, "at most one per kind and form");
+  expectRefused(a, StatusCode::kInvalidArgument, "at most one per kind, form and domain");
   a = good;
   a.passes[1].coeffs[3] = NAN;
   expectRefused(a, StatusCode::kNotFinite, "not finite");
@@ -216,7 +216,8 @@ TEST(AssetGlossy, CheckAssetEnforcesTheMatrixAndSpecularRules) {
   a.passes.erase(a.passes.begin());  // the matrix pass first: its order is checked before any size
   for (TransferPass& p : a.passes) p.coeffs.clear();
   expectRefused(a, StatusCode::kInvalidArgument, "matrix passes need order <= 8");
-  // Six passes (three kinds, two forms) are allowed; a blob of the wrong packing is not.
+  // Six vertex passes (three kinds, two forms) are allowed, a seventh repeats one; a blob of
+  // the wrong packing is refused.
   a = good;
   TransferPass un = matrixPass(TransferKind::kUnshadowed, 1, 0, 5, 2, MatrixPacking::kSymmetric, 1.0f);
   a.passes.push_back(un);
@@ -231,7 +232,7 @@ TEST(AssetGlossy, CheckAssetEnforcesTheMatrixAndSpecularRules) {
   a.passes.push_back(vin);
   EXPECT_TRUE(checkAsset(a).isOk()) << checkAsset(a).toString();
   a.passes.push_back(vin);
-  expectRefused(a, StatusCode::kInvalidArgument, "1 to 6");
+  expectRefused(a, StatusCode::kInvalidArgument, "repeats the kind of pass");
   a = good;
   TransferCodecSettings f16;
   f16.encoding = TransferEncoding::kFloat16;
@@ -270,8 +271,8 @@ TEST(AssetGlossy, MatchesTheMatrixWorkedExampleInTheDocument) {
       ++i;
     }
   };
-  // Header: version 1.3, order 2, 9 sections, file size 664.
-  at(0x00, {0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00});
+  // Header: version 1.4, order 2, 9 sections, file size 664.
+  at(0x00, {0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x04, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00});
   at(0x18, {0x09, 0x00, 0x00, 0x00});
   at(0x20, {0x98, 0x02, 0x00, 0x00});
   // Entry 6: specular, float32, offset 0x240, 20 bytes, args 0, crc.

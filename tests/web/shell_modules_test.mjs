@@ -1,6 +1,7 @@
 // The page's pure JS modules under Node (no browser): the OBJ reader, the built-in torus,
-// light checking and packing, and the ray geometry used to pick and drag lights, each
-// against independent references (hand-worked files, brute-force sampling).
+// light checking and packing, the ray geometry used to pick and drag lights, each against
+// independent references (hand-worked files, brute-force sampling), and the stream loader's
+// part selection (texel parts skipped) against a stand-in client and server.
 // Usage: node shell_modules_test.mjs
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -12,6 +13,7 @@ const { torusMesh } = await load('torus_mesh.js');
 const { normaliseLight, normaliseLights, packLights, boundingRadius, FLOATS_PER_LIGHT } = await load('lights.js');
 const { randomLights, seededRandom } = await load('random_lights.js');
 const { raySphere, pickLight, rayHorizontalPlane, worldPerPixel, along } = await load('light_picking.js');
+const { streamAsset, checkParts } = await load('stream_loader.js');
 
 const failures = [];
 let checks = 0;
@@ -217,6 +219,64 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
     try { randomLights(bad, [0, 0, 0], 1); } catch (e) { threw = /count/.test(e.message); }
     check(threw, `randomLights(${bad}) should throw naming the count`);
   }
+}
+
+// ---- Stream loader: an asset with vertex and texel passes streams its vertex passes and never
+// fetches the texel parts (transfer textures: not rendered yet); unknown domains are refused.
+{
+  const kinds = { unshadowed: 'U', shadowed: 'S', interreflected: 'I' };  // stand-ins for the embind enum values
+  const parts = [];
+  const add = (size, fields) => parts.push({ offset: parts.reduce((s, p) => s + p.size, 0), size, url: `/parts/${parts.length}`, ...fields });
+  add(64, { kind: 'head' });
+  add(32, { kind: 'section', section: 0 });                                                     // geometry
+  add(48, { kind: 'section', section: 1, domain: 'texel' });                                    // atlas uv
+  add(16, { kind: 'section', section: 2, domain: 'texel' });                                    // coverage
+  add(80, { kind: 'section', section: 3, pass: 'shadowed', domain: 'vertex' });                 // float32 vertex pass
+  add(24, { kind: 'transfer-head', section: 4, pass: 'shadowed', domain: 'texel' });
+  add(40, { kind: 'transfer-band', section: 4, pass: 'shadowed', domain: 'texel', band: 0 });
+  const entry = { name: 'mixed', bytes: parts.reduce((s, p) => s + p.size, 0), parts };
+  checkParts(parts, entry.bytes);
+  throwsMatching(() => checkParts([parts[0], { ...parts[1], size: entry.bytes - 64, domain: 'pixel' }], entry.bytes),
+                 /unknown domain 'pixel'/, 'checkParts on a bad domain');
+  const fetched = [];
+  globalThis.fetch = async (url) => {
+    fetched.push(url);
+    const part = parts.find((p) => p.url === url);
+    return { ok: true, status: 200, statusText: 'OK', arrayBuffer: async () => new Uint8Array(part.size).fill(7).buffer };
+  };
+  const streamed = [];
+  let buffer = null;
+  const app = {
+    reserveStream: (n) => { buffer = new Uint8Array(n); return true; },
+    streamBuffer: () => buffer,
+    streamGeometry: () => '',
+    mode: () => kinds.shadowed,
+    hasGlossy: () => false,
+    hasAnyPass: () => true,
+    streamPass: (k, bands) => { streamed.push([k, bands]); return ''; },
+    streamGlossyPass: () => 'no glossy pass here',
+    loadedBands: () => 0,
+    endStream: () => {},
+  };
+  const progress = {};
+  await streamAsset(app, entry, { kinds, progress });
+  await new Promise((resolve) => setTimeout(resolve, 10));  // the background part of the stream
+  const texelUrls = parts.filter((p) => p.domain === 'texel').map((p) => p.url);
+  check(!fetched.some((u) => texelUrls.includes(u)), `texel parts fetched: ${fetched.join(' ')}`);
+  check(fetched.length === parts.length - texelUrls.length, `fetched ${fetched.length} parts: ${fetched.join(' ')}`);
+  check(JSON.stringify(streamed) === JSON.stringify([[kinds.shadowed, 0]]), `passes streamed: ${JSON.stringify(streamed)}`);
+  const wantedBytes = parts.filter((p) => p.domain !== 'texel').reduce((s, p) => s + p.size, 0);
+  check(progress.bytesTotal === wantedBytes && progress.bytesReceived === wantedBytes,
+        `progress ${progress.bytesReceived} of ${progress.bytesTotal}, ${wantedBytes} wanted`);
+  // Only texel passes: the client's geometry step names the problem, and the stream rejects with it.
+  app.streamGeometry = () => 'invalid argument: the asset holds only texel (transfer-texture) passes';
+  let message = '';
+  try {
+    await streamAsset(app, entry, { kinds });
+  } catch (e) {
+    message = e.message;
+  }
+  check(/Scene 'mixed' could not be loaded: .*only texel/.test(message), `texel-only stream: '${message}'`);
 }
 
 if (failures.length) {

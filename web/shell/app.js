@@ -219,7 +219,8 @@ async function loadScene(name) {
       progress: hook,
       onProgress: () => {
         stats.bytesLoaded = hook.bytesReceived;
-        progress(`Loading ${entry.name}: ${(hook.bytesReceived / 1e6).toFixed(1)} of ${(entry.bytes / 1e6).toFixed(1)} MB`, hook.bytesReceived / entry.bytes);
+        // bytesTotal: the parts fetched (texel passes are skipped), not the whole file.
+        progress(`Loading ${entry.name}: ${(hook.bytesReceived / 1e6).toFixed(1)} of ${(hook.bytesTotal / 1e6).toFixed(1)} MB`, hook.bytesReceived / hook.bytesTotal);
       },
       onError: (e) => fail(e.message),
     });

@@ -3,7 +3,9 @@
 // transfer pass (the displayed one first) its codec head, clusters and bands in order, each
 // band re-uploaded as it arrives so the page shows an order-1 picture early and sharpens.
 // The wasm client checks every byte (header, table, section and band checksums); this file
-// only checks that the parts tile the file and arrive at their declared sizes.
+// only checks that the parts tile the file and arrive at their declared sizes. Parts marked
+// "domain":"texel" (texel passes and their atlas sections: transfer textures) are not
+// fetched: the client renders vertex passes only, for now.
 
 // The catalogue's names of the transfer passes, in the asset's kind order.
 export const PASS_NAMES = ['unshadowed', 'shadowed', 'interreflected'];
@@ -27,6 +29,7 @@ export function checkParts(parts, bytes) {
     if (p.kind === 'transfer-band' && !(Number.isInteger(p.band) && p.band >= 0)) throw new Error(`part ${i} has no valid band`);
     if (p.pass !== undefined && !PASS_NAMES.includes(p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
     if (p.form !== undefined && p.form !== 'vector' && p.form !== 'matrix') throw new Error(`part ${i} names an unknown pass form '${p.form}'`);
+    if (p.domain !== undefined && p.domain !== 'vertex' && p.domain !== 'texel') throw new Error(`part ${i} names an unknown domain '${p.domain}'`);
   });
   if (end !== bytes) throw new Error(`the parts cover ${end} bytes, the file has ${bytes}`);
   if (parts[0].kind !== 'head') throw new Error('the first part is not the head');
@@ -38,7 +41,8 @@ export function checkParts(parts, bytes) {
 // once the first picture can be drawn (geometry and band 0 of the displayed pass, or the
 // whole displayed pass when it is float32), and keeps loading the rest in the background.
 // `progress` (an object) gets bytesReceived, bytesTotal, transferBytesReceived,
-// transferBytesTotal, updated per part; onProgress() is called after each. A failure before
+// transferBytesTotal, updated per part (the totals count the parts fetched: not the texel
+// ones); onProgress() is called after each. A failure before
 // the first picture rejects; one after it goes to onError(Error). Either way the message
 // names the scene and the problem (network, HTTP status, size, the decoder's own words).
 export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
@@ -49,10 +53,12 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
   } catch (e) {
     throw fail(`the catalogue's part list is unusable: ${e.message}`);
   }
-  const transferParts = entry.parts.filter((p) => p.pass !== undefined);
+  // Texel passes and atlas sections stay zero in the buffer: nothing the client decodes reads them.
+  const wanted = entry.parts.filter((p) => p.domain !== 'texel');
+  const transferParts = wanted.filter((p) => p.pass !== undefined);
   Object.assign(progress, {
     bytesReceived: 0,
-    bytesTotal: entry.bytes,
+    bytesTotal: wanted.reduce((s, p) => s + p.size, 0),
     transferBytesReceived: 0,
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
@@ -110,7 +116,7 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
   });
 
   const run = async (onFirstPicture) => {
-    await fetchAll(entry.parts.filter((p) => p.pass === undefined), () => {});
+    await fetchAll(wanted.filter((p) => p.pass === undefined), () => {});
     const geometryError = app.streamGeometry();
     if (geometryError) throw fail(geometryError);
     const displayed = app.mode();

@@ -28,6 +28,9 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
     return Status::error(StatusCode::kCorrupt, "the asset's header declares " + std::to_string(s.fileSize) +
                                                    " bytes but the catalogue said " + std::to_string(file_.size()));
   }
+  bool anyVertexPass = false;
+  for (const AssetPassInfo& p : s.passes) anyVertexPass = anyVertexPass || p.domain == TransferDomain::kVertex;
+  if (!anyVertexPass) return Status::error(StatusCode::kInvalidArgument, kOnlyTexelPassesMessage);
   if (Status st = decodeAssetGeometry(file_, out); !st.isOk()) return st;
   summary_ = std::move(s);
   headerRead_ = true;
@@ -35,10 +38,14 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
 }
 
 int AssetStream::passIndex(int kind, TransferForm form) const {
-  for (std::size_t i = 0; i < summary_.passes.size(); ++i)
-    if (static_cast<int>(summary_.passes[i].kind) == kind && summary_.passes[i].form == form) return static_cast<int>(i);
+  // Vertex passes only: the client does not render transfer textures yet.
+  for (std::size_t i = 0; i < summary_.passes.size(); ++i) {
+    const AssetPassInfo& p = summary_.passes[i];
+    if (static_cast<int>(p.kind) == kind && p.form == form && p.domain == TransferDomain::kVertex) return static_cast<int>(i);
+  }
   return -1;
 }
+
 
 bool AssetStream::hasKind(int kind) const { return passIndex(kind) >= 0; }
 bool AssetStream::hasMatrixKind(int kind) const { return passIndex(kind, TransferForm::kMatrix) >= 0; }

@@ -14,6 +14,11 @@
 
 namespace prt::web {
 
+// Why an asset whose passes are all texel passes (transfer textures) cannot be shown: this
+// client renders vertex passes only (for now).
+inline constexpr const char* kOnlyTexelPassesMessage =
+    "the asset holds only texel (transfer-texture) passes, which this client cannot render yet; bake it with vertex passes";
+
 class AssetStream {
  public:
   // A zeroed buffer of `bytes` (the catalogue's file size) for the parts; nullptr when it
@@ -24,7 +29,9 @@ class AssetStream {
 
   // Once the head part and every non-transfer section have been placed: validates header,
   // table, metadata and lighting (peekAssetHeader), checks that the declared file size is
-  // the buffer's, and decodes the geometry (no passes) into *out.
+  // the buffer's, and decodes the geometry (no passes) into *out. kInvalidArgument
+  // (kOnlyTexelPassesMessage) when the asset has no vertex pass. The atlas sections are not
+  // needed: the passes below are the vertex passes, texel passes are not streamed (yet).
   Status decodeGeometry(BakedAsset* out);
 
   // Decodes the pass of `kind` (0 unshadowed, 1 shadowed, 2 interreflected) from its first
@@ -44,7 +51,7 @@ class AssetStream {
   // The matrix pass of `kind` expanded (decodeAssetPass): *order its bands.
   Status decodeMatrixPass(int kind, int bands, TransferPass* out, int* order);
 
-  // Whether the asset holds a (vector) pass of `kind`.
+  // Whether the asset holds a (vector, vertex) pass of `kind`.
   bool hasKind(int kind) const;
 
   // Glossy: the matrix pass of `kind` unexpanded (decodeAssetPassCpcaMatrix) from its first
@@ -61,7 +68,7 @@ class AssetStream {
   std::vector<std::uint8_t> file_;
   AssetSummary summary_;
   bool headerRead_ = false;
-  // Index into summary_.passes of the pass of `kind` and `form`, or -1.
+  // Index into summary_.passes of the vertex pass of `kind` and `form`, or -1.
   int passIndex(int kind, TransferForm form = TransferForm::kVector) const;
   bool isCpcaAt(int index) const;
 };

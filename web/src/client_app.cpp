@@ -61,6 +61,13 @@ std::string ClientApp::loadAsset() {
   pending_.clear();
   pending_.shrink_to_fit();
   if (!s.isOk()) return s.toString();
+  // Texel passes (transfer textures) are not rendered yet: drop them and their atlases, and
+  // say so when nothing else is left to show.
+  std::erase_if(decoded.passes, [](const TransferPass& p) { return p.domain != TransferDomain::kVertex; });
+  if (decoded.passes.empty()) return kOnlyTexelPassesMessage;
+  decoded.atlasUv = {};
+  decoded.atlases = {};
+  decoded.texelCoverage = {};
   // CPCA passes go up in their compressed form (when cpcaDirect_), the others expanded;
   // glossy matrix passes always as CPCA (a float32 one as one cluster per vertex).
   std::vector<std::pair<TransferKind, CpcaTransfer>> cpca;

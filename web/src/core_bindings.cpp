@@ -36,7 +36,7 @@ std::vector<std::uint8_t> bytesFrom(const val& array) {
   return emscripten::convertJSArrayToNumberVector<std::uint8_t>(array);
 }
 
-// {ok, error, order, vertices, triangles, name, passes:[{kind, channels, bounces}]}, or with
+// {ok, error, order, vertices, triangles, name, passes:[{kind, domain, channels, bounces}]}, or with
 // ok false the reader's named error.
 val inspectAsset(const val& bytes) {
   const std::vector<std::uint8_t> data = bytesFrom(bytes);
@@ -54,6 +54,7 @@ val inspectAsset(const val& bytes) {
   for (const prt::TransferPass& p : asset.passes) {
     val pass = val::object();
     pass.set("kind", std::string(prt::transferKindName(p.kind)));
+    pass.set("domain", std::string(prt::transferDomainName(p.domain)));
     pass.set("channels", p.channels);
     pass.set("bounces", p.bounces);
     passes.call<void>("push", pass);
@@ -69,7 +70,7 @@ val shadeConstant(const val& bytes, const std::string& kind) {
   prt::BakedAsset asset;
   if (!prt::decodeAsset(data, &asset).isOk()) return val::null();
   for (const prt::TransferPass& p : asset.passes) {
-    if (kind != prt::transferKindName(p.kind)) continue;
+    if (kind != prt::transferKindName(p.kind) || p.domain != prt::TransferDomain::kVertex) continue;
     const std::size_t n2 = static_cast<std::size_t>(prt::shCoeffCount(asset.shOrder));
     const float l0 = static_cast<float>(2.0 * std::sqrt(prt::kPi));  // radiance 1 everywhere
     const prt::Rgb lighting[] = {{l0, l0, l0}};
@@ -93,7 +94,7 @@ val cpcaRadianceCheck(const val& bytes, const std::string& kind, const val& ligh
   prt::BakedAsset asset;
   if (prt::Status s = prt::decodeAsset(data, &asset); !s.isOk()) return val(s.toString());
   for (const prt::TransferPass& p : asset.passes) {
-    if (kind != prt::transferKindName(p.kind)) continue;
+    if (kind != prt::transferKindName(p.kind) || p.domain != prt::TransferDomain::kVertex) continue;
     if (p.encoded.empty()) return val(kind + " pass is float32, not CPCA");
     prt::CpcaTransfer cpca;
     if (prt::Status s = prt::decodeCpcaTransfer(p.encoded, asset.shOrder, &cpca); !s.isOk()) return val(s.toString());
