@@ -1,10 +1,12 @@
 #include "baker/cli/asset_commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "baker/cli/report_failure.h"
+#include "baker/texture/asset_texels.h"
 #include "native/cli_args.h"
 #include "native/exit_status.h"
 #include "native/environment_map.h"
@@ -70,9 +72,10 @@ std::string infoAtlasesLine(const std::vector<TextureAtlas>& atlases, std::uint6
 
 constexpr const char* kShadeHelp =
     "Usage: prt-bake shade ASSET --light constant|ENVMAP [--pass P] [--view X,Y,Z [--glossy-only]]\n"
-    "                        [--order N] [--json]\n"
+    "                        [--order N] [--texels] [--json]\n"
     "\n"
-    "Prints every vertex's position and RGB exit radiance under a light:\n"
+    "Prints every vertex's position and RGB exit radiance under a light (with --texels, every\n"
+    "sampled texel's atlas, texel, position, normal and exit radiance):\n"
     "  --light constant    uniform white radiance 1 from every direction\n"
     "  --light ENVMAP      an environment image (EXR, HDR, PNG, JPEG; layout from its aspect)\n"
     "  --pass P            unshadowed, shadowed or interreflected (default: the richest stored);\n"
@@ -82,6 +85,8 @@ constexpr const char* kShadeHelp =
     "  --view X,Y,Z        the eye position (world units) for a glossy pass\n"
     "  --glossy-only       print the glossy term alone (k_s x the lobe integral), no diffuse\n"
     "  --order N           truncate to N bands (default: the asset's order)\n"
+    "  --texels            the transfer-texture pass instead (bake --texels): the texel's own\n"
+    "                      stored transfer, unfiltered; vector passes only\n"
     "  --json              JSON instead of a table\n";
 
 // "X,Y,Z": three finite numbers.
@@ -127,6 +132,70 @@ Status parseShadePass(const std::string& name, ShadePass* out) {
   else return usageError("unknown --pass '" + name + "' (expected unshadowed, shadowed, interreflected, glossy, "
                          "glossy-shadowed or glossy-interreflected)");
   return Status::ok();
+}
+
+// Writes *text to `out` and empties it once it passes 1 MiB, so a large scene's output
+// streams instead of growing one string.
+void flushWhenLarge(std::string* text, std::FILE* out) {
+  if (text->size() <= (1u << 20)) return;
+  std::fputs(text->c_str(), out);
+  text->clear();
+}
+
+// shade --texels: every sampled texel's sample and exit radiance from its own transfer.
+int printTexels(const BakedAsset& asset, const TransferPass& pass, const std::string& path, const std::string& light,
+                int order, const std::vector<Rgb>& lighting, bool json, std::FILE* out, std::FILE* err) {
+  std::vector<bake::AtlasTexel> texels;
+  if (Status s = bake::assetTexelSamples(asset, &texels); !s.isOk()) {
+    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
+  }
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
+  const std::size_t perTexel = n2 * static_cast<std::size_t>(pass.channels);
+  std::vector<float> transfer(texels.size() * perTexel);
+  std::vector<Rgb> albedo(texels.size());
+  for (std::size_t t = 0; t < texels.size(); ++t) {
+    std::copy_n(pass.coeffs.begin() + static_cast<std::ptrdiff_t>(texels[t].index * perTexel), perTexel,
+                transfer.begin() + static_cast<std::ptrdiff_t>(t * perTexel));
+    albedo[t] = texels[t].albedo;
+  }
+  std::vector<float> exit(3 * texels.size(), 0.0f);
+  if (Status s = exitRadiance(transfer, pass.channels, n2, albedo, lighting, exit); !s.isOk()) {
+    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
+  }
+  std::string text;
+  if (json) {
+    text = "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + transferKindName(pass.kind) +
+           "\",\n  \"domain\": \"texel\",\n  \"order\": " + std::to_string(order) + ",\n  \"light\": " +
+           jsonString(light) + ",\n  \"atlases\": [";
+    for (std::size_t a = 0; a < asset.atlases.size(); ++a) {
+      text += std::string(a ? ", " : "") + "{\"width\": " + std::to_string(asset.atlases[a].width) +
+              ", \"height\": " + std::to_string(asset.atlases[a].height) + "}";
+    }
+    text += "],\n  \"texels\": [\n";
+  }
+  for (std::size_t t = 0; t < texels.size(); ++t) {
+    const bake::AtlasTexel& s = texels[t];
+    const float* e = &exit[3 * t];
+    if (json) {
+      text += "    {\"atlas\": " + std::to_string(s.atlas) + ", \"x\": " + std::to_string(s.x) + ", \"y\": " +
+              std::to_string(s.y) + ", \"position\": [" + jsonNumber(s.position.x) + ", " + jsonNumber(s.position.y) +
+              ", " + jsonNumber(s.position.z) + "], \"normal\": [" + jsonNumber(s.normal.x) + ", " +
+              jsonNumber(s.normal.y) + ", " + jsonNumber(s.normal.z) + "], \"radiance\": [" + jsonNumber(e[0]) + ", " +
+              jsonNumber(e[1]) + ", " + jsonNumber(e[2]) + "]}" + (t + 1 < texels.size() ? ",\n" : "\n");
+    } else {
+      char line[320];
+      std::snprintf(line, sizeof line, "%u %d %d %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", s.atlas, s.x, s.y,
+                    static_cast<double>(s.position.x), static_cast<double>(s.position.y),
+                    static_cast<double>(s.position.z), static_cast<double>(s.normal.x),
+                    static_cast<double>(s.normal.y), static_cast<double>(s.normal.z), static_cast<double>(e[0]),
+                    static_cast<double>(e[1]), static_cast<double>(e[2]));
+      text += line;
+    }
+    flushWhenLarge(&text, out);
+  }
+  if (json) text += "  ]\n}\n";
+  std::fputs(text.c_str(), out);
+  return kExitOk;
 }
 
 }  // namespace
@@ -216,7 +285,8 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     return kExitOk;
   }
   static constexpr FlagSpec kFlags[] = {{"--light", true}, {"--pass", true},         {"--order", true},
-                                         {"--json", false},  {"--view", true},         {"--glossy-only", false}};
+                                         {"--json", false},  {"--view", true},         {"--glossy-only", false},
+                                         {"--texels", false}};
   ParsedArgs p;
   std::string path;
   if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "shade", s);
@@ -238,6 +308,10 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     }
   }
   const bool glossyOnly = p.has("--glossy-only");
+  const bool texels = p.has("--texels");
+  if (texels && wanted.glossy) {
+    return reportFailure(err, "shade", usageError("--texels shades the vector passes: glossy transfer is baked per vertex"));
+  }
   int order = 0;
   if (const std::string* o = p.value("--order")) {
     if (Status s = parseIntArg("--order", *o, 1, kMaxShOrder, &order); !s.isOk()) return reportFailure(err, "shade", s);
@@ -258,16 +332,18 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument, "'" + path + "' has no " +
                                                                                       transferKindName(k) + what));
   };
+  const TransferDomain domain = texels ? TransferDomain::kTexel : TransferDomain::kVertex;
+  const char* domainWhat = texels ? " texel pass (bake with --texels)" : " pass";
   if (wanted.kind) {
-    pass = findPass(asset, *wanted.kind);
-    if (!pass) return noPass(*wanted.kind, " pass");
+    pass = findPass(asset, *wanted.kind, TransferForm::kVector, domain);
+    if (!pass) return noPass(*wanted.kind, domainWhat);
     if (wanted.glossy) {
       matrix = findPass(asset, *wanted.kind, TransferForm::kMatrix);
       if (!matrix) return noPass(*wanted.kind, " glossy matrix pass (bake with --glossy)");
     }
   } else {
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
-      const TransferPass* vector = findPass(asset, k);
+      const TransferPass* vector = findPass(asset, k, TransferForm::kVector, domain);
       const TransferPass* m = findPass(asset, k, TransferForm::kMatrix);
       if (pass || !vector || (wanted.glossy && !m)) continue;
       pass = vector;
@@ -277,6 +353,7 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
       return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument,
                                                        "'" + path + "' has no " +
                                                            (wanted.glossy ? "glossy matrix pass with its diffuse pass (bake with --glossy)"
+                                                            : texels      ? "texel transfer pass (bake with --texels)"
                                                                           : "transfer pass")));
     }
   }
@@ -294,6 +371,7 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   }
 
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
+  if (texels) return printTexels(asset, *pass, path, *light, order, lighting, p.has("--json"), out, err);
   std::vector<float> exit(3 * asset.positions.size(), 0.0f);
   if (!glossyOnly) {
     if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {
@@ -334,10 +412,7 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
                     static_cast<double>(radiance.g), static_cast<double>(radiance.b));
       text += line;
     }
-    if (text.size() > (1u << 20)) {
-      std::fputs(text.c_str(), out);
-      text.clear();
-    }
+    flushWhenLarge(&text, out);
   }
   if (json) text += "  ]\n}\n";
   std::fputs(text.c_str(), out);

@@ -15,6 +15,7 @@
 #include "baker/scene/default_scene.h"
 #include "native/file_io.h"
 #include "baker/scene/gltf_loader.h"
+#include "baker/scene/uv_atlas_check.h"
 #include "native/json_text.h"
 #include "baker/transfer/bake_asset.h"
 #include "baker/cli/progress_bar.h"
@@ -32,6 +33,8 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--json", false},    {"--lighting", true}, {"--light-center", true}, {"--light-radius", true},
     {"--name", true},     {"--compress", true}, {"--glossy", false}, {"--glossy-bounces", true},
     {"--specular-exponent", true}, {"--max-specular-exponent", true},
+    {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
+    {"--dilation", true},
 };
 
 constexpr const char* kHelp =
@@ -76,6 +79,13 @@ constexpr const char* kHelp =
     "                            (default 1; 0 stores the shadowed matrix only)\n"
     "  --specular-exponent S     one Phong exponent S >= 0 for every vertex instead of roughness\n"
     "  --max-specular-exponent S the exponent roughness 0 (a mirror) maps to (default 10000)\n"
+    "  --texels                  also bake the vector passes per texel (transfer textures,\n"
+    "                            docs/transfer-textures.md) over the glTF's lightmap atlas:\n"
+    "                            TEXCOORD_1 when it is a valid atlas, else TEXCOORD_0\n"
+    "  --texture-size N          atlas side in texels, 1..16384 (default 512)\n"
+    "  --texels-per-unit D       instead: the side that gives about D texels per metre of surface\n"
+    "  --atlas-padding P         gutter texels the atlas must keep between charts (default 2)\n"
+    "  --dilation N              gutter texels filled from the charts for filtering (default 3)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -135,6 +145,39 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
     }
     c->bake.lightRadius = r;
   }
+  return Status::ok();
+}
+
+Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
+  for (const char* flag : {"--texture-size", "--texels-per-unit", "--atlas-padding", "--dilation"}) {
+    if (p.has(flag) && !p.has("--texels")) return usage(std::string(flag) + " needs --texels");
+  }
+  if (!p.has("--texels")) return Status::ok();
+  bake::TexelBakeSettings t;
+  if (p.has("--texture-size") && p.has("--texels-per-unit")) {
+    return usage("give --texture-size or --texels-per-unit, not both");
+  }
+  int v = 0;
+  if (const std::string* s = p.value("--texture-size")) {
+    if (Status st = parseIntArg("--texture-size", *s, 1, bake::kMaxAtlasSize, &v); !st.isOk()) return st;
+    t.textureSize = v;
+  }
+  if (const std::string* s = p.value("--texels-per-unit")) {
+    float d = 0.0f;
+    if (!parseFloatArg("--texels-per-unit", *s, 0.0f, 1e9f, &d).isOk() || !(d > 0.0f)) {
+      return usage("--texels-per-unit expects a number > 0 (texels per metre), got '" + *s + "'");
+    }
+    t.texelsPerUnit = d;
+  }
+  if (const std::string* s = p.value("--atlas-padding")) {
+    if (Status st = parseIntArg("--atlas-padding", *s, 0, bake::kMaxAtlasPadding, &v); !st.isOk()) return st;
+    t.padding = v;
+  }
+  if (const std::string* s = p.value("--dilation")) {
+    if (Status st = parseIntArg("--dilation", *s, 0, 64, &v); !st.isOk()) return st;
+    t.dilation = v;
+  }
+  c->bake.texels = t;
   return Status::ok();
 }
 
@@ -255,6 +298,7 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
   }
   if (Status st = parseLightingArgs(p, c); !st.isOk()) return st;
   if (Status st = parseGlossyArgs(p, c); !st.isOk()) return st;
+  if (Status st = parseTexelArgs(p, c); !st.isOk()) return st;
   if (const std::string* s = p.value("--name")) {
     if (!isValidAssetName(*s)) {
       return usage("--name must be at most " + std::to_string(kMaxAssetNameBytes) + " bytes of UTF-8 without control characters");
@@ -279,7 +323,10 @@ std::string describeCompression(const std::vector<bake::CompressedPass>& passes)
   for (const bake::CompressedPass& p : passes) {
     char line[200];
     std::snprintf(line, sizeof line, "%s%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary.empty() ? "" : "; ",
-                  transferKindName(p.kind), p.form == TransferForm::kMatrix ? " glossy" : "", p.floatBytes, p.encodedBytes, p.codec.relativeError,
+                  transferKindName(p.kind),
+                  p.form == TransferForm::kMatrix         ? " glossy"
+                  : p.domain == TransferDomain::kTexel    ? " texel"
+                                                          : "", p.floatBytes, p.encodedBytes, p.codec.relativeError,
                   p.codec.clusters > 0 ? (", " + std::to_string(p.codec.clusters) + " clusters").c_str() : "");
     summary += line;
   }
@@ -336,6 +383,13 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     const Status baked = bake::bakeAsset(std::move(scene), c.bake, &asset, &report, started);
     bar.finish();
     if (!baked.isOk()) return reportFailure(err, "", baked);
+    if (report.texels && !c.quiet) {
+      const bake::TexelBakeReport& t = *report.texels;
+      std::fprintf(err, "prt-bake: transfer textures: TEXCOORD_%d, %dx%d atlas, %llu of %llu texels sampled, %zu charts\n",
+                   t.texcoord, t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
+                   static_cast<unsigned long long>(t.texels), t.charts);
+      for (const std::string& line : t.rejected) std::fprintf(err, "prt-bake: not used: %s\n", line.c_str());
+    }
     if (report.verticesOutsideLight > 0 && !c.quiet) {
       std::fprintf(err,
                    "prt-bake: warning: %zu of %zu vertices lie outside the lighting sphere (%s); their rays that "
@@ -372,6 +426,17 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
            "], \"radius\": " + jsonNumber(l.radius) + ", \"vertices_outside\": " + std::to_string(report.verticesOutsideLight);
     }
     s += "},\n";
+    if (report.texels) {
+      const bake::TexelBakeReport& t = *report.texels;
+      s += "  \"texels\": {\"texcoord\": " + std::to_string(t.texcoord) + ", \"size\": " + std::to_string(t.size) +
+           ", \"texels\": " + std::to_string(t.texels) + ", \"sampled\": " + std::to_string(t.sampledTexels) +
+           ", \"charts\": " + std::to_string(t.charts) + ", \"bounces\": " + std::to_string(t.bounces) + ", \"passes\": [";
+      for (std::size_t i = 0; i < t.passes.size(); ++i) {
+        s += std::string(i ? ", " : "") + "{\"name\": " + jsonString(t.passes[i].name) +
+             ", \"seconds\": " + jsonNumber(t.passes[i].seconds) + ", \"rays\": " + std::to_string(t.passes[i].rays) + "}";
+      }
+      s += "]},\n";
+    }
     s += "  \"bounce_energy\": [";
     const std::vector<double>& energy = report.bounceEnergy;
     for (std::size_t i = 0; i < energy.size(); ++i) s += (i ? ", " : "") + jsonNumber(energy[i]);

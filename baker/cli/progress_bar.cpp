@@ -19,14 +19,16 @@ void ProgressBar::update(const BakeProgress& p) {
     lastDraw_ = now - std::chrono::seconds(1);
   }
   const bool done = p.done >= p.total;
+  // Texel passes (transfer textures) count texels; every other pass counts vertices.
+  const char* unit = pass_.rfind("texel", 0) == 0 ? "texels" : "vertices";
   if (!tty_) {
     if (done) {
       const double s = std::chrono::duration<double>(now - passStart_).count();
       if (p.rays > 0) {
-        std::fprintf(stream_, "prt-bake: %s: %zu vertices, %.2f s, %.2f Mrays/s\n", p.pass, p.total, s,
+        std::fprintf(stream_, "prt-bake: %s: %zu %s, %.2f s, %.2f Mrays/s\n", p.pass, p.total, unit, s,
                      s > 0 ? static_cast<double>(p.rays) / s * 1e-6 : 0.0);
       } else {
-        std::fprintf(stream_, "prt-bake: %s: %zu vertices, %.2f s\n", p.pass, p.total, s);
+        std::fprintf(stream_, "prt-bake: %s: %zu %s, %.2f s\n", p.pass, p.total, unit, s);
       }
     }
     return;

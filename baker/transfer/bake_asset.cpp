@@ -1,9 +1,13 @@
 #include "baker/transfer/bake_asset.h"
 
+#include <cmath>
+#include <string>
 #include <utility>
 
 #include "baker/scene/mesh_order.h"
+#include "baker/scene/uv_atlas_choice.h"
 #include "baker/transfer/local_sphere.h"
+#include "baker/transfer/texel_bake.h"
 
 namespace prt::bake {
 namespace {
@@ -49,6 +53,7 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
     CompressedPass c;
     c.kind = pass.kind;
     c.form = pass.form;
+    c.domain = pass.domain;
     c.floatBytes = pass.coeffs.size() * sizeof(float);
     const Status s = pass.form == TransferForm::kMatrix
                          ? encodeTransferMatrix(pass.coeffs, a->shOrder, matrixPackingFor(pass.kind, a->lighting.model),
@@ -56,7 +61,9 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
                          : encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &c.codec);
     if (!s.isOk()) {
       return Status::error(s.code(), std::string("cannot compress: ") + transferKindName(pass.kind) + " " +
-                                         (pass.form == TransferForm::kMatrix ? "glossy matrix" : "transfer") + ": " +
+                                         (pass.form == TransferForm::kMatrix         ? "glossy matrix"
+                                          : pass.domain == TransferDomain::kTexel ? "texel transfer"
+                                                                                  : "transfer") + ": " +
                                          s.message());
     }
     c.encodedBytes = pass.encoded.size();
@@ -67,7 +74,139 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
   return Status::ok();
 }
 
+// The texel passes of `scene` over its chosen atlas, appended to *passes (unshadowed,
+// shadowed, interreflected as options stores them, domain kTexel); fills the atlas fields.
+struct TexelBake {
+  std::vector<float> atlasUv;
+  std::vector<TextureAtlas> atlases;
+  std::vector<std::uint8_t> coverage;
+  std::vector<TransferPass> passes;
+};
+
+Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TexelBake* out,
+                  TexelBakeReport* report) {
+  const TexelBakeSettings& t = *o.texels;
+  // The atlas must be valid at the size it will be baked at, and the size from
+  // --texels-per-unit depends on the set: try each set at its own size, TEXCOORD_1 first.
+  UvAtlasChoice choice;
+  int side = 0;
+  std::vector<std::string> rejected;
+  for (int set : {1, 0}) {
+    if (scene.texcoord[set].empty()) {
+      rejected.push_back("TEXCOORD_" + std::to_string(set) + ": absent" +
+                         (scene.texcoordAbsent[set].empty() ? "" : " (" + scene.texcoordAbsent[set] + ")"));
+      continue;
+    }
+    int size = 0;
+    if (Status s = texelAtlasSize(scene, set, t, &size); !s.isOk()) {
+      rejected.push_back("TEXCOORD_" + std::to_string(set) + ": " + s.message());
+      continue;
+    }
+    UvAtlasTarget target;
+    target.width = target.height = size;
+    target.padding = t.padding;
+    UvAtlasChoice c;
+    PRT_RETURN_IF_ERROR(chooseUvAtlas(scene, target, &c));
+    if (c.texcoord == set) {
+      choice = std::move(c);
+      side = size;
+      break;
+    }
+    for (const std::string& line : c.rejected) {
+      if (line.rfind("TEXCOORD_" + std::to_string(set), 0) == 0) rejected.push_back(line);
+    }
+  }
+  if (choice.texcoord < 0) {
+    std::string message = "no UV set is a valid lightmap atlas for transfer textures";
+    for (const std::string& line : rejected) message += "; " + line;
+    return Status::error(StatusCode::kInvalidArgument,
+                         message + " (docs/transfer-textures.md: give the glTF a TEXCOORD_1 lightmap atlas)");
+  }
+  const std::vector<Uv>& uv = scene.texcoord[choice.texcoord];
+  report->texcoord = choice.texcoord;
+  report->size = side;
+  report->charts = choice.report.charts;
+  report->rejected = std::move(rejected);
+
+  out->atlases = {TextureAtlas{static_cast<std::uint32_t>(side), static_cast<std::uint32_t>(side), 0,
+                               static_cast<std::uint32_t>(scene.indices.size() / 3)}};
+  TexelBakeOptions options;
+  options.transfer = transfer;
+  options.transfer.glossy = false;  // glossy stays per vertex (matrices)
+  options.dilation = t.dilation;
+  if (transfer.progress) {
+    // The same bar as the vertex passes, named "texel direct", "texel bounce N".
+    options.transfer.progress = [&transfer](const BakeProgress& p) {
+      const std::string name = std::string("texel ") + p.pass;
+      transfer.progress({name.c_str(), p.done, p.total, p.rays});
+    };
+  }
+  TexelBakeResult r;
+  PRT_RETURN_IF_ERROR(bakeTexelTransfer(scene, uv, out->atlases, options, &r));
+  report->texels = r.texels;
+  report->sampledTexels = r.sampledTexels;
+  report->bounces = r.bounces;
+  report->passes = r.passes;
+
+  out->atlasUv.resize(2 * uv.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    out->atlasUv[2 * v] = uv[v].u;
+    out->atlasUv[2 * v + 1] = uv[v].v;
+  }
+  out->coverage = std::move(r.coverage);
+  auto texelPass = [](TransferKind kind, int channels, int bounces, std::vector<float>&& coeffs) {
+    TransferPass p{kind, channels, bounces, std::move(coeffs), {}};
+    p.domain = TransferDomain::kTexel;
+    return p;
+  };
+  if (o.storeUnshadowed) out->passes.push_back(texelPass(TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed)));
+  if (o.storeShadowed) out->passes.push_back(texelPass(TransferKind::kShadowed, 1, 0, std::move(r.shadowed)));
+  if (o.storeInterreflected) {
+    out->passes.push_back(texelPass(TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected)));
+  }
+  return Status::ok();
+}
+
 }  // namespace
+
+Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings& settings, int* side) {
+  auto outOfRange = [](const std::string& what, double value) {
+    return Status::error(StatusCode::kInvalidArgument, what + " " + std::to_string(value) + " is outside 1 … " +
+                                                           std::to_string(kMaxAtlasSize) + " texels");
+  };
+  if (settings.textureSize != 0) {
+    if (settings.textureSize < 1 || settings.textureSize > kMaxAtlasSize) {
+      return outOfRange("texture size", settings.textureSize);
+    }
+    *side = settings.textureSize;
+    return Status::ok();
+  }
+  if (!(settings.texelsPerUnit >= 0.0) || !std::isfinite(settings.texelsPerUnit)) {
+    return Status::error(StatusCode::kInvalidArgument, "texels per unit must be finite and >= 0");
+  }
+  if (settings.texelsPerUnit == 0.0) {
+    *side = 512;
+    return Status::ok();
+  }
+  if (texcoord < 0 || texcoord > 1 || scene.texcoord[texcoord].size() != scene.positions.size()) {
+    return Status::error(StatusCode::kInvalidArgument, "texels per unit needs the atlas UV set");
+  }
+  const std::vector<Uv>& uv = scene.texcoord[texcoord];
+  double surface = 0.0, uvArea = 0.0;
+  for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+    const std::uint32_t a = scene.indices[t], b = scene.indices[t + 1], c = scene.indices[t + 2];
+    surface += 0.5 * length(cross(scene.positions[b] - scene.positions[a], scene.positions[c] - scene.positions[a]));
+    const double du1 = uv[b].u - uv[a].u, dv1 = uv[b].v - uv[a].v, du2 = uv[c].u - uv[a].u, dv2 = uv[c].v - uv[a].v;
+    uvArea += 0.5 * std::abs(du1 * dv2 - dv1 * du2);
+  }
+  if (!(uvArea > 0.0)) return Status::error(StatusCode::kInvalidArgument, "the UV set has no area");
+  const double wanted = std::ceil(settings.texelsPerUnit * std::sqrt(surface / uvArea));
+  if (!(wanted >= 1.0 && wanted <= kMaxAtlasSize)) {
+    return outOfRange("texels per unit " + std::to_string(settings.texelsPerUnit) + " needs an atlas side of", wanted);
+  }
+  *side = static_cast<int>(wanted);
+  return Status::ok();
+}
 
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started) {
@@ -82,6 +221,13 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   report->lighting = transfer.lighting;
   if (started) started(*report);
 
+  TexelBake texel;
+  if (options.texels) {
+    TexelBakeReport texelReport;
+    PRT_RETURN_IF_ERROR(bakeTexels(scene, options, transfer, &texel, &texelReport));
+    report->texels = std::move(texelReport);
+  }
+
   BakeResult result;
   PRT_RETURN_IF_ERROR(bakeTransfer(scene, transfer, &result));
   report->bounces = result.bounces;
@@ -91,6 +237,15 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   report->verticesOutsideLight = result.verticesOutsideLight;
 
   *asset = makeAsset(std::move(scene), std::move(result), options, transfer.lighting);
+  if (options.texels) {
+    if (!options.texels->keepVertexPasses) {
+      std::erase_if(asset->passes, [](const TransferPass& p) { return p.form == TransferForm::kVector; });
+    }
+    for (TransferPass& p : texel.passes) asset->passes.push_back(std::move(p));
+    asset->atlasUv = std::move(texel.atlasUv);
+    asset->atlases = std::move(texel.atlases);
+    asset->texelCoverage = std::move(texel.coverage);
+  }
   if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, &report->compressed));
   return Status::ok();
 }

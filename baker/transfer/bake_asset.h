@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -20,6 +21,22 @@
 #include "prt/transfer_codec.h"
 
 namespace prt::bake {
+
+// Transfer textures (docs/transfer-textures.md): the vector passes baked per texel over the
+// scene's lightmap atlas (TEXCOORD_1, else TEXCOORD_0: chooseUvAtlas), one atlas for the scene.
+struct TexelBakeSettings {
+  int textureSize = 0;         // atlas side in texels (square), 1..kMaxAtlasSize; 0: from texelsPerUnit
+  double texelsPerUnit = 0.0;  // texels per metre of surface when textureSize is 0; 0 too: 512 texels
+  int padding = 2;             // gutter texels the atlas must keep between charts at that size
+  int dilation = 3;            // gutter texels filled from the charts (texel_bake.h)
+  bool keepVertexPasses = true;  // store the per-vertex vector passes as well (the panel compares them)
+};
+
+// The atlas side for `settings` on `scene`'s set `texcoord`: textureSize when given, else
+// ceil(texelsPerUnit x sqrt(surface area / UV area)) so a metre of surface spans about
+// texelsPerUnit texels. kInvalidArgument when the result is outside 1..kMaxAtlasSize (naming
+// it: a limit is never clamped silently) or the set has no UV area.
+Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings& settings, int* side);
 
 struct AssetBakeOptions {
   // Order, samples, bounces, threads, progress; lighting.model picks distant or local.
@@ -36,11 +53,23 @@ struct AssetBakeOptions {
   GlossyMaterialOptions glossyMaterials;
   std::optional<std::string> name;                 // default: the scene's name
   std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
+  std::optional<TexelBakeSettings> texels;         // default: vertex passes only
+};
+
+struct TexelBakeReport {
+  int texcoord = -1;                 // the glTF set used as the atlas (0 or 1)
+  int size = 0;                      // atlas side, texels
+  std::uint64_t texels = 0, sampledTexels = 0;
+  std::size_t charts = 0;
+  std::vector<std::string> rejected;  // why the other UV set was not used
+  int bounces = 0;
+  std::vector<PassStats> passes;
 };
 
 struct CompressedPass {
   TransferKind kind = TransferKind::kUnshadowed;
   TransferForm form = TransferForm::kVector;
+  TransferDomain domain = TransferDomain::kVertex;
   std::size_t floatBytes = 0, encodedBytes = 0;
   TransferEncodeReport codec;
 };
@@ -54,12 +83,14 @@ struct AssetBakeReport {
   std::vector<PassStats> passes;
   std::size_t verticesOutsideLight = 0;  // local lighting only
   std::vector<CompressedPass> compressed;  // one per stored pass when options.compress is set
+  std::optional<TexelBakeReport> texels;   // when options.texels is set
 };
 
 // Bakes `scene` (consumed: its arrays move into the asset) into `*asset`, deterministic for
 // a given (scene, options). `started`, when set, is called once with the report's vertices,
 // triangles and lighting filled in, before the long part. Errors: the bake's and the codec's,
-// prefixed with the pass they belong to.
+// prefixed with the pass they belong to; with options.texels, kInvalidArgument when neither
+// UV set is a valid atlas at the chosen size (the message gives each set's reason).
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 

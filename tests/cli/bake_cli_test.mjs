@@ -158,6 +158,80 @@ const cases = {
     expectExit(['compress-report', out, '--views', '4'], 2, /--views needs a glossy --pass/);
   },
 
+  texels() {
+    // Transfer textures of the default room over its TEXCOORD_1 atlas: the bake reports the
+    // atlas, `shade --texels` prints every sampled texel, and the texels behave physically
+    // under a constant white sky: the floor under the cube (it rests on the floor) gets no
+    // light at all, the open floor is lit, interreflection only adds light.
+    const { out, r } = bakeDefault('texels.prt', ['--texels', '--texture-size', '512', '--json']);
+    const stats = json(r);
+    if (stats) {
+      check(stats.texels && stats.texels.texcoord === 1 && stats.texels.size === 512, `texel stats: ${JSON.stringify(stats.texels)}`);
+      check(stats.texels?.sampled > 100000 && stats.texels.sampled < 512 * 512, `sampled texels: ${stats.texels?.sampled}`);
+      check(stats.texels?.charts === 16, `charts: ${stats.texels?.charts}`);
+    }
+    const shade = (pass) => json(expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', pass, '--json'], 0));
+    const s = shade('shadowed'), i = shade('interreflected'), u = shade('unshadowed');
+    if (!s || !i || !u) return;
+    check(s.domain === 'texel' && s.texels.length === stats?.texels?.sampled, `shade --texels printed ${s.texels.length} texels`);
+    // The cube: 1 m, centred at (0.9, 0, 0.6), turned 25 degrees about +y (default_scene.cpp).
+    const yaw = (25 * Math.PI) / 180;
+    const local = (p) => {
+      const dx = p[0] - 0.9, dz = p[2] - 0.6;
+      return [Math.cos(yaw) * dx - Math.sin(yaw) * dz, Math.sin(yaw) * dx + Math.cos(yaw) * dz];
+    };
+    let under = 0, underMax = 0, open = 0, openSum = 0, more = 0;
+    for (let t = 0; t < s.texels.length; t++) {
+      const a = s.texels[t], b = i.texels[t], c = u.texels[t];
+      if (!check(a.x === b.x && a.y === b.y && a.x === c.x, `texel ${t} differs between passes`)) return;
+      for (let k = 0; k < 3; k++) {
+        if (!check(Number.isFinite(a.radiance[k]) && a.radiance[k] >= 0 && a.radiance[k] <= c.radiance[k] + 1e-5,
+                   `texel ${t}: shadowed ${a.radiance[k]} outside [0, unshadowed ${c.radiance[k]}]`)) return;
+        if (!check(b.radiance[k] >= a.radiance[k] - 1e-4 && b.radiance[k] <= 1, `texel ${t}: interreflected ${b.radiance[k]} outside [shadowed, 1]`)) return;
+      }
+      if (b.radiance[0] > a.radiance[0] + 1e-3) more++;
+      const floor = Math.abs(a.position[1]) < 1e-4 && a.normal[1] > 0.999;
+      if (!floor) continue;
+      const [lx, lz] = local(a.position);
+      if (Math.max(Math.abs(lx), Math.abs(lz)) < 0.45) {  // under the cube, 5 cm in from its edges
+        under++;
+        underMax = Math.max(underMax, ...a.radiance, ...b.radiance);
+      }
+      if (Math.hypot(a.position[0] + 1.2, a.position[2] - 1.6) < 0.2) {  // open floor, front left
+        open++;
+        openSum += a.radiance[0];
+      }
+    }
+    check(under > 100, `only ${under} floor texels under the cube`);
+    check(underMax === 0, `light leaks under the cube: radiance up to ${underMax}`);
+    check(open > 10 && openSum / open > 0.3, `open floor: ${open} texels, mean shadowed ${openSum / open}`);
+    check(more > 10000, `interreflection adds light at only ${more} texels`);
+    const info = json(expectExit(['info', out, '--json'], 0));
+    if (info) {
+      const texelPasses = (info.passes ?? []).filter((p) => p.domain === 'texel').map((p) => p.kind);
+      check(texelPasses.join() === 'unshadowed,shadowed,interreflected', `info texel passes: ${JSON.stringify(info.passes)}`);
+    }
+  },
+
+  texel_usage_errors() {
+    const { out } = bakeDefault('plain.prt');
+    const base = ['--default', '-o', work('x.prt'), ...quick];
+    expectExit([...base, '--texture-size', '256'], 2, /--texture-size needs --texels/);
+    expectExit([...base, '--texels', '--texture-size', '256', '--texels-per-unit', '10'], 2, /not both/);
+    expectExit([...base, '--texels', '--texture-size', '0'], 2, /--texture-size/);
+    expectExit([...base, '--texels', '--texture-size', '20000'], 2, /--texture-size/);
+    expectExit([...base, '--texels', '--texels-per-unit', '-3'], 2, /--texels-per-unit/);
+    // 1e6 texels per metre over a 4 m room needs a side far past 16384: refused, not clamped.
+    expectExit([...base, '--texels', '--texels-per-unit', '1000000'], EXIT_INVALID_INPUT, /outside 1 … 16384/);
+    // The bowl has no UVs at all: the error names both sets.
+    fs.writeFileSync(work('bowl.gltf'), bowlGltf());
+    expectExit([work('bowl.gltf'), '-o', work('x.prt'), ...quick, '--texels'], EXIT_INVALID_INPUT,
+               /no UV set is a valid lightmap atlas.*TEXCOORD_1: absent.*TEXCOORD_0: absent/);
+    check(!fs.existsSync(work('x.prt')), 'a failed texel bake wrote an asset');
+    expectExit(['shade', out, '--texels', '--light', 'constant'], EXIT_INVALID_INPUT, /bake with --texels/);
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', '1,2,3'], 2, /--texels shades the vector passes/);
+  },
+
   default_scene() {
     const { out, r } = bakeDefault('room.prt', ['--json']);
     const stats = json(r);
