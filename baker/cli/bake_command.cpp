@@ -367,6 +367,12 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!c.quiet)
       for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
   }
+  if (!scene.normalMaps.empty() && !c.bake.texels && !c.quiet) {
+    // A vertex cannot resolve a normal map's detail; say so rather than ignore it silently.
+    std::fprintf(err, "prt-bake: note: the scene's %zu normal map%s shade only texel passes (--texels); vertex passes "
+                      "use the vertex normals\n",
+                 scene.normalMaps.size(), scene.normalMaps.size() == 1 ? "" : "s");
+  }
 
   bake::ProgressBar bar(err, !c.quiet);
   c.bake.transfer.progress = [&bar](const bake::BakeProgress& p) { bar.update(p); };
@@ -389,6 +395,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                    t.texcoord, t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
                    static_cast<unsigned long long>(t.texels), t.charts);
       for (const std::string& line : t.rejected) std::fprintf(err, "prt-bake: not used: %s\n", line.c_str());
+      if (t.normalMappedTexels > 0) {
+        std::fprintf(err, "prt-bake: transfer textures: %zu texels shaded with normal maps\n", t.normalMappedTexels);
+      }
     }
     if (report.verticesOutsideLight > 0 && !c.quiet) {
       std::fprintf(err,
@@ -430,7 +439,8 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       const bake::TexelBakeReport& t = *report.texels;
       s += "  \"texels\": {\"texcoord\": " + std::to_string(t.texcoord) + ", \"size\": " + std::to_string(t.size) +
            ", \"texels\": " + std::to_string(t.texels) + ", \"sampled\": " + std::to_string(t.sampledTexels) +
-           ", \"charts\": " + std::to_string(t.charts) + ", \"bounces\": " + std::to_string(t.bounces) + ", \"passes\": [";
+           ", \"charts\": " + std::to_string(t.charts) + ", \"normal_mapped\": " + std::to_string(t.normalMappedTexels) +
+           ", \"bounces\": " + std::to_string(t.bounces) + ", \"passes\": [";
       for (std::size_t i = 0; i < t.passes.size(); ++i) {
         s += std::string(i ? ", " : "") + "{\"name\": " + jsonString(t.passes[i].name) +
              ", \"seconds\": " + jsonNumber(t.passes[i].seconds) + ", \"rays\": " + std::to_string(t.passes[i].rays) + "}";

@@ -26,6 +26,7 @@
 #include "baker/scene/gltf_texture.h"
 #include "baker/scene/mesh_cleanup.h"
 #include "baker/scene/mesh_normals.h"
+#include "baker/scene/mesh_tangents.h"
 #include "native/file_io.h"
 
 namespace prt::bake {
@@ -158,13 +159,18 @@ struct BaseColor {
   int texCoord = 0;
   UvTransform uv;
   PbrVertex pbr;  // the material's metallic-roughness part (factors; textures are not sampled)
+  // normalTexture: an index into the builder's normal maps (-1: none), its texture
+  // coordinate set and KHR_texture_transform.
+  int normalMap = -1;
+  int normalTexCoord = 0;
+  UvTransform normalUv;
 };
 
 double numberOr(const tinygltf::Value& v, double fallback) { return v.IsNumber() ? v.GetNumberAsDouble() : fallback; }
 
 // Reads KHR_texture_transform from a textureInfo's extensions (rotation is
 // counter-clockwise in uv space, per the extension).
-void readTextureTransform(const tinygltf::ExtensionMap& extensions, BaseColor* out) {
+void readTextureTransform(const tinygltf::ExtensionMap& extensions, UvTransform* uv, int* texCoordOut) {
   const auto it = extensions.find("KHR_texture_transform");
   if (it == extensions.end() || !it->second.IsObject()) return;
   const tinygltf::Value& ext = it->second;
@@ -177,14 +183,14 @@ void readTextureTransform(const tinygltf::ExtensionMap& extensions, BaseColor* o
   }
   const double rotation = numberOr(ext.Get("rotation"), 0.0);
   const double c = std::cos(rotation), sn = std::sin(rotation);
-  out->uv.m[0][0] = c * scale[0];
-  out->uv.m[0][1] = sn * scale[1];
-  out->uv.m[0][2] = offset[0];
-  out->uv.m[1][0] = -sn * scale[0];
-  out->uv.m[1][1] = c * scale[1];
-  out->uv.m[1][2] = offset[1];
+  uv->m[0][0] = c * scale[0];
+  uv->m[0][1] = sn * scale[1];
+  uv->m[0][2] = offset[0];
+  uv->m[1][0] = -sn * scale[0];
+  uv->m[1][1] = c * scale[1];
+  uv->m[1][2] = offset[1];
   const tinygltf::Value& texCoord = ext.Get("texCoord");
-  if (texCoord.IsInt()) out->texCoord = texCoord.GetNumberAsInt();
+  if (texCoord.IsInt()) *texCoordOut = texCoord.GetNumberAsInt();
 }
 
 // glTF's albedo range, [0, 1]; albedo 1 stays 1 (a white furnace must return its light).
@@ -220,6 +226,7 @@ struct Counters {
   std::size_t unnormalisedRotations = 0;
   std::size_t albedoOutOfRange = 0;  // channel values, before removal of unused vertices
   std::size_t materialOutOfRange = 0;  // metallic, roughness and specular factors outside [0, 1]
+  std::size_t unusableTangents = 0;    // TANGENT values zero or non-finite (computed instead)
 };
 
 class SceneBuilder {
@@ -236,7 +243,11 @@ class SceneBuilder {
   Status baseColorFor(int materialIndex, BaseColor* out);
   void addTexcoords(const tinygltf::Primitive& prim, const std::string& label, std::size_t vertexCount);
   void readMetallicRoughness(const tinygltf::Material& material, const std::string& label, PbrVertex* out);
+  void addNormalMapVertex(const BaseColor& base, const FloatElements& uv, const FloatElements& tangent, std::size_t v,
+                          const glm::dmat3& linear, bool mirrored);
   const LinearTexture* textureFor(int textureIndex, const std::string& user, BaseColor* out);
+  void readWrapModes(int textureIndex, WrapMode* wrapS, WrapMode* wrapT);
+  int normalMapFor(const tinygltf::NormalTextureInfo& info, const std::string& user);
   std::string meshLabel(int meshIndex) const;
 
   const tinygltf::Model& model_;
@@ -254,6 +265,14 @@ class SceneBuilder {
   // first triangle primitive that lacks it or stores it in a type glTF does not allow.
   std::vector<Uv> texcoord_[2];
   std::string texcoordAbsent_[2];
+  // Normal maps (scene.h): per vertex the map (-1: none), its uv and tangent; needsTangent_
+  // marks normal-mapped vertices whose primitive has no TANGENT.
+  std::vector<NormalMap> normalMaps_;
+  std::map<std::pair<int, float>, int> normalMapIndex_;  // (texture, scale) -> normalMaps_ index
+  std::vector<std::int32_t> normalMapOf_;
+  std::vector<Uv> normalMapUv_;
+  std::vector<Tangent> tangents_;
+  std::vector<std::uint8_t> needsTangent_;
 
   Counters counters_;
   std::set<std::string> notes_;            // one-off warnings (textures, materials), deduplicated
@@ -374,19 +393,59 @@ Status SceneBuilder::addMesh(int meshIndex, const glm::dmat4& world) {
   return Status::ok();
 }
 
-const LinearTexture* SceneBuilder::textureFor(int textureIndex, const std::string& user, BaseColor* out) {
+void SceneBuilder::readWrapModes(int textureIndex, WrapMode* wrapS, WrapMode* wrapT) {
   const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(textureIndex)];
-  const std::string label = "texture " + std::to_string(textureIndex);
   if (texture.sampler >= 0 && static_cast<std::size_t>(texture.sampler) < model_.samplers.size()) {
     const tinygltf::Sampler& sampler = model_.samplers[static_cast<std::size_t>(texture.sampler)];
-    const bool knownS = wrapModeFromGltf(sampler.wrapS, &out->wrapS);
-    const bool knownT = wrapModeFromGltf(sampler.wrapT, &out->wrapT);
+    const bool knownS = wrapModeFromGltf(sampler.wrapS, wrapS);
+    const bool knownT = wrapModeFromGltf(sampler.wrapT, wrapT);
     if (!knownS || !knownT) {
       notes_.insert("sampler " + std::to_string(texture.sampler) + ": unknown wrap mode, REPEAT used");
     }
   } else if (texture.sampler != -1) {
-    notes_.insert(label + ": sampler " + std::to_string(texture.sampler) + " does not exist, REPEAT used");
+    notes_.insert("texture " + std::to_string(textureIndex) + ": sampler " + std::to_string(texture.sampler) +
+                  " does not exist, REPEAT used");
   }
+}
+
+// The normal map of a normalTexture, decoded once per (texture, scale); -1 (with a note)
+// when its image cannot be used: the surface is then baked with its vertex normals.
+int SceneBuilder::normalMapFor(const tinygltf::NormalTextureInfo& info, const std::string& user) {
+  const auto key = std::make_pair(info.index, static_cast<float>(info.scale));
+  if (const auto it = normalMapIndex_.find(key); it != normalMapIndex_.end()) return it->second;
+  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
+  NormalMap map;
+  map.scale = static_cast<float>(info.scale);
+  readWrapModes(info.index, &map.wrapS, &map.wrapT);
+  int result = -1;
+  if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
+    notes_.insert(user + " uses texture " + std::to_string(info.index) +
+                  ", which has no image this loader can decode; normalTexture ignored");
+  } else if (!std::isfinite(map.scale)) {
+    notes_.insert(user + ": normalTexture scale is not finite; normalTexture ignored");
+  } else {
+    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(texture.source)];
+    if (image.image.empty()) {
+      const auto failure = log_.failures.find(texture.source);
+      notes_.insert("image " + std::to_string(texture.source) + ": " +
+                    (failure != log_.failures.end() ? failure->second : std::string("not loaded (missing file?)")) +
+                    "; normalTexture ignored");
+    } else if (image.bits != 8 ||
+               !textureFromUnorm8(image.width, image.height, image.component, image.image, &map.texture).isOk()) {
+      notes_.insert("image " + std::to_string(texture.source) + ": unexpected pixel layout; normalTexture ignored");
+    } else {
+      result = static_cast<int>(normalMaps_.size());
+      normalMaps_.push_back(std::move(map));
+    }
+  }
+  normalMapIndex_.emplace(key, result);
+  return result;
+}
+
+const LinearTexture* SceneBuilder::textureFor(int textureIndex, const std::string& user, BaseColor* out) {
+  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(textureIndex)];
+  const std::string label = "texture " + std::to_string(textureIndex);
+  readWrapModes(textureIndex, &out->wrapS, &out->wrapT);
   if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= model_.images.size()) {
     notes_.insert(user + " uses " + label + ", which has no image this loader can decode; baseColorTexture ignored");
     return nullptr;
@@ -409,6 +468,33 @@ const LinearTexture* SceneBuilder::textureFor(int textureIndex, const std::strin
     it = textures_.emplace(texture.source, std::move(linear)).first;
   }
   return it->second.rgb.empty() ? nullptr : &it->second;
+}
+
+// The vertex's normal-map entries: the map, its uv (texture transform applied) and the
+// tangent, TANGENT transformed like a surface direction (a mirroring transform flips the
+// handedness: cross(n, t) turns with it, the bitangent must not) or marked for computing.
+void SceneBuilder::addNormalMapVertex(const BaseColor& base, const FloatElements& uv, const FloatElements& tangent,
+                                      std::size_t v, const glm::dmat3& linear, bool mirrored) {
+  normalMapOf_.push_back(base.normalMap);
+  Uv mapped;
+  if (base.normalMap >= 0) base.normalUv.apply(uv.values[2 * v], uv.values[2 * v + 1], &mapped.u, &mapped.v);
+  normalMapUv_.push_back(mapped);
+  Tangent t;
+  bool usable = false;
+  if (base.normalMap >= 0 && !tangent.values.empty()) {
+    const float* q = &tangent.values[4 * v];
+    const glm::dvec3 w = linear * glm::dvec3(q[0], q[1], q[2]);
+    const double len = glm::length(w);
+    if (len > 1e-20 && std::isfinite(len) && std::isfinite(q[3])) {
+      t.direction = {static_cast<float>(w.x / len), static_cast<float>(w.y / len), static_cast<float>(w.z / len)};
+      t.handedness = (q[3] < 0.0f) != mirrored ? -1.0f : 1.0f;
+      usable = true;
+    } else {
+      ++counters_.unusableTangents;
+    }
+  }
+  tangents_.push_back(t);
+  needsTangent_.push_back(base.normalMap >= 0 && !usable ? 1 : 0);
 }
 
 void SceneBuilder::readMetallicRoughness(const tinygltf::Material& material, const std::string& label, PbrVertex* out) {
@@ -455,6 +541,16 @@ Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
   if (material.extensions.count("KHR_materials_pbrSpecularGlossiness") != 0) {
     notes_.insert(label + ": KHR_materials_pbrSpecularGlossiness ignored; its metallic-roughness base colour is used");
   }
+  const tinygltf::NormalTextureInfo& normal = material.normalTexture;
+  if (normal.index >= 0) {
+    if (static_cast<std::size_t>(normal.index) >= model_.textures.size()) {
+      return fail(label + ": normalTexture refers to texture " + std::to_string(normal.index) +
+                  ", which does not exist");
+    }
+    out->normalTexCoord = normal.texCoord;
+    readTextureTransform(normal.extensions, &out->normalUv, &out->normalTexCoord);
+    out->normalMap = normalMapFor(normal, label);
+  }
   const tinygltf::TextureInfo& info = material.pbrMetallicRoughness.baseColorTexture;
   if (info.index < 0) return Status::ok();
   if (static_cast<std::size_t>(info.index) >= model_.textures.size()) {
@@ -462,7 +558,7 @@ Status SceneBuilder::baseColorFor(int materialIndex, BaseColor* out) {
                 ", which does not exist");
   }
   out->texCoord = info.texCoord;
-  readTextureTransform(info.extensions, out);
+  readTextureTransform(info.extensions, &out->uv, &out->texCoord);
   out->texture = textureFor(info.index, label, out);
   return Status::ok();
 }
@@ -603,6 +699,21 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
       return s;
     }
   }
+  FloatElements normalUv, tangent;
+  if (base.normalMap >= 0) {
+    const std::string name = "TEXCOORD_" + std::to_string(base.normalTexCoord);
+    const int uvAccessor = attribute(name);
+    if (uvAccessor < 0) {
+      notes_.insert(label + ": its normalTexture uses " + name + ", which the primitive lacks; normal map ignored");
+      base.normalMap = -1;
+    } else if (Status s = readAttribute(name.c_str(), uvAccessor, n, {2}, &normalUv); !s.isOk()) {
+      return s;
+    }
+    const int tangentAccessor = attribute("TANGENT");
+    if (base.normalMap >= 0 && tangentAccessor >= 0) {
+      if (Status s = readAttribute("TANGENT", tangentAccessor, n, {4}, &tangent); !s.isOk()) return s;
+    }
+  }
   if (!prim.targets.empty()) ++counters_.morphedPrimitives;
   addTexcoords(prim, label, n);
 
@@ -694,6 +805,7 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
     std::size_t& bad = counters_.albedoOutOfRange;
     albedo_.push_back({albedoInRange(a.r, &bad), albedoInRange(a.g, &bad), albedoInRange(a.b, &bad)});
     pbr_.push_back(base.pbr);
+    addNormalMapVertex(base, normalUv, tangent, v, linear, mirrored);
   }
   ++counters_.trianglePrimitives;
   return Status::ok();
@@ -764,7 +876,34 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
     }
   }
 
+  // Tangents for normal-mapped vertices without a usable TANGENT, from the finished normals.
+  bool anyNormalMap = false;
+  for (std::uint32_t v : indices_) anyNormalMap = anyNormalMap || normalMapOf_[v] >= 0;
+  std::size_t tangentsComputed = 0;
+  if (anyNormalMap) {
+    std::vector<std::uint8_t> recomputeTangent(positions_.size(), 0);
+    for (std::uint32_t v : indices_) {
+      if (needsTangent_[v] && !recomputeTangent[v]) {
+        recomputeTangent[v] = 1;
+        ++tangentsComputed;
+      }
+    }
+    if (tangentsComputed > 0) {
+      const std::size_t fallbacks =
+          computeVertexTangents(positions_, normals_, normalMapUv_, indices_, recomputeTangent, &tangents_);
+      warn("computed tangents for " + plural(tangentsComputed, "normal-mapped vertex", "normal-mapped vertices") +
+           " (no usable TANGENT)" +
+           (fallbacks ? "; " + plural(fallbacks, "has", "have") + " degenerate texture coordinates: arbitrary tangent" : ""));
+    }
+  }
+
   Scene scene;
+  if (anyNormalMap) {
+    scene.normalMaps = std::move(normalMaps_);
+    scene.normalMapOf = std::move(normalMapOf_);
+    scene.normalMapUv = std::move(normalMapUv_);
+    scene.tangents = std::move(tangents_);
+  }
   scene.positions = std::move(positions_);
   scene.normals = std::move(normals_);
   scene.albedo = std::move(albedo_);

@@ -87,8 +87,11 @@ float srgbToLinear(float encoded) {
   return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-Status linearTextureFromSrgb8(int width, int height, int components, std::span<const unsigned char> pixels,
-                              LinearTexture* out) {
+namespace {
+
+// The 8-bit decode shared by colour and data textures: each byte through `lut`.
+Status textureFrom8Bit(int width, int height, int components, std::span<const unsigned char> pixels,
+                       const std::array<float, 256>& lut, LinearTexture* out) {
   *out = LinearTexture();
   if (width < 1 || height < 1 || width > kMaxTextureSide || height > kMaxTextureSide || components < 1 ||
       components > 4) {
@@ -102,7 +105,6 @@ Status linearTextureFromSrgb8(int width, int height, int components, std::span<c
                                                         std::to_string(height) + "x" + std::to_string(components) +
                                                         " has " + std::to_string(pixels.size()) + " bytes");
   }
-  const std::array<float, 256>& lut = srgbTable();
   out->width = width;
   out->height = height;
   out->rgb.resize(texels * 3);
@@ -116,6 +118,23 @@ Status linearTextureFromSrgb8(int width, int height, int components, std::span<c
     out->rgb[3 * i + 2] = lut[grey ? p[0] : p[2]];
   }
   return Status::ok();
+}
+
+}  // namespace
+
+Status linearTextureFromSrgb8(int width, int height, int components, std::span<const unsigned char> pixels,
+                              LinearTexture* out) {
+  return textureFrom8Bit(width, height, components, pixels, srgbTable(), out);
+}
+
+Status textureFromUnorm8(int width, int height, int components, std::span<const unsigned char> pixels,
+                         LinearTexture* out) {
+  static const std::array<float, 256> unorm = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[static_cast<std::size_t>(i)] = static_cast<float>(i) / 255.0f;
+    return t;
+  }();
+  return textureFrom8Bit(width, height, components, pixels, unorm, out);
 }
 
 Rgb sampleBilinear(const LinearTexture& texture, float u, float v, WrapMode wrapS, WrapMode wrapT) {

@@ -42,6 +42,10 @@ float srgbToLinear(float encoded);
 Status linearTextureFromSrgb8(int width, int height, int components, std::span<const unsigned char> pixels,
                               LinearTexture* out);
 
+// The same for data textures (normal maps): each 8-bit value / 255, no transfer function.
+Status textureFromUnorm8(int width, int height, int components, std::span<const unsigned char> pixels,
+                         LinearTexture* out);
+
 // Bilinear sample at (u, v), texel centres at ((i + ½)/width, (j + ½)/height), each axis
 // wrapped by its mode. Filtering happens on linear values, as GPUs do for sRGB textures.
 // Non-finite coordinates read as 0; an empty texture samples as black.

@@ -72,6 +72,9 @@ std::size_t removeUnreferencedVertices(Scene* scene) {
     for (std::vector<Uv>& uv : scene->texcoord) {
       if (uv.size() == n) uv[next] = uv[v];
     }
+    if (scene->normalMapOf.size() == n) scene->normalMapOf[next] = scene->normalMapOf[v];
+    if (scene->normalMapUv.size() == n) scene->normalMapUv[next] = scene->normalMapUv[v];
+    if (scene->tangents.size() == n) scene->tangents[next] = scene->tangents[v];
     ++next;
   }
   scene->positions.resize(next);
@@ -82,6 +85,9 @@ std::size_t removeUnreferencedVertices(Scene* scene) {
   for (std::vector<Uv>& uv : scene->texcoord) {
     if (uv.size() == n) uv.resize(next);
   }
+  if (scene->normalMapOf.size() == n) scene->normalMapOf.resize(next);
+  if (scene->normalMapUv.size() == n) scene->normalMapUv.resize(next);
+  if (scene->tangents.size() == n) scene->tangents.resize(next);
   for (std::uint32_t& v : scene->indices) {
     if (v < n) v = remap[v];
   }

@@ -37,6 +37,9 @@ void optimizeMeshOrder(Scene* scene) {
   for (std::vector<Uv>& uv : scene->texcoord) {
     if (uv.size() == vertexCount) remapArray(&uv, remap, used);
   }
+  if (scene->normalMapOf.size() == vertexCount) remapArray(&scene->normalMapOf, remap, used);
+  if (scene->normalMapUv.size() == vertexCount) remapArray(&scene->normalMapUv, remap, used);
+  if (scene->tangents.size() == vertexCount) remapArray(&scene->tangents, remap, used);
 }
 
 }  // namespace prt::bake

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "baker/scene/gltf_texture.h"
 #include "prt/glossy_lobe.h"
 #include "prt/vec3.h"
 
@@ -30,6 +31,24 @@ struct Uv {
   float u = 0, v = 0;
 };
 
+// A tangent-space normal map (glTF material.normalTexture). Its texels are the stored 8-bit
+// values / 255 (linear data, not sRGB); the tangent-space normal at a texel is
+// normalize((2 rgb - 1) * (scale, scale, 1)), +x along the vertex tangent, +y along the
+// bitangent, +z along the interpolated vertex normal (docs/transfer-textures.md, "Normal maps").
+struct NormalMap {
+  LinearTexture texture;
+  WrapMode wrapS = WrapMode::kRepeat;
+  WrapMode wrapT = WrapMode::kRepeat;
+  float scale = 1.0f;  // normalTexture.scale
+};
+
+// A vertex's tangent frame as glTF's TANGENT stores it: `direction` unit and orthogonal to the
+// vertex normal, bitangent = handedness * cross(normal, direction), handedness +1 or -1.
+struct Tangent {
+  Vec3 direction{1, 0, 0};
+  float handedness = 1.0f;
+};
+
 struct Scene {
   std::vector<Vec3> positions;       // world space, metres (glTF units), +y up
   std::vector<Vec3> normals;         // unit length, one per position
@@ -47,6 +66,14 @@ struct Scene {
   // when the set is present). Candidates for the transfer-texture atlas (uv_atlas_choice.h).
   std::vector<Uv> texcoord[2];
   std::string texcoordAbsent[2];
+  // Normal maps, read only by the texel bake (a vertex cannot resolve them). normalMapOf is
+  // per position (-1: none) or empty (no vertex has one); where it is not empty,
+  // normalMapUv (the map's texture coordinates, KHR_texture_transform applied) and tangents
+  // are per position too. All vertices of a triangle share one map (one glTF primitive).
+  std::vector<NormalMap> normalMaps;
+  std::vector<std::int32_t> normalMapOf;
+  std::vector<Uv> normalMapUv;
+  std::vector<Tangent> tangents;
   std::vector<std::uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
   std::string name;                  // for catalogues and logs
 };

@@ -145,6 +145,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   PRT_RETURN_IF_ERROR(bakeTexelTransfer(scene, uv, out->atlases, options, &r));
   report->texels = r.texels;
   report->sampledTexels = r.sampledTexels;
+  report->normalMappedTexels = r.normalMappedTexels;
   report->bounces = r.bounces;
   report->passes = r.passes;
 

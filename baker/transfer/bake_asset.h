@@ -61,6 +61,7 @@ struct TexelBakeReport {
   int size = 0;                      // atlas side, texels
   std::uint64_t texels = 0, sampledTexels = 0;
   std::size_t charts = 0;
+  std::size_t normalMappedTexels = 0;  // sampled texels shaded with a normal map's normal
   std::vector<std::string> rejected;  // why the other UV set was not used
   int bounces = 0;
   std::vector<PassStats> passes;

@@ -62,18 +62,17 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Rays of the direct pass for one vertex: one per sample direction above the tangent
-// plane, from `origin` (already offset along n). Writes the clamped-cosine weights
-// w max(0, n.w)/pi of every sample (0 below the plane) and, per ray, its sample index.
-unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 origin, float eps, RTCRayHit* rays, std::uint32_t* sample,
-                  float* cosineWeight) {
+unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 horizon, Vec3 origin, float eps, RTCRayHit* rays,
+                  std::uint32_t* sample, float* cosineWeight) {
   const std::size_t sampleCount = table.dirs.size();
   const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
   unsigned count = 0;
   for (std::size_t k = 0; k < sampleCount; ++k) {
     const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
-    cosineWeight[k] = c > 0.0f ? c * sampleWeight : 0.0f;
-    if (c <= 0.0f) continue;
+    const float above = horizon.x * table.dirs.x[k] + horizon.y * table.dirs.y[k] + horizon.z * table.dirs.z[k];
+    const bool traced = c > 0.0f && above > 0.0f;
+    cosineWeight[k] = traced ? c * sampleWeight : 0.0f;
+    if (!traced) continue;
     RTCRayHit& r = rays[count];
     r.ray.org_x = origin.x;
     r.ray.org_y = origin.y;
@@ -206,7 +205,9 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
     for (std::size_t v = begin; v < end; ++v) {
       const Vec3 n = job.normals[v];
       const Vec3 origin = job.positions[v] + n * eps;
-      const unsigned count = fillRays(*job.table, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
+      const Vec3 shading = job.shadingNormals.empty() ? n : job.shadingNormals[v];
+      const unsigned count =
+          fillRays(*job.table, shading, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
       if (local) {
         const SpherePoint sp = locateOnSphere(job.positions[v], o.lighting.center, o.lighting.radius);
         if (job.outside) job.outside[v] = sp.outside;

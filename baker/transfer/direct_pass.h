@@ -62,11 +62,13 @@ class ProgressReporter {
 
 double secondsSince(std::chrono::steady_clock::time_point t0);
 
-// Rays of the direct pass for one receiver: one per sample direction above the tangent
-// plane, from `origin` (already offset along n). Writes the clamped-cosine weights
-// w max(0, n.w)/pi of every sample (0 below the plane) and, per ray, its sample index.
-unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 origin, float eps, RTCRayHit* rays, std::uint32_t* sample,
-                  float* cosineWeight);
+// Rays of the direct pass for one receiver: one per sample direction w with n.w > 0 and
+// horizon.w > 0, from `origin` (already offset along horizon). Writes the clamped-cosine
+// weights w max(0, n.w)/pi of every sample (0 where no ray goes) and, per ray, its sample
+// index. n is the shading normal, horizon the surface's (they differ under a normal map:
+// light from below the surface's own tangent plane cannot reach it).
+unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 horizon, Vec3 origin, float eps, RTCRayHit* rays,
+                  std::uint32_t* sample, float* cosineWeight);
 
 // Ray origin offset and tnear, relative to the scene: far above float rounding of positions
 // (~1e-7 of the extent), far below any feature the transfer can resolve.
@@ -85,6 +87,9 @@ struct DirectPassJob {
   const SampleTable* table = nullptr;
   const BakeOptions* options = nullptr;
   std::span<const Vec3> positions, normals;  // receivers: points on the surface, unit normals
+  // Empty, or one per receiver: the unit shading normal of the cosine (a normal map's), with
+  // `normals` still giving the horizon and the ray offset. Not with glossy.
+  std::span<const Vec3> shadingNormals;
   std::span<const Vec3> faceNormal;          // faceNormals(scene)
   std::string name = "direct";               // progress and PassStats name
   unsigned threads = 1;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "baker/scene/normal_map.h"
 #include "baker/texture/atlas_samples.h"
 #include "baker/texture/texel_dilate.h"
 #include "baker/texture/texel_filter.h"
@@ -55,6 +56,7 @@ Status checkTexelOptions(const Scene& scene, std::span<const Uv> atlasUv, const 
                          "transfer textures bake vector passes only (glossy matrices stay per vertex): turn glossy off");
   }
   PRT_RETURN_IF_ERROR(checkOptions(scene, options.transfer));
+  PRT_RETURN_IF_ERROR(checkNormalMaps(scene));
   if (options.dilation < 0 || options.dilation > kMaxDilationPasses) {
     return Status::error(StatusCode::kInvalidArgument, "dilation " + std::to_string(options.dilation) +
                                                            " is outside 0 … " + std::to_string(kMaxDilationPasses) +
@@ -88,6 +90,19 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
     positions[r] = samples.texels[r].position;
     normals[r] = samples.texels[r].normal;
   }
+  // Normal maps turn the cosine's normal per texel (PRTT §6.2); the interpolated normal keeps
+  // the horizon and the ray offset, so a bump cannot see through its own surface.
+  std::vector<Vec3> shading;
+  if (!scene.normalMapOf.empty()) {
+    shading.resize(receivers);
+    for (std::size_t r = 0; r < receivers; ++r) {
+      const AtlasTexel& t = samples.texels[r];
+      const std::size_t i = 3 * static_cast<std::size_t>(t.triangle);
+      shading[r] = shadingNormalAt(scene, {scene.indices[i], scene.indices[i + 1], scene.indices[i + 2]}, t.bary,
+                                   t.normal);
+      if (scene.normalMapOf[scene.indices[i]] >= 0) ++out->normalMappedTexels;
+    }
+  }
 
   SampleTable table;
   PRT_RETURN_IF_ERROR(makeSamples(o, &table));
@@ -108,6 +123,7 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
     job.options = &o;
     job.positions = positions;
     job.normals = normals;
+    job.shadingNormals = shading;
     job.faceNormal = faceNormal;
     job.threads = threads;
     job.unshadowed = unshadowed.data();

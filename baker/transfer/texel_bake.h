@@ -3,7 +3,8 @@
 //
 // Every atlas's triangles are rasterised conservatively (baker/texture/texel_raster.h); each
 // used texel's sample (position, interpolated normal, albedo interpolated from the owner
-// triangle's vertices) receives the same direct pass as a vertex does: unshadowed U_i,
+// triangle's vertices) receives the same direct pass as a vertex does, with the cosine about
+// the normal map's normal where the material has one (PRTT §6.2): unshadowed U_i,
 // shadowed S_i, bounce 0 = rho S. Bounce b gathers the previous bounce at each front-face hit
 // point's own texel: the hit's atlas UV (the hit triangle's corner UVs at its barycentrics),
 // read bilinearly from that triangle's atlas after the previous bounce was dilated into the
@@ -46,8 +47,9 @@ struct TexelBakeResult {
   // Bounce hits whose atlas UV found no filled texel to read (a triangle with no UV area,
   // which the rasteriser skips): they gather nothing. 0 on a valid atlas with dilation >= 1.
   std::uint64_t unmappedHits = 0;
-  std::size_t texelsOutsideLight = 0;
-  std::size_t seamTexels = 0;            // gutter texels stitched across a chart cut    // local lighting: sampled texels outside the sphere S
+  std::size_t texelsOutsideLight = 0;    // local lighting: sampled texels outside the sphere S
+  std::size_t seamTexels = 0;            // gutter texels stitched across a chart cut
+  std::size_t normalMappedTexels = 0;    // sampled texels whose shading normal came from a normal map
 };
 
 // Bakes the texel passes of `scene` over `atlasUv` (one per vertex, each atlas's triangles

@@ -250,7 +250,7 @@ Status measureRawOcclusion(const Scene& scene, const BakeOptions& o, PassStats* 
     for (std::size_t v = begin; v < end; ++v) {
       const Vec3 normal = scene.normals[v];
       const unsigned count =
-          fillRays(table, normal, scene.positions[v] + normal * eps, eps, s.rays.data(), s.sample.data(), s.weight.data());
+          fillRays(table, normal, normal, scene.positions[v] + normal * eps, eps, s.rays.data(), s.sample.data(), s.weight.data());
       rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
       n += count;
     }

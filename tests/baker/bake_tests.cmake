@@ -25,3 +25,11 @@ target_include_directories(prt_texel_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR
 target_link_libraries(prt_texel_bake_tests PRIVATE prt_transfer GTest::gtest_main)
 target_compile_options(prt_texel_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME texel_bake_tests COMMAND prt_texel_bake_tests)
+
+# Normal maps (docs/transfer-textures.md, "Normal maps"): the loader's normalTexture and
+# TANGENT, computed tangents, and a normal-mapped flat quad against the tessellated bumps.
+add_executable(prt_normal_map_tests ${CMAKE_CURRENT_LIST_DIR}/normal_map_test.cpp)
+target_include_directories(prt_normal_map_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_normal_map_tests PRIVATE prt_transfer prt_stb GTest::gtest_main)
+target_compile_options(prt_normal_map_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME normal_map_tests COMMAND prt_normal_map_tests)
