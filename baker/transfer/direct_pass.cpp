@@ -1,6 +1,7 @@
 #include "baker/transfer/direct_pass.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -48,6 +49,16 @@ Status makeSamples(const BakeOptions& o, SampleTable* t) {
   return Status::ok();
 }
 
+Status addVisibilityBasis(int order, SampleTable* t) {
+  if (order < 2 || order > kMaxShOrder) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "visibility order " + std::to_string(order) + " is outside [2, " + std::to_string(kMaxShOrder) + "]");
+  }
+  t->visibilityOrder = order;
+  t->visibilityBasis.resize(static_cast<std::size_t>(shCoeffCount(order)) * t->dirs.size());
+  return evalShBasisBatch(order, t->dirs.x, t->dirs.y, t->dirs.z, t->visibilityBasis);
+}
+
 // out[i] = sum_k weights[k] basis[i][k]
 void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out) {
   for (int i = 0; i < n2; ++i) {
@@ -63,15 +74,16 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }
 
 unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 horizon, Vec3 origin, float eps, RTCRayHit* rays,
-                  std::uint32_t* sample, float* cosineWeight) {
+                  std::uint32_t* sample, float* cosineWeight, bool wholeHemisphere) {
   const std::size_t sampleCount = table.dirs.size();
   const float sampleWeight = static_cast<float>(table.dirs.weight / kPi);
   unsigned count = 0;
   for (std::size_t k = 0; k < sampleCount; ++k) {
     const float c = n.x * table.dirs.x[k] + n.y * table.dirs.y[k] + n.z * table.dirs.z[k];
     const float above = horizon.x * table.dirs.x[k] + horizon.y * table.dirs.y[k] + horizon.z * table.dirs.z[k];
-    const bool traced = c > 0.0f && above > 0.0f;
-    cosineWeight[k] = traced ? c * sampleWeight : 0.0f;
+    const bool lit = c > 0.0f && above > 0.0f;
+    const bool traced = wholeHemisphere ? above > 0.0f : lit;
+    cosineWeight[k] = lit ? c * sampleWeight : 0.0f;
     if (!traced) continue;
     RTCRayHit& r = rays[count];
     r.ray.org_x = origin.x;
@@ -174,6 +186,7 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
     // Glossy: visible sample indices (distant) or per-ray weights w q V (local), no cosine.
     std::vector<std::uint32_t> visible;
     std::vector<float> litGlossy;
+    std::vector<float> visibleW;  // TPFL: per sample k, w V(x, w_k) above the horizon
     std::unique_ptr<GlossyShadowedKernel> kernel;
     GlossyKernelStats kernelStats;
   };
@@ -192,7 +205,10 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
       s.litGlossy.resize(sampleCount);
       s.kernel = std::make_unique<GlossyShadowedKernel>(o.order, sampleCount);
     }
+    if (job.visibility) s.visibleW.resize(sampleCount);
   }
+  // Callers check this (texel_bake.cpp): TPFL's product needs one basis for light and view.
+  assert(!job.visibility || (!local && !o.glossy && job.table->visibilityOrder >= 2));
   parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
     Scratch& s = scratch[thread];
     const std::size_t begin = block * kBlockVertices, end = std::min(receiverCount, begin + kBlockVertices);
@@ -203,11 +219,12 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, many directions
     for (std::size_t v = begin; v < end; ++v) {
+      if (job.visibility) std::fill(s.visibleW.begin(), s.visibleW.end(), 0.0f);
       const Vec3 n = job.normals[v];
       const Vec3 origin = job.positions[v] + n * eps;
       const Vec3 shading = job.shadingNormals.empty() ? n : job.shadingNormals[v];
-      const unsigned count =
-          fillRays(*job.table, shading, n, origin, eps, s.rays.data(), s.sample.data(), s.unshadowedW.data());
+      const unsigned count = fillRays(*job.table, shading, n, origin, eps, s.rays.data(), s.sample.data(),
+                                      s.unshadowedW.data(), job.visibility != nullptr);
       if (local) {
         const SpherePoint sp = locateOnSphere(job.positions[v], o.lighting.center, o.lighting.radius);
         if (job.outside) job.outside[v] = sp.outside;
@@ -237,6 +254,7 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
         const bool blocked = rec ? r.hit.geomID != RTC_INVALID_GEOMETRY_ID : r.ray.tfar < 0.0f;
         if (!blocked) {
           if (o.glossy) s.visible[visibleCount++] = s.sample[j];
+          if (job.visibility) s.visibleW[s.sample[j]] = static_cast<float>(job.table->dirs.weight);
           continue;
         }
         const std::uint32_t k = s.sample[j];
@@ -248,7 +266,9 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
         }
         // Hits keep the solid-angle weight in both models: a bounce gathers radiance over
         // directions at x from surfaces inside S, which does not involve the remapping.
-        if (rec && dot(job.faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
+        // (A ray traced for visibility only has cosine weight 0: it gathers nothing.)
+        if (rec && s.unshadowedW[k] > 0.0f &&
+            dot(job.faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
           auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
           rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
           if (o.glossy) rec->hitSample.push_back(k);
@@ -268,6 +288,11 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
       } else {
         projectWeights(n2, sampleCount, s.unshadowedW.data(), job.table->basis.data(), &job.unshadowed[v * n2]);
         projectWeights(n2, sampleCount, s.shadowedW.data(), job.table->basis.data(), &job.shadowed[v * n2]);
+        if (job.visibility) {
+          const int m2 = shCoeffCount(job.table->visibilityOrder);
+          projectWeights(m2, sampleCount, s.visibleW.data(), job.table->visibilityBasis.data(),
+                         &job.visibility[v * static_cast<std::size_t>(m2)]);
+        }
         if (o.glossy) {
           s.kernel->distant(job.table->sampleMajor.data(), s.visible.data(), visibleCount,
                             static_cast<float>(job.table->dirs.weight), &job.glossyShadowed[v * glossyEntries],

@@ -28,10 +28,17 @@ struct SampleTable {
   DirectionSet dirs;
   std::vector<float> basis;        // [coefficient][sample]
   std::vector<float> sampleMajor;  // glossy bakes: the same, [sample][coefficient]
+  // Visibility vectors for TPFL glossy (addVisibilityBasis): the basis at visibilityOrder,
+  // [coefficient][sample]; empty when not asked for.
+  int visibilityOrder = 0;
+  std::vector<float> visibilityBasis;
 };
 
 // The direction set of `o` (Hammersley rotated by the seed, or stratified) and its basis.
 Status makeSamples(const BakeOptions& o, SampleTable* t);
+
+// Adds the basis of `order` (2..kMaxShOrder) at t's directions as t->visibilityBasis.
+Status addVisibilityBasis(int order, SampleTable* t);
 
 // out[i] = sum_k weights[k] basis[i][k], basis [coefficient][sample] with `count` samples.
 void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out);
@@ -66,9 +73,10 @@ double secondsSince(std::chrono::steady_clock::time_point t0);
 // horizon.w > 0, from `origin` (already offset along horizon). Writes the clamped-cosine
 // weights w max(0, n.w)/pi of every sample (0 where no ray goes) and, per ray, its sample
 // index. n is the shading normal, horizon the surface's (they differ under a normal map:
-// light from below the surface's own tangent plane cannot reach it).
+// light from below the surface's own tangent plane cannot reach it). With wholeHemisphere,
+// every direction above the horizon is traced, those with n.w <= 0 at weight 0 (visibility).
 unsigned fillRays(const SampleTable& table, Vec3 n, Vec3 horizon, Vec3 origin, float eps, RTCRayHit* rays,
-                  std::uint32_t* sample, float* cosineWeight);
+                  std::uint32_t* sample, float* cosineWeight, bool wholeHemisphere = false);
 
 // Ray origin offset and tnear, relative to the scene: far above float rounding of positions
 // (~1e-7 of the extent), far below any feature the transfer can resolve.
@@ -98,6 +106,9 @@ struct DirectPassJob {
   // Glossy (options->glossy): receivers x glossyEntries, packing matrixPackingFor(kShadowed, model).
   float* glossyShadowed = nullptr;
   std::size_t glossyEntries = 0;
+  // TPFL (distant lighting, not glossy): receivers x table->visibilityOrder^2, the projection
+  // of V(x, w) over the hemisphere above the horizon, no cosine: sum_k w V(x, w_k) y_i(w_k).
+  float* visibility = nullptr;
   std::vector<HitBlock>* blocks = nullptr;  // with interreflection: one per receiver block, filled
   std::uint8_t* outside = nullptr;          // local lighting: per receiver, 1 outside the sphere S
 };

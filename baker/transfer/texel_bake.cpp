@@ -57,6 +57,17 @@ Status checkTexelOptions(const Scene& scene, std::span<const Uv> atlasUv, const 
   }
   PRT_RETURN_IF_ERROR(checkOptions(scene, options.transfer));
   PRT_RETURN_IF_ERROR(checkNormalMaps(scene));
+  if (options.visibilityOrder != 0) {
+    if (options.visibilityOrder < 2 || options.visibilityOrder > kMaxShOrder) {
+      return Status::error(StatusCode::kInvalidArgument, "visibility order " + std::to_string(options.visibilityOrder) +
+                                                             " is outside [2, " + std::to_string(kMaxShOrder) + "]");
+    }
+    if (isLocalLighting(options.transfer.lighting.model)) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           "visibility vectors (TPFL glossy) need distant lighting: under local lighting the light's "
+                           "basis is remapped per ray, so transfer is not a product with the lighting");
+    }
+  }
   if (options.dilation < 0 || options.dilation > kMaxDilationPasses) {
     return Status::error(StatusCode::kInvalidArgument, "dilation " + std::to_string(options.dilation) +
                                                            " is outside 0 … " + std::to_string(kMaxDilationPasses) +
@@ -106,6 +117,9 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
 
   SampleTable table;
   PRT_RETURN_IF_ERROR(makeSamples(o, &table));
+  if (options.visibilityOrder > 0) PRT_RETURN_IF_ERROR(addVisibilityBasis(options.visibilityOrder, &table));
+  const std::size_t m2 = static_cast<std::size_t>(shCoeffCount(options.visibilityOrder));
+  std::vector<float> visibility(options.visibilityOrder > 0 ? receivers * m2 : 0);
   EmbreeScene embree;
   PRT_RETURN_IF_ERROR(EmbreeScene::build(scene, &embree));
   const std::vector<Vec3> faceNormal = faceNormals(scene);
@@ -130,6 +144,7 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
     job.shadowed = shadowed.data();
     job.blocks = o.interreflection ? &blocks : nullptr;
     job.outside = outside.data();
+    job.visibility = visibility.empty() ? nullptr : visibility.data();
     GlossyKernelStats unused;
     out->passes.push_back(runDirectPass(job, &unused));
   }
@@ -234,6 +249,12 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
     PRT_RETURN_IF_ERROR(
         scatterAndDilate(samples, atlases, seams, interreflected.data(), 3 * n2, options.dilation, &texture, &filled));
     out->interreflected = std::move(texture.values);
+  }
+  if (!visibility.empty()) {
+    PRT_RETURN_IF_ERROR(
+        scatterAndDilate(samples, atlases, seams, visibility.data(), m2, options.dilation, &texture, &filled));
+    out->visibility = std::move(texture.values);
+    out->visibilityOrder = options.visibilityOrder;
   }
   out->order = o.order;
   out->texels = samples.firstTexel.back();

@@ -30,6 +30,10 @@ struct TexelBakeOptions {
   // Gutter texels along a cut between two charts read the surface across the cut
   // (baker/texture/texel_seams.h), so bilinear filtering shows no seam; needs dilation >= 1.
   bool stitchSeams = true;
+  // > 0: also bake each texel's visibility vector at this order (2..kMaxShOrder; 2n - 1 for
+  // lighting of order n makes TPFL glossy exact, docs/transfer-textures.md, "Glossy by the
+  // triple product"). Distant lighting only.
+  int visibilityOrder = 0;
 };
 
 struct TexelBakeResult {
@@ -40,6 +44,8 @@ struct TexelBakeResult {
   std::vector<float> unshadowed;         // [texel][coefficient], dilated
   std::vector<float> shadowed;           // [texel][coefficient], dilated
   std::vector<float> interreflected;     // [texel][channel][coefficient], dilated; empty without interreflection
+  int visibilityOrder = 0;
+  std::vector<float> visibility;         // [texel][coefficient] at visibilityOrder, dilated; empty if not asked for
   int bounces = 0;
   std::vector<double> bounceEnergy;      // per bounce: sum over sampled texels of texel area x DC, all channels
   std::vector<PassStats> passes;

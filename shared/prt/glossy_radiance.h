@@ -14,6 +14,7 @@
 #include <span>
 
 #include "prt/glossy_lobe.h"
+#include "prt/sh_triple_product.h"
 #include "prt/status.h"
 #include "prt/transfer_matrix.h"
 #include "prt/vec3.h"
@@ -39,5 +40,18 @@ Status glossyExitRadianceDouble(std::span<const float> matrices, int order, Matr
                                 std::span<const Vec3> positions, std::span<const Vec3> normals,
                                 std::span<const SpecularMaterial> specular, const GlossyView& view,
                                 std::span<const Rgb> lighting, std::span<double> out);
+
+// The same exit radiance by the triple product with fixed lighting (TPFL; PRTT §3, Sloan
+// 2008; docs/transfer-textures.md, "Glossy by the triple product"): each point stores a
+// visibility vector V ([point][m^2], m = product.transferOrder(), one channel, no albedo), the
+// frame forms P_c = sum_j C_ijk L_c,j once (product.productMatrix; n = product.order() bands
+// of lighting, lighting.size() = n^2), and P_c V takes the place of M_c L_c above. With
+// m = 2n - 1 this equals the matrix form for the matrix M_ij = integral V y_i y_j of the same
+// visibility to rounding. positions, normals, specular one per point; out 3 per point. Float
+// accumulation. Safe on untrusted sizes.
+Status tpflGlossyExitRadiance(const ShTripleProduct& product, std::span<const float> visibility,
+                              std::span<const Vec3> positions, std::span<const Vec3> normals,
+                              std::span<const SpecularMaterial> specular, const GlossyView& view,
+                              std::span<const Rgb> lighting, std::span<float> out);
 
 }  // namespace prt

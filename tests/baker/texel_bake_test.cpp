@@ -10,7 +10,11 @@
 #include <vector>
 
 #include "baker/test_scenes.h"
+#include "baker/texture/atlas_samples.h"
+#include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
+#include "prt/sh_triple_product.h"
+#include "prt/sh_zonal.h"
 
 namespace prt::bake {
 namespace {
@@ -382,6 +386,105 @@ TEST(TexelBake, RejectsBadInputWithAClearMessage) {
   TexelBakeOptions order = o;
   order.transfer.order = 9;
   fails(s.uv, good, order, "order");
+}
+
+}  // namespace
+}  // namespace prt::bake
+
+namespace prt::bake {
+namespace {
+
+// TPFL (docs/transfer-textures.md, "Glossy by the triple product"): a texel's visibility
+// vector at order 2n - 1, multiplied with the lighting through the Gaunt tensor, gives the
+// glossy radiance that the transfer matrix of the same visibility gives (docs/glossy.md).
+// The matrices come from the vertex bake's glossy pass, run on the texel samples' own
+// positions and normals (added to the scene as extra vertices: same triangles, same rays).
+TEST(TexelBake, TpflGlossyEqualsTheTransferMatrixOfTheSameVisibility) {
+  AtlasScene s;
+  addFloor(&s, 2.0f, 0.0f, 1.0f, {0.5f, 0.5f, 0.5f});
+  addSphereChart(&s, {0.2f, 1.2f, -0.1f}, 0.9f, 0.0f, 1.0f, 0.0f, 1.0f, {0.5f, 0.5f, 0.5f});
+  const std::vector<TextureAtlas> atlases = {{16, 16, 0, 2}, {32, 16, 2, triangleCount(s.scene) - 2}};
+  TexelBakeOptions o = quickOptions();
+  o.transfer.order = 5;
+  o.transfer.samples = 1024;
+  o.transfer.interreflection = false;
+  o.visibilityOrder = 9;  // 2n - 1
+  TexelBakeResult r;
+  ASSERT_TRUE(bakeTexelTransfer(s.scene, s.uv, atlases, o, &r).isOk());
+  ASSERT_EQ(r.visibilityOrder, 9);
+  ASSERT_EQ(r.visibility.size(), r.texels * 81);
+
+  AtlasSamples samples;
+  ASSERT_TRUE(rasteriseAtlases(s.scene.positions, s.scene.normals, s.scene.albedo, s.scene.indices, s.uv, atlases,
+                               &samples)
+                  .isOk());
+  Scene withReceivers = s.scene;
+  const std::size_t first = withReceivers.positions.size(), count = samples.texels.size();
+  std::vector<Vec3> positions, normals;
+  std::vector<float> visibility;
+  for (const AtlasTexel& t : samples.texels) {
+    withReceivers.positions.push_back(t.position);
+    withReceivers.normals.push_back(t.normal);
+    withReceivers.albedo.push_back(t.albedo);
+    positions.push_back(t.position);
+    normals.push_back(t.normal);
+    visibility.insert(visibility.end(), &r.visibility[t.index * 81], &r.visibility[t.index * 81] + 81);
+  }
+  BakeOptions g = o.transfer;
+  g.glossy = true;
+  g.glossyBounces = 0;
+  BakeResult matrices;
+  ASSERT_TRUE(bakeTransfer(withReceivers, g, &matrices).isOk());
+  const MatrixPacking packing = matrixPackingFor(TransferKind::kShadowed, LightingModel::kDistant);
+  const std::size_t entries = matrixEntryCount(5, packing);
+  const std::span<const float> receiverMatrices(&matrices.glossyShadowed[first * entries], count * entries);
+
+  // Coloured, lopsided lighting: two disc lights and a dim sky.
+  std::vector<Rgb> light(25, Rgb{0, 0, 0});
+  std::vector<float> zonal(5), placed(25);
+  const struct { Vec3 axis; float zeta; Rgb colour; } lights[] = {
+      {{0.4f, 1.0f, 0.3f}, 0.3f, {3.0f, 2.0f, 1.0f}}, {{-1.0f, 0.5f, -0.2f}, 0.6f, {0.2f, 0.5f, 1.5f}},
+      {{0.0f, 1.0f, 0.0f}, 3.14159265f, {0.1f, 0.1f, 0.1f}}};
+  for (const auto& l : lights) {
+    ASSERT_TRUE(zonalCircularLight(5, l.zeta, 1.0f, zonal).isOk());
+    ASSERT_TRUE(placeZonal(5, zonal, l.axis, placed).isOk());
+    for (int i = 0; i < 25; ++i) light[i] = light[i] + Rgb{l.colour.r * placed[i], l.colour.g * placed[i], l.colour.b * placed[i]};
+  }
+  const std::vector<SpecularMaterial> material(count, SpecularMaterial{{0.9f, 0.6f, 0.3f}, 20.0f, 1.0f});
+  const GlossyView view{{1.5f, 2.5f, 3.0f}, true};
+  std::vector<float> byMatrix(3 * count), byTpfl(3 * count), byTruncated(3 * count);
+  ASSERT_TRUE(glossyExitRadiance(receiverMatrices, 5, packing, 1, positions, normals, material, view, light, byMatrix).isOk());
+  ShTripleProduct product;
+  ASSERT_TRUE(ShTripleProduct::make(5, 9, &product).isOk());
+  ASSERT_TRUE(tpflGlossyExitRadiance(product, visibility, positions, normals, material, view, light, byTpfl).isOk());
+  // The usual economy, visibility truncated to n bands, is not exact: the test can tell.
+  ShTripleProduct square;
+  ASSERT_TRUE(ShTripleProduct::make(5, 5, &square).isOk());
+  std::vector<float> truncated;
+  for (std::size_t p = 0; p < count; ++p) truncated.insert(truncated.end(), &visibility[p * 81], &visibility[p * 81] + 25);
+  ASSERT_TRUE(tpflGlossyExitRadiance(square, truncated, positions, normals, material, view, light, byTruncated).isOk());
+
+  double largest = 0.0, worst = 0.0, worstTruncated = 0.0;
+  for (float x : byMatrix) largest = std::max(largest, double{std::abs(x)});
+  for (std::size_t i = 0; i < byMatrix.size(); ++i) {
+    worst = std::max(worst, double{std::abs(byTpfl[i] - byMatrix[i])});
+    worstTruncated = std::max(worstTruncated, double{std::abs(byTruncated[i] - byMatrix[i])});
+  }
+  std::printf("TPFL vs transfer matrix over %zu texels: worst %.3g of the largest radiance %.4g (%.2g relative); "
+              "visibility truncated to 5 bands: %.3g relative\n",
+              count, worst, largest, worst / largest, worstTruncated / largest);
+  ASSERT_GT(largest, 0.1);
+  EXPECT_LT(worst, 2e-5 * largest);           // float rounding of two different summation orders
+  EXPECT_GT(worstTruncated, 1e-3 * largest);  // the n-band economy is visibly not exact
+
+  // Local lighting remaps the light's basis per ray: no product form, refused by name.
+  TexelBakeOptions local = o;
+  local.transfer.lighting.model = LightingModel::kLocalSphere;
+  local.transfer.lighting.center = {0, 1, 0};
+  local.transfer.lighting.radius = 5.0f;
+  TexelBakeResult unused;
+  const Status refused = bakeTexelTransfer(s.scene, s.uv, atlases, local, &unused);
+  EXPECT_NE(refused.message().find("distant lighting"), std::string::npos) << refused.message();
 }
 
 }  // namespace
