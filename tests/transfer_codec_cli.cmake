@@ -148,3 +148,29 @@ expect_contains("${err}" "cpca8@0.000001" "the note naming the unreachable setti
 run_checked(0 out err ${PRT_BAKE} compress-report --help)
 expect_contains("${out}" "Usage: prt-bake compress-report" "help")
 expect_contains("${out}" "4  invalid input" "help lists the exit statuses")
+
+# Transfer textures: --texels measures the texel pass, its bytes over every texel of the
+# atlas and its error over the sampled texels only.
+set(texel_asset ${WORK_DIR}/room-texels.prta)
+run_checked(0 out err ${PRT_BAKE} --default --texels --texture-size 512 -o ${texel_asset} --order 3 --samples 64
+            --bounces 1 --quiet)
+run_checked(0 out err ${PRT_BAKE} compress-report ${texel_asset} --texels --json --env-dir ${ENV_DIR} --settings f32,q8
+            --lightings 2)
+string(JSON domain GET "${out}" domain)
+string(JSON texels GET "${out}" texels)
+string(JSON sampled GET "${out}" sampled_texels)
+string(JSON pass GET "${out}" pass)
+string(JSON f32_psnr_type TYPE "${out}" rows 0 psnr_db)
+string(JSON f32_per_texel GET "${out}" rows 0 bytes_per_texel)
+string(JSON q8_psnr GET "${out}" rows 1 psnr_db)
+# interreflected, 3 channels x 9 coefficients x 4 bytes = 108 bytes a texel, plus the blob's header
+if(NOT domain STREQUAL "texel" OR NOT texels EQUAL 262144 OR NOT sampled GREATER 100000 OR NOT sampled LESS texels
+   OR NOT pass STREQUAL "interreflected" OR NOT f32_psnr_type STREQUAL "NULL" OR f32_per_texel LESS 108
+   OR f32_per_texel GREATER 109 OR q8_psnr LESS 40)
+  message(FATAL_ERROR "unexpected texel report: domain ${domain}, ${texels} texels, ${sampled} sampled, pass ${pass}, "
+                      "f32 PSNR ${f32_psnr_type} at ${f32_per_texel} B/texel, q8 PSNR ${q8_psnr}\n${out}")
+endif()
+run_checked(4 out err ${PRT_BAKE} compress-report ${asset} --texels --env-dir ${ENV_DIR} --settings q8)
+expect_contains("${err}" "has no texel transfer pass" "a vertex-only asset under --texels")
+run_checked(2 out err ${PRT_BAKE} compress-report ${texel_asset} --texels --pass glossy --env-dir ${ENV_DIR})
+expect_contains("${err}" "transfer textures have no glossy matrices" "--texels with a glossy pass")

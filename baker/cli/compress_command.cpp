@@ -12,6 +12,7 @@
 #include "native/cli_args.h"
 #include "native/exit_status.h"
 #include "baker/cli/compress_lightings.h"
+#include "baker/texture/asset_texels.h"
 #include "native/file_io.h"
 #include "native/json_text.h"
 #include "prt/asset.h"
@@ -34,13 +35,14 @@ constexpr double kRelativeErrorFloor = 0.01;
 constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
                                {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
                                {"--per-lighting", false}, {"--save-blobs", true}, {"--views", true},
-                               {"--lightings", true}};
+                               {"--lightings", true}, {"--texels", false}};
 
 struct Options {
   std::string asset;
   std::vector<TransferCodecSettings> settings;
   std::optional<TransferKind> pass;
   bool glossy = false;    // a matrix pass: exit radiance over lightings x views
+  bool texels = false;    // the texel pass (transfer textures): error over its sampled texels
   int views = 16;         // eye positions for matrix passes
   int maxLightings = 0;   // 0: every test lighting
   std::string envDir = kDefaultEnvDir;
@@ -58,6 +60,7 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
   o->asset = p.positionals[0];
   o->json = p.has("--json");
   o->perLighting = p.has("--per-lighting");
+  o->texels = p.has("--texels");
   TransferCodecSettings defaults;
   defaults.cpcaTargetError = kDefaultQuality;
   if (const std::string* q = p.value("--quality")) {
@@ -97,6 +100,7 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
                    "or glossy-interreflected)");
     }
   }
+  if (o->texels && o->glossy) return usage("--texels measures vector passes; transfer textures have no glossy matrices");
   if (const std::string* v = p.value("--views")) {
     if (!o->glossy) return usage("--views needs a glossy --pass");
     if (Status s = parseIntArg("--views", *v, 1, 1024, &o->views); !s.isOk()) return s;
@@ -184,13 +188,18 @@ std::string vectorList(const std::vector<int>& v) {
   return s;
 }
 
-std::string formatJson(const Options& o, const TransferPass& pass, int order, std::size_t vertices,
+std::string formatJson(const Options& o, const TransferPass& pass, int order, std::size_t vertices, std::size_t sampled,
                        const std::vector<std::string>& names, const std::vector<Row>& rows) {
   const std::size_t lightings = names.size();
   const double V = static_cast<double>(vertices);
+  // Texel mode counts bytes per texel of the whole atlases (what is stored and sent).
+  const std::string per = o.texels ? "_per_texel" : "_per_vertex";
   std::string s = "{\n  \"asset\": " + jsonString(o.asset) + ",\n  \"pass\": \"" + (o.glossy ? "glossy-" : "") + transferKindName(pass.kind) +
+                  "\",\n  \"domain\": \"" + (o.texels ? "texel" : "vertex") +
                   "\",\n  \"channels\": " + std::to_string(pass.channels) + ",\n  \"order\": " + std::to_string(order) +
-                  ",\n  \"vertices\": " + std::to_string(vertices) + ",\n  \"lightings\": " + std::to_string(lightings) +
+                  (o.texels ? ",\n  \"texels\": " + std::to_string(vertices) + ",\n  \"sampled_texels\": " + std::to_string(sampled)
+                            : ",\n  \"vertices\": " + std::to_string(vertices)) +
+                  ",\n  \"lightings\": " + std::to_string(lightings) +
                   ",\n  \"zstd_level\": " + std::to_string(kReportZstdLevel) + ",\n  \"brotli_quality\": " +
                   std::to_string(kReportBrotliQuality) + ",\n  \"rows\": [\n";
   const Row* f16 = nullptr;
@@ -204,10 +213,10 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
       continue;
     }
     s += "    {\"setting\": " + jsonString(r.setting) + ", \"bytes\": " + std::to_string(r.bytes) +
-         ", \"bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.bytes) / V) +
-         ", \"zstd_bytes\": " + std::to_string(r.zstdBytes) + ", \"zstd_bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.zstdBytes) / V) +
+         ", \"bytes" + per + "\": " + jsonNumber(static_cast<double>(r.bytes) / V) +
+         ", \"zstd_bytes\": " + std::to_string(r.zstdBytes) + ", \"zstd_bytes" + per + "\": " + jsonNumber(static_cast<double>(r.zstdBytes) / V) +
          ", \"brotli_bytes\": " + std::to_string(r.brotliBytes) +
-         ", \"brotli_bytes_per_vertex\": " + jsonNumber(static_cast<double>(r.brotliBytes) / V) +
+         ", \"brotli_bytes" + per + "\": " + jsonNumber(static_cast<double>(r.brotliBytes) / V) +
          ", \"zstd_ratio_vs_f16\": " + (f16 ? jsonNumber(static_cast<double>(f16->zstdBytes) / static_cast<double>(r.zstdBytes)) : "null") +
          ", \"psnr_db\": " + jsonNumber(r.psnrWorst) + ", \"psnr_db_mean\": " + jsonNumber(r.psnrMean) +
          ", \"max_rel_error\": " + jsonNumber(r.maxRelWorst) + ", \"max_rel_error_mean\": " + jsonNumber(r.maxRelMean) +
@@ -227,14 +236,17 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
   return s + "  ]\n}\n";
 }
 
-std::string formatTable(const Options& o, const TransferPass& pass, int order, std::size_t vertices,
+std::string formatTable(const Options& o, const TransferPass& pass, int order, std::size_t vertices, std::size_t sampled,
                         const std::vector<std::string>& names, const std::vector<Row>& rows) {
   const std::size_t lightings = names.size();
-  std::string s = o.asset + ": " + transferKindName(pass.kind) + (o.glossy ? " glossy matrix" : "") + " transfer, " + std::to_string(pass.channels) + " channel(s), order " +
-                  std::to_string(order) + ", " + std::to_string(vertices) + " vertices; " + std::to_string(lightings) +
-                  (o.glossy ? " test lighting x view cases" : " test lightings") + " (PSNR: peak = max reference radiance; max rel: vertices above 1% of peak)\n";
+  const std::string rowsText = o.texels ? std::to_string(vertices) + " texels (" + std::to_string(sampled) + " sampled, where the error is measured)"
+                                        : std::to_string(vertices) + " vertices";
+  std::string s = o.asset + ": " + (o.texels ? "texel " : "") + transferKindName(pass.kind) + (o.glossy ? " glossy matrix" : "") + " transfer, " + std::to_string(pass.channels) + " channel(s), order " +
+                  std::to_string(order) + ", " + rowsText + "; " + std::to_string(lightings) +
+                  (o.glossy ? " test lighting x view cases" : " test lightings") + " (PSNR: peak = max reference radiance; max rel: " +
+                  (o.texels ? "texels" : "vertices") + " above 1% of peak)\n";
   char line[320];
-  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9s %9s %9s %9s %9s %8s %-14s %8s\n", "setting", "B/vtx", "zstd-19",
+  std::snprintf(line, sizeof line, "%-14s %9s %9s %9s %7s %9s %9s %9s %9s %9s %8s %-14s %8s\n", "setting", o.texels ? "B/texel" : "B/vtx", "zstd-19",
                 "brotli", "x f16z", "PSNR min", "PSNR avg", "rel max", "rel avg", "T rel", "clusters", "vectors/band", "enc s");
   s += line;
   const Row* f16 = nullptr;
@@ -288,6 +300,8 @@ const char* compressReportHelpText() {
          "  --views N           eyes for a glossy pass, spread over a sphere twice the scene's size\n"
          "                      (default 16)\n"
          "  --lightings N       use only the first N test lightings (default: all)\n"
+         "  --texels            measure the asset's texel pass (transfer textures) instead: bytes per\n"
+         "                      texel of all its atlases, error over the sampled texels\n"
          "  --env-dir DIR       directory of .exr environment maps\n"
          "                      (default /usr/share/blender/datafiles/studiolights/world)\n"
          "  --per-lighting      also list PSNR and max relative error of every lighting\n"
@@ -317,25 +331,39 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   if (Status s = decodeAsset(bytes, &asset); !s.isOk()) return reportFailure(err, "compress-report", Status::error(s.code(), "'" + o.asset + "': " + s.toString()));
   bytes = {};
   const TransferForm form = o.glossy ? TransferForm::kMatrix : TransferForm::kVector;
+  const TransferDomain domain = o.texels ? TransferDomain::kTexel : TransferDomain::kVertex;
+  const char* domainText = o.texels ? " texel" : "";
   const TransferPass* pass = nullptr;
   if (o.pass) {
-    pass = findPass(asset, *o.pass, form);
+    pass = findPass(asset, *o.pass, form, domain);
     if (!pass) {
-      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " +
+      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no" +
+                                                                                                   domainText + " " +
                                                                                                    transferKindName(*o.pass) +
                                                                                                    (o.glossy ? " glossy matrix" : "") + " pass"));
     }
   } else {
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
-      if (!pass) pass = findPass(asset, k, form);
+      if (!pass) pass = findPass(asset, k, form, domain);
     }
     if (!pass) {
-      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no " +
+      return reportFailure(err, "compress-report", Status::error(StatusCode::kInvalidArgument, "'" + o.asset + "' has no" +
+                                                                                                   domainText + " " +
                                                                                                    (o.glossy ? "glossy matrix pass" : "transfer pass")));
     }
   }
   const int order = asset.shOrder;
-  const std::size_t vertices = asset.positions.size();
+  // Texel mode: rows are every texel of the atlases (what the codec encodes); the error is
+  // measured at the sampled ones, each with its sample's albedo (gutters only serve filtering).
+  std::vector<bake::AtlasTexel> samples;
+  std::vector<Rgb> sampleAlbedo;
+  if (o.texels) {
+    if (Status s = bake::assetTexelSamples(asset, &samples); !s.isOk()) return reportFailure(err, "compress-report", s);
+    for (const bake::AtlasTexel& t : samples) sampleAlbedo.push_back(t.albedo);
+  }
+  const std::size_t vertices = o.texels ? static_cast<std::size_t>(assetTexelCount(asset)) : asset.positions.size();
+  const std::size_t rowFloats = static_cast<std::size_t>(pass->channels) * static_cast<std::size_t>(order * order);
+  std::vector<float> sampledTransfer;
   const MatrixPacking packing = matrixPackingFor(pass->kind, asset.lighting.model);
 
   std::vector<TestLighting> lightings;
@@ -346,6 +374,13 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   const std::vector<Vec3> views = o.glossy ? testViews(asset.positions, o.views) : std::vector<Vec3>{Vec3{}};
   const auto evaluate = [&](std::span<const float> transfer, std::size_t lighting, std::size_t view,
                             std::vector<double>* radiance) -> Status {
+    if (o.texels) {
+      sampledTransfer.resize(samples.size() * rowFloats);
+      for (std::size_t r = 0; r < samples.size(); ++r) {
+        std::copy_n(&transfer[samples[r].index * rowFloats], rowFloats, &sampledTransfer[r * rowFloats]);
+      }
+      return passExitRadiance(*pass, sampledTransfer, sampleAlbedo, order, lightings[lighting].coeffs, radiance);
+    }
     if (!o.glossy) return passExitRadiance(*pass, transfer, asset.albedo, order, lightings[lighting].coeffs, radiance);
     radiance->assign(vertices * 3, 0.0);
     return glossyExitRadianceDouble(transfer, order, packing, pass->channels, asset.positions, asset.normals, asset.specular,
@@ -424,7 +459,8 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   if (std::all_of(rows.begin(), rows.end(), [](const Row& r) { return !r.error.empty(); })) {
     return reportFailure(err, "compress-report", lastError);
   }
-  const std::string text = o.json ? formatJson(o, *pass, order, vertices, names, rows) : formatTable(o, *pass, order, vertices, names, rows);
+  const std::string text = o.json ? formatJson(o, *pass, order, vertices, samples.size(), names, rows)
+                                  : formatTable(o, *pass, order, vertices, samples.size(), names, rows);
   std::fputs(text.c_str(), out);
   return kExitOk;
 }
