@@ -91,10 +91,18 @@ Status runBlender(const UvUnwrapOptions& o, UnwrapWorkspace& ws, const Scene& sc
 
 // Why an invalid layout cannot be fixed by a larger margin, and what to do instead.
 std::string adviceFor(const UvAtlasReport& r) {
-  if (r.overlappingPairs > 0 || r.degenerate > 0) {
-    return "Smart UV Project leaves overlaps and collapsed triangles where the mesh itself is broken (inconsistent "
-           "winding, non-manifold or stacked pieces, as in reconstructed scans); repair the mesh (consistent normals, "
-           "non-manifold geometry split off) or give the glTF a valid TEXCOORD_1 lightmap atlas";
+  std::string why;
+  if (r.overlappingPairs > 0) {
+    why = "Smart UV Project leaves overlapping islands where the mesh itself is broken (inconsistent winding, "
+          "non-manifold or stacked pieces, as in reconstructed scans)";
+  }
+  if (r.degenerate > 0) {
+    why += std::string(why.empty() ? "Smart UV Project" : " and") +
+           " collapses sliver triangles to zero UV area (as in CAD exports)";
+  }
+  if (!why.empty()) {
+    return why + "; repair the mesh (consistent winding, non-manifold pieces split off, slivers merged) or give the "
+                 "glTF a valid TEXCOORD_1 lightmap atlas";
   }
   return "a larger texture size or a smaller atlas padding leaves more room for the gutter";
 }
