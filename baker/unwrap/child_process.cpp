@@ -1,6 +1,7 @@
 #include "baker/unwrap/child_process.h"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -55,15 +56,28 @@ Status runChild(const std::vector<std::string>& argv, const std::string& logPath
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  // SIGINT, SIGTERM and SIGHUP stay blocked from before the spawn until `started` has
+  // published the pid, so a cleanup handler never misses a child that exists; the child
+  // itself starts with the mask we had.
+  sigset_t cleanup, old;
+  sigemptyset(&cleanup);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&cleanup, sig);
+  ::pthread_sigmask(SIG_BLOCK, &cleanup, &old);
+  posix_spawnattr_t attr;
+  const bool attrOk = posix_spawnattr_init(&attr) == 0;
+  ready = ready && attrOk && posix_spawnattr_setsigmask(&attr, &old) == 0 &&
+          posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK) == 0;
   pid_t pid = -1;
   const auto t0 = std::chrono::steady_clock::now();
-  const int spawned = ready ? posix_spawnp(&pid, args[0], actions.get(), nullptr, args.data(), environ) : ENOMEM;
+  const int spawned = ready ? posix_spawnp(&pid, args[0], actions.get(), &attr, args.data(), environ) : ENOMEM;
+  if (attrOk) posix_spawnattr_destroy(&attr);
   ::close(log);
+  if (spawned == 0 && started) started(pid);
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
   if (spawned != 0) {
     const StatusCode code = spawned == ENOENT ? StatusCode::kNotFound : statusCodeForErrno(spawned);
     return Status::error(code, "cannot run '" + argv[0] + "': " + std::strerror(spawned));
   }
-  if (started) started(pid);
   // Polled rather than waited on with a timer signal: a signal handler of our own would have
   // to be process-wide, and 10 ms is nothing against Blender's seconds of start-up.
   const auto deadline = t0 + limit;

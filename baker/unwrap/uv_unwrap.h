@@ -49,7 +49,8 @@ struct UvUnwrapReport {
 // Errors name the problem: kNotFound when Blender is missing (how to install it), kIoError
 // when it cannot be run, kResourceExhausted past the time limit, kUnavailable when Blender
 // fails (its last output lines), kInvalidArgument when the atlas is still invalid after the
-// attempts (the check's first problem, with the advice that fits it).
+// attempts (the check's first problem, with the advice that fits it). One call at a time per
+// process (kInternal otherwise): the signal cleanup tracks one scratch directory and child.
 Status unwrapUvAtlas(const Scene& scene, const UvUnwrapOptions& options, Scene* out, UvUnwrapReport* report);
 
 }  // namespace prt::bake
