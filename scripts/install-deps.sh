@@ -23,6 +23,9 @@ packages=(
   libboost-dev zlib1g-dev libzstd-dev libbrotli-dev libxxhash-dev
   # CC0 HDR environment maps (EXR) used by tests and the demo
   blender-data
+  # the lightmap-atlas generator of `prt-bake --texels` for scenes without a valid UV atlas
+  # (Smart UV Project, run headless; docs/transfer-textures.md)
+  blender
   # a corpus of real glTF files, valid and malformed (glTF 1.0 among them), for loader tests
   assimp-testmodels
   # syscall traces: the atomic-write test checks the directory is flushed after the rename

@@ -34,7 +34,7 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--name", true},     {"--compress", true}, {"--glossy", false}, {"--glossy-bounces", true},
     {"--specular-exponent", true}, {"--max-specular-exponent", true},
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
-    {"--dilation", true},
+    {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
 };
 
 constexpr const char* kHelp =
@@ -81,11 +81,16 @@ constexpr const char* kHelp =
     "  --max-specular-exponent S the exponent roughness 0 (a mirror) maps to (default 10000)\n"
     "  --texels                  also bake the vector passes per texel (transfer textures,\n"
     "                            docs/transfer-textures.md) over the glTF's lightmap atlas:\n"
-    "                            TEXCOORD_1 when it is a valid atlas, else TEXCOORD_0\n"
+    "                            TEXCOORD_1 when it is a valid atlas, else TEXCOORD_0, else one\n"
+    "                            generated with Blender's Smart UV Project (--unwrap)\n"
     "  --texture-size N          atlas side in texels, 1..16384 (default 512)\n"
     "  --texels-per-unit D       instead: the side that gives about D texels per metre of surface\n"
     "  --atlas-padding P         gutter texels the atlas must keep between charts (default 2)\n"
     "  --dilation N              gutter texels filled from the charts for filtering (default 3)\n"
+    "  --unwrap auto|never       auto (default): generate an atlas when neither UV set is valid;\n"
+    "                            never: fail instead\n"
+    "  --blender PATH            the Blender that generates it (default: blender on PATH)\n"
+    "  --unwrap-timeout S        seconds one Blender run may take before it is killed (default 600)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -148,8 +153,37 @@ Status parseLightingArgs(const ParsedArgs& p, BakeCli* c) {
   return Status::ok();
 }
 
+// --unwrap, --blender, --unwrap-timeout: whether and how an atlas is generated.
+Status parseUnwrapArgs(const ParsedArgs& p, bake::TexelBakeSettings* t) {
+  const std::string* mode = p.value("--unwrap");
+  if (mode != nullptr && *mode != "auto" && *mode != "never") {
+    return usage("unknown --unwrap '" + *mode + "' (expected auto or never)");
+  }
+  if (mode != nullptr && *mode == "never") {
+    for (const char* flag : {"--blender", "--unwrap-timeout"}) {
+      if (p.has(flag)) return usage(std::string(flag) + " needs --unwrap auto");
+    }
+    return Status::ok();
+  }
+  bake::UvUnwrapOptions u;
+  if (const std::string* s = p.value("--blender")) {
+    if (s->empty()) return usage("--blender needs a path or a program name");
+    u.blender = *s;
+  }
+  if (const std::string* s = p.value("--unwrap-timeout")) {
+    float seconds = 0.0f;
+    if (!parseFloatArg("--unwrap-timeout", *s, 0.0f, 1e7f, &seconds).isOk() || !(seconds > 0.0f)) {
+      return usage("--unwrap-timeout expects seconds > 0, got '" + *s + "'");
+    }
+    u.timeoutSeconds = seconds;
+  }
+  t->unwrap = u;
+  return Status::ok();
+}
+
 Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
-  for (const char* flag : {"--texture-size", "--texels-per-unit", "--atlas-padding", "--dilation"}) {
+  for (const char* flag : {"--texture-size", "--texels-per-unit", "--atlas-padding", "--dilation", "--unwrap",
+                           "--blender", "--unwrap-timeout"}) {
     if (p.has(flag) && !p.has("--texels")) return usage(std::string(flag) + " needs --texels");
   }
   if (!p.has("--texels")) return Status::ok();
@@ -177,6 +211,7 @@ Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
     if (Status st = parseIntArg("--dilation", *s, 0, 64, &v); !st.isOk()) return st;
     t.dilation = v;
   }
+  if (Status st = parseUnwrapArgs(p, &t); !st.isOk()) return st;
   c->bake.texels = t;
   return Status::ok();
 }
@@ -333,6 +368,16 @@ std::string describeCompression(const std::vector<bake::CompressedPass>& passes)
   return summary;
 }
 
+// "TEXCOORD_1", or "generated atlas (Blender Smart UV Project, 2 attempts, margin 0.0156, 9.1 s)".
+std::string describeAtlas(const bake::TexelBakeReport& t) {
+  if (!t.generated) return "TEXCOORD_" + std::to_string(t.texcoord);
+  const bake::UvUnwrapReport& g = *t.generated;
+  char text[160];
+  std::snprintf(text, sizeof text, "generated atlas (Blender Smart UV Project, %zu attempt%s, margin %.4g, %.1f s)",
+                g.attempts.size(), g.attempts.size() == 1 ? "" : "s", g.attempts.back().margin, g.seconds);
+  return text;
+}
+
 double peakMemoryMiB() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -376,6 +421,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
 
   bake::ProgressBar bar(err, !c.quiet);
   c.bake.transfer.progress = [&bar](const bake::BakeProgress& p) { bar.update(p); };
+  if (c.bake.texels && c.bake.texels->unwrap && !c.quiet) {
+    c.bake.texels->unwrap->log = [err](const std::string& line) { std::fprintf(err, "prt-bake: %s\n", line.c_str()); };
+  }
   const auto started = [&](const bake::AssetBakeReport& r) {
     if (c.quiet) return;
     std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples; lighting %s\n",
@@ -391,8 +439,8 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!baked.isOk()) return reportFailure(err, "", baked);
     if (report.texels && !c.quiet) {
       const bake::TexelBakeReport& t = *report.texels;
-      std::fprintf(err, "prt-bake: transfer textures: TEXCOORD_%d, %dx%d atlas, %llu of %llu texels sampled, %zu charts\n",
-                   t.texcoord, t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
+      std::fprintf(err, "prt-bake: transfer textures: %s, %dx%d atlas, %llu of %llu texels sampled, %zu charts\n",
+                   describeAtlas(t).c_str(), t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
                    static_cast<unsigned long long>(t.texels), t.charts);
       for (const std::string& line : t.rejected) std::fprintf(err, "prt-bake: not used: %s\n", line.c_str());
       if (t.normalMappedTexels > 0) {
@@ -437,7 +485,14 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "},\n";
     if (report.texels) {
       const bake::TexelBakeReport& t = *report.texels;
-      s += "  \"texels\": {\"texcoord\": " + std::to_string(t.texcoord) + ", \"size\": " + std::to_string(t.size) +
+      s += "  \"texels\": {\"texcoord\": " + std::to_string(t.texcoord) +
+           ", \"atlas\": " + jsonString(t.generated ? "generated" : "TEXCOORD_" + std::to_string(t.texcoord));
+      if (t.generated) {
+        const bake::UvUnwrapReport& g = *t.generated;
+        s += ", \"unwrap\": {\"attempts\": " + std::to_string(g.attempts.size()) +
+             ", \"margin\": " + jsonNumber(g.attempts.back().margin) + ", \"seconds\": " + jsonNumber(g.seconds) + "}";
+      }
+      s += ", \"size\": " + std::to_string(t.size) +
            ", \"texels\": " + std::to_string(t.texels) + ", \"sampled\": " + std::to_string(t.sampledTexels) +
            ", \"charts\": " + std::to_string(t.charts) + ", \"normal_mapped\": " + std::to_string(t.normalMappedTexels) +
            ", \"bounces\": " + std::to_string(t.bounces) + ", \"passes\": [";

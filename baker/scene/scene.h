@@ -63,7 +63,8 @@ struct Scene {
   // TEXCOORD_0 and TEXCOORD_1 as the file stores them (no KHR_texture_transform: an atlas is
   // the raw attribute), one per position, or empty when some triangle primitive lacks the
   // set or stores it in a type glTF does not allow; texcoordAbsent[k] then says why (empty
-  // when the set is present). Candidates for the transfer-texture atlas (uv_atlas_choice.h).
+  // when the set is present). Candidates for the transfer-texture atlas (uv_atlas_choice.h);
+  // a generated atlas (baker/unwrap/seam_split.h) takes the lightmap slot, texcoord[1].
   std::vector<Uv> texcoord[2];
   std::string texcoordAbsent[2];
   // Normal maps, read only by the texel bake (a vertex cannot resolve them). normalMapOf is

@@ -1,5 +1,6 @@
 #include "baker/transfer/bake_asset.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -83,23 +84,22 @@ struct TexelBake {
   std::vector<TransferPass> passes;
 };
 
-Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TexelBake* out,
-                  TexelBakeReport* report) {
-  const TexelBakeSettings& t = *o.texels;
+// The glTF set to bake texels over, at the side it is baked at; choice->texcoord -1 when
+// neither is a valid atlas, with each set's reason in *rejected.
+Status chooseTexelAtlas(const Scene& scene, const TexelBakeSettings& t, UvAtlasChoice* choice, int* side,
+                        std::vector<std::string>* rejected) {
   // The atlas must be valid at the size it will be baked at, and the size from
   // --texels-per-unit depends on the set: try each set at its own size, TEXCOORD_1 first.
-  UvAtlasChoice choice;
-  int side = 0;
-  std::vector<std::string> rejected;
+  *choice = UvAtlasChoice();
   for (int set : {1, 0}) {
     if (scene.texcoord[set].empty()) {
-      rejected.push_back("TEXCOORD_" + std::to_string(set) + ": absent" +
-                         (scene.texcoordAbsent[set].empty() ? "" : " (" + scene.texcoordAbsent[set] + ")"));
+      rejected->push_back("TEXCOORD_" + std::to_string(set) + ": absent" +
+                          (scene.texcoordAbsent[set].empty() ? "" : " (" + scene.texcoordAbsent[set] + ")"));
       continue;
     }
     int size = 0;
     if (Status s = texelAtlasSize(scene, set, t, &size); !s.isOk()) {
-      rejected.push_back("TEXCOORD_" + std::to_string(set) + ": " + s.message());
+      rejected->push_back("TEXCOORD_" + std::to_string(set) + ": " + s.message());
       continue;
     }
     UvAtlasTarget target;
@@ -108,25 +108,81 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
     UvAtlasChoice c;
     PRT_RETURN_IF_ERROR(chooseUvAtlas(scene, target, &c));
     if (c.texcoord == set) {
-      choice = std::move(c);
-      side = size;
-      break;
+      *choice = std::move(c);
+      *side = size;
+      return Status::ok();
     }
     for (const std::string& line : c.rejected) {
-      if (line.rfind("TEXCOORD_" + std::to_string(set), 0) == 0) rejected.push_back(line);
+      if (line.rfind("TEXCOORD_" + std::to_string(set), 0) == 0) rejected->push_back(line);
     }
   }
-  if (choice.texcoord < 0) {
+  return Status::ok();
+}
+
+// The atlas the texels are baked over, picked before the vertex order changes (a generated
+// atlas splits vertices; a valid one stays valid under reordering).
+struct TexelAtlasPick {
+  int texcoord = -1;  // the scene's set (1 when generated)
+  int side = 0;
+  std::size_t charts = 0;
+  std::vector<std::string> rejected;
+  std::optional<UvUnwrapReport> generated;
+};
+
+// Picks the glTF set, or, when neither is valid and t.unwrap is set, replaces *scene by one
+// with a generated atlas as TEXCOORD_1 (vertices split at its seams). Without either, the
+// error gives each set's reason.
+Status pickTexelAtlas(const TexelBakeSettings& t, Scene* scene, TexelAtlasPick* pick) {
+  UvAtlasChoice choice;
+  PRT_RETURN_IF_ERROR(chooseTexelAtlas(*scene, t, &choice, &pick->side, &pick->rejected));
+  if (choice.texcoord >= 0) {
+    pick->texcoord = choice.texcoord;
+    pick->charts = choice.report.charts;
+    return Status::ok();
+  }
+  if (!t.unwrap) {
     std::string message = "no UV set is a valid lightmap atlas for transfer textures";
-    for (const std::string& line : rejected) message += "; " + line;
+    for (const std::string& line : pick->rejected) message += "; " + line;
     return Status::error(StatusCode::kInvalidArgument,
                          message + " (docs/transfer-textures.md: give the glTF a TEXCOORD_1 lightmap atlas)");
   }
-  const std::vector<Uv>& uv = scene.texcoord[choice.texcoord];
-  report->texcoord = choice.texcoord;
+  UvUnwrapOptions o = *t.unwrap;
+  o.padding = t.padding;
+  if (t.textureSize != 0 || !(t.texelsPerUnit > 0.0) || !std::isfinite(t.texelsPerUnit)) {
+    PRT_RETURN_IF_ERROR(texelAtlasSize(*scene, -1, t, &o.size));
+  } else {
+    // The side follows the layout's UV area; the first guess assumes it fills half the square.
+    double surface = 0.0;
+    for (std::size_t i = 0; i + 2 < scene->indices.size(); i += 3) {
+      const Vec3 a = scene->positions[scene->indices[i]], b = scene->positions[scene->indices[i + 1]],
+                 c = scene->positions[scene->indices[i + 2]];
+      surface += 0.5 * length(cross(b - a, c - a));
+    }
+    o.size = static_cast<int>(std::clamp(std::ceil(t.texelsPerUnit * std::sqrt(2.0 * surface)), 1.0,
+                                         static_cast<double>(kMaxAtlasSize)));
+    o.sideFromLayout = [&t](const Scene& unwrapped, int* side) { return texelAtlasSize(unwrapped, 1, t, side); };
+  }
+  Scene unwrapped;
+  UvUnwrapReport report;
+  PRT_RETURN_IF_ERROR(unwrapUvAtlas(*scene, o, &unwrapped, &report));
+  *scene = std::move(unwrapped);
+  pick->texcoord = 1;
+  pick->side = report.side;
+  pick->charts = report.atlas.charts;
+  pick->generated = std::move(report);
+  return Status::ok();
+}
+
+Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TexelAtlasPick&& pick,
+                  TexelBake* out, TexelBakeReport* report) {
+  const TexelBakeSettings& t = *o.texels;
+  const int side = pick.side;
+  const std::vector<Uv>& uv = scene.texcoord[pick.texcoord];
+  report->texcoord = pick.generated ? -1 : pick.texcoord;
   report->size = side;
-  report->charts = choice.report.charts;
-  report->rejected = std::move(rejected);
+  report->charts = pick.charts;
+  report->rejected = std::move(pick.rejected);
+  report->generated = std::move(pick.generated);
 
   out->atlases = {TextureAtlas{static_cast<std::uint32_t>(side), static_cast<std::uint32_t>(side), 0,
                                static_cast<std::uint32_t>(scene.indices.size() / 3)}};
@@ -213,6 +269,9 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
                  const std::function<void(const AssetBakeReport&)>& started) {
   *report = AssetBakeReport{};
   if (options.transfer.glossy) PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
+  // Before the vertex order and the report: a generated atlas splits vertices at its seams.
+  TexelAtlasPick atlas;
+  if (options.texels) PRT_RETURN_IF_ERROR(pickTexelAtlas(*options.texels, &scene, &atlas));
   optimizeMeshOrder(&scene);
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
@@ -225,7 +284,7 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   TexelBake texel;
   if (options.texels) {
     TexelBakeReport texelReport;
-    PRT_RETURN_IF_ERROR(bakeTexels(scene, options, transfer, &texel, &texelReport));
+    PRT_RETURN_IF_ERROR(bakeTexels(scene, options, transfer, std::move(atlas), &texel, &texelReport));
     report->texels = std::move(texelReport);
   }
 

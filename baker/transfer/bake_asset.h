@@ -16,6 +16,7 @@
 #include "baker/scene/glossy_materials.h"
 #include "baker/scene/scene.h"
 #include "baker/transfer/transfer_bake.h"
+#include "baker/unwrap/uv_unwrap.h"
 #include "prt/asset.h"
 #include "prt/status.h"
 #include "prt/transfer_codec.h"
@@ -23,13 +24,17 @@
 namespace prt::bake {
 
 // Transfer textures (docs/transfer-textures.md): the vector passes baked per texel over the
-// scene's lightmap atlas (TEXCOORD_1, else TEXCOORD_0: chooseUvAtlas), one atlas for the scene.
+// scene's lightmap atlas (TEXCOORD_1, else TEXCOORD_0: chooseUvAtlas, else a generated one),
+// one atlas for the scene.
 struct TexelBakeSettings {
   int textureSize = 0;         // atlas side in texels (square), 1..kMaxAtlasSize; 0: from texelsPerUnit
   double texelsPerUnit = 0.0;  // texels per metre of surface when textureSize is 0; 0 too: 512 texels
   int padding = 2;             // gutter texels the atlas must keep between charts at that size
   int dilation = 3;            // gutter texels filled from the charts (texel_bake.h)
   bool keepVertexPasses = true;  // store the per-vertex vector passes as well (the panel compares them)
+  // When neither UV set is a valid atlas: generate one (unwrapUvAtlas; its size, padding and
+  // sideFromLayout come from the fields above). nullopt: fail instead.
+  std::optional<UvUnwrapOptions> unwrap;
 };
 
 // The atlas side for `settings` on `scene`'s set `texcoord`: textureSize when given, else
@@ -57,12 +62,13 @@ struct AssetBakeOptions {
 };
 
 struct TexelBakeReport {
-  int texcoord = -1;                 // the glTF set used as the atlas (0 or 1)
+  int texcoord = -1;                 // the glTF set used as the atlas (0 or 1), -1 when generated
+  std::optional<UvUnwrapReport> generated;  // how the atlas was generated, when it was
   int size = 0;                      // atlas side, texels
   std::uint64_t texels = 0, sampledTexels = 0;
   std::size_t charts = 0;
   std::size_t normalMappedTexels = 0;  // sampled texels shaded with a normal map's normal
-  std::vector<std::string> rejected;  // why the other UV set was not used
+  std::vector<std::string> rejected;  // why the other UV set (or both, when generated) was not used
   int bounces = 0;
   std::vector<PassStats> passes;
 };
@@ -90,8 +96,9 @@ struct AssetBakeReport {
 // Bakes `scene` (consumed: its arrays move into the asset) into `*asset`, deterministic for
 // a given (scene, options). `started`, when set, is called once with the report's vertices,
 // triangles and lighting filled in, before the long part. Errors: the bake's and the codec's,
-// prefixed with the pass they belong to; with options.texels, kInvalidArgument when neither
-// UV set is a valid atlas at the chosen size (the message gives each set's reason).
+// prefixed with the pass they belong to; with options.texels, when neither UV set is a valid
+// atlas at the chosen size, the generator's (texels.unwrap) or, without it, kInvalidArgument
+// giving each set's reason. A generated atlas splits vertices at its seams, before `started`.
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 

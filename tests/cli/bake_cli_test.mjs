@@ -17,7 +17,7 @@ fs.mkdirSync(workDir, { recursive: true });
 const work = (name) => path.join(workDir, name);
 
 // prt-bake's exit statuses (native/exit_status.h, docs/baker.md "Exit status").
-const EXIT_NOT_FOUND = 3, EXIT_INVALID_INPUT = 4;
+const EXIT_NOT_FOUND = 3, EXIT_INVALID_INPUT = 4, EXIT_RESOURCE = 6, EXIT_UNAVAILABLE = 7;
 
 const failures = [];
 let checks = 0;
@@ -167,6 +167,8 @@ const cases = {
     const stats = json(r);
     if (stats) {
       check(stats.texels && stats.texels.texcoord === 1 && stats.texels.size === 512, `texel stats: ${JSON.stringify(stats.texels)}`);
+      // The room brings its own TEXCOORD_1: no atlas is generated (Blender never runs).
+      check(stats.texels?.atlas === 'TEXCOORD_1' && !('unwrap' in stats.texels), `texel atlas: ${JSON.stringify(stats.texels)}`);
       check(stats.texels?.sampled > 100000 && stats.texels.sampled < 512 * 512, `sampled texels: ${stats.texels?.sampled}`);
       check(stats.texels?.charts === 16, `charts: ${stats.texels?.charts}`);
     }
@@ -223,10 +225,14 @@ const cases = {
     expectExit([...base, '--texels', '--texels-per-unit', '-3'], 2, /--texels-per-unit/);
     // 1e6 texels per metre over a 4 m room needs a side far past 16384: refused, not clamped.
     expectExit([...base, '--texels', '--texels-per-unit', '1000000'], EXIT_INVALID_INPUT, /outside 1 … 16384/);
-    // The bowl has no UVs at all: the error names both sets.
+    // The bowl has no UVs at all: without the generator the error names both sets.
     fs.writeFileSync(work('bowl.gltf'), bowlGltf());
-    expectExit([work('bowl.gltf'), '-o', work('x.prt'), ...quick, '--texels'], EXIT_INVALID_INPUT,
+    expectExit([work('bowl.gltf'), '-o', work('x.prt'), ...quick, '--texels', '--unwrap', 'never'], EXIT_INVALID_INPUT,
                /no UV set is a valid lightmap atlas.*TEXCOORD_1: absent.*TEXCOORD_0: absent/);
+    expectExit([...base, '--blender', 'blender'], 2, /--blender needs --texels/);
+    expectExit([...base, '--texels', '--unwrap', 'sometimes'], 2, /unknown --unwrap 'sometimes'/);
+    expectExit([...base, '--texels', '--unwrap', 'never', '--blender', 'blender'], 2, /--blender needs --unwrap auto/);
+    expectExit([...base, '--texels', '--unwrap-timeout', '0'], 2, /--unwrap-timeout expects seconds > 0/);
     check(!fs.existsSync(work('x.prt')), 'a failed texel bake wrote an asset');
     expectExit(['shade', out, '--texels', '--light', 'constant'], EXIT_INVALID_INPUT, /bake with --texels/);
     expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', '1,2,3'], 2, /--texels shades the vector passes/);
@@ -554,6 +560,84 @@ const cases = {
       check(left.length === 0, `${signal}: temporaries left: ${left.join(', ')}`);
       check(fs.readFileSync(out, 'utf8') === 'old', `${signal}: the old output was changed`);
     }
+  },
+
+  texel_unwrap() {
+    // A scene without UVs gets a generated atlas (the real Blender, once): the bake says so in
+    // its text and JSON, the asset's atlas is valid, and shading its texels works. The default
+    // room keeps its own TEXCOORD_1 (texels case).
+    const scene = work('bowl.gltf');
+    fs.writeFileSync(scene, bowlGltf({ rings: 8, slices: 16 }));
+    const out = work('bowl.prt');
+    const r = expectExit([scene, '-o', out, '--samples', '64', '--order', '3', '--texels', '--texture-size', '128', '--json'], 0,
+                         /transfer textures: generated atlas \(Blender Smart UV Project, \d+ attempts?, margin [0-9.e-]+, [0-9.]+ s\), 128x128 atlas/);
+    check(/atlas attempt 1: Smart UV Project, margin [0-9.e-]+, 128x128: [0-9.]+ s, /.test(r.stderr), `attempt lines: ${r.stderr}`);
+    check(/not used: TEXCOORD_1: absent/.test(r.stderr) && /not used: TEXCOORD_0: absent/.test(r.stderr), `rejected sets: ${r.stderr}`);
+    const stats = json(r);
+    if (stats) {
+      const t = stats.texels;
+      check(t?.atlas === 'generated' && t.texcoord === -1 && t.size === 128, `texel stats: ${JSON.stringify(t)}`);
+      check(t?.unwrap?.attempts >= 1 && t.unwrap.margin > 0 && t.unwrap.seconds > 0, `unwrap stats: ${JSON.stringify(t?.unwrap)}`);
+      check(t?.sampled > 1000 && t.charts >= 1, `texel stats: ${JSON.stringify(t)}`);
+      // The seams split vertices: more than the bowl's 8 x 16 + 1.
+      check(stats.vertices > 129, `vertices ${stats.vertices}`);
+    }
+    const info = json(expectExit(['info', out, '--json'], 0));
+    check(JSON.stringify(info?.atlases?.map((a) => [a.width, a.height])) === '[[128,128]]', `atlases: ${JSON.stringify(info?.atlases)}`);
+    const s = json(expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'shadowed', '--json'], 0));
+    check(s?.texels?.length === stats?.texels?.sampled && s.texels.every((x) => x.radiance.every((v) => v >= 0 && v <= 1)),
+          `shade --texels: ${s?.texels?.length} texels`);
+  },
+
+  async texel_unwrap_errors() {
+    // Without a working Blender the bake fails with the reason and writes nothing; no Blender
+    // starts here: the failing ones are a missing path, /bin/false and a script that hangs.
+    const scene = work('bowl.gltf');
+    fs.writeFileSync(scene, bowlGltf({ rings: 4, slices: 8 }));
+    const out = work('x.prt');
+    const base = [scene, '-o', out, ...quick, '--texels', '--texture-size', '64'];
+    expectExit([...base, '--blender', '/nonexistent/blender'], EXIT_NOT_FOUND,
+               /Blender not found \(cannot run '\/nonexistent\/blender': No such file or directory\).*apt-get install --no-install-recommends blender/);
+    expectExit([...base, '--blender', '/bin/false'], EXIT_UNAVAILABLE, /Blender \(\/bin\/false\) failed .*exited with status 1/);
+    const tmp = work('tmp');
+    fs.mkdirSync(tmp);
+    const hang = work('hanging-blender');
+    fs.writeFileSync(hang, `#!/bin/sh\necho $$ > ${work('hang.pid')}\nexec sleep 60\n`, { mode: 0o755 });
+    const r = run([...base, '--blender', hang, '--unwrap-timeout', '0.5'], { ...process.env, TMPDIR: tmp });
+    check(r.code === EXIT_RESOURCE && /ran past the time limit of 0\.5 s/.test(r.stderr), `timeout: ${r.code} ${r.stderr}`);
+    check(fs.readdirSync(tmp).length === 0, `scratch left after the timeout: ${fs.readdirSync(tmp).join(', ')}`);
+    check(!fs.existsSync(out), 'a failed unwrap wrote an asset');
+    // SIGTERM while Blender runs: the hanging "Blender" is killed, the scratch directory removed,
+    // and the baker dies of the signal.
+    fs.rmSync(work('hang.pid'), { force: true });
+    const child = spawn(bake, [...base, '--blender', hang], { env: { ...process.env, TMPDIR: tmp } });
+    const exited = new Promise((resolve) => child.on('exit', (c, sig) => resolve(sig || c)));
+    let pid = 0;
+    for (let i = 0; i < 200 && !pid; i++) {
+      await new Promise((r2) => setTimeout(r2, 50));
+      if (fs.existsSync(work('hang.pid'))) pid = Number(fs.readFileSync(work('hang.pid'), 'utf8')) || 0;
+    }
+    if (!check(pid > 0, 'the hanging Blender never started')) {
+      child.kill('SIGKILL');
+      return;
+    }
+    check(fs.readdirSync(tmp).some((f) => f.startsWith('prt-unwrap-')), `no scratch directory while Blender runs: ${fs.readdirSync(tmp)}`);
+    child.kill('SIGTERM');
+    const how = await exited;
+    check(how === 'SIGTERM', `the baker should die of SIGTERM, got ${how}`);
+    check(fs.readdirSync(tmp).length === 0, `scratch left after SIGTERM: ${fs.readdirSync(tmp).join(', ')}`);
+    // Dead or a zombie (an init that does not reap, as in some containers, leaves one).
+    const running = () => {
+      try {
+        return !/^\d+ \(.*\) Z/.test(fs.readFileSync(`/proc/${pid}/stat`, 'utf8'));
+      } catch {
+        return false;
+      }
+    };
+    let alive = true;
+    for (let i = 0; i < 40 && (alive = running()); i++) await new Promise((r2) => setTimeout(r2, 50));
+    check(!alive, `the Blender child ${pid} outlived the baker`);
+    check(!fs.existsSync(out), 'an interrupted unwrap wrote an asset');
   },
 };
 
