@@ -141,12 +141,12 @@ for (const kind of ['shadowed', 'interreflected']) {
 
 // ---- texel-only assets (browser_texel_test.mjs makes one to load) ----
 {
-  const only = core.texelOnlyAsset(bytes);
+  const only = core.texelOnlyAsset(bytes, 'room-texel-only');
   const i = typeof only === 'string' ? { ok: false, error: only } : core.inspectAsset(only);
-  check(i.ok && i.passes.length === 2 && i.passes.every((p) => p.domain === 'texel'), `texel-only asset: ${JSON.stringify(i)}`);
+  check(i.ok && i.name === 'room-texel-only' && i.passes.length === 2 && i.passes.every((p) => p.domain === 'texel'), `texel-only asset: ${JSON.stringify(i)}`);
   const vertexOnly = path.join(workDir, 'room-vertex.prt');
   execFileSync(prtBake, ['--default', '--samples', '16', '--order', '2', '-o', vertexOnly, '--quiet']);
-  const refused = core.texelOnlyAsset(fs.readFileSync(vertexOnly));
+  const refused = core.texelOnlyAsset(fs.readFileSync(vertexOnly), '');
   check(typeof refused === 'string' && /no texel pass/.test(refused), `texel-only from a vertex-only asset: ${refused}`);
 }
 

@@ -4,8 +4,12 @@
 // per channel uLayersPerChannel layers, coefficients 4g .. 4g+3 in layer g, as prt.vert's
 // texels). Scalar passes (1 channel) are multiplied by the interpolated vertex albedo, as
 // prt.vert multiplies by the vertex albedo; the 3-channel pass has the albedo folded in.
-// Output as shade.frag: exposure, the ACES fit and sRGB; uLinearOutput writes the radiance
-// itself instead (atlas read-back into a float target, tests only).
+// Output as shade.frag: exposure, the ACES fit and sRGB. uAtlasSpace (the atlas read-back into a
+// float target, tests only; texel_prt.vert draws the triangles at their atlas UVs) writes the
+// radiance itself, and samples at gl_FragCoord / uAtlasSize, which is exactly the atlas UV
+// vAtlasUv approximates there: the rasteriser snaps vertices to a sub-pixel grid (1/16 of a
+// texel in SwiftShader), which moves the interpolated UV by up to ~1/32 texel and would mix
+// about 2 % of a neighbouring texel into texels beside a sharp shadow.
 precision highp float;
 precision highp int;
 precision highp sampler2DArray;
@@ -18,7 +22,8 @@ uniform int uLayersPerChannel;  // ceil(order^2 / 4) at the order the texture ho
 uniform int uChannels;          // 1 or 3
 uniform int uActiveLayers;      // ceil(order'^2 / 4) at the displayed order (<= uLayersPerChannel)
 uniform float uExposure;        // linear scale, 2^EV
-uniform bool uLinearOutput;
+uniform bool uAtlasSpace;
+uniform vec2 uAtlasSize;        // texels, for uAtlasSpace
 layout(std140) uniform Lighting {  // built on the GPU by lighting_combine.vert
   vec4 uLightR[16];
   vec4 uLightG[16];
@@ -28,8 +33,8 @@ layout(std140) uniform Lighting {  // built on the GPU by lighting_combine.vert
 out vec4 fragColor;
 
 // Level 0 explicitly: the arrays have no mipmaps, and textureLod needs no derivatives.
-vec4 coefficients(int layer) {
-  return textureLod(uTransfer, vec3(vAtlasUv, float(layer)), 0.0);
+vec4 coefficients(vec2 uv, int layer) {
+  return textureLod(uTransfer, vec3(uv, float(layer)), 0.0);
 }
 
 // The same two functions as shade.frag (texel_core_node_test.mjs checks they stay identical).
@@ -42,21 +47,22 @@ vec3 linearToSrgb(vec3 c) {
 }
 
 void main() {
+  vec2 uv = uAtlasSpace ? gl_FragCoord.xy / uAtlasSize : vAtlasUv;
   vec3 radiance = vec3(0.0);
   if (uChannels == 1) {
     for (int t = 0; t < uActiveLayers; ++t) {
-      vec4 transfer = coefficients(t);
+      vec4 transfer = coefficients(uv, t);
       radiance += vec3(dot(transfer, uLightR[t]), dot(transfer, uLightG[t]), dot(transfer, uLightB[t]));
     }
     radiance *= vAlbedo;
   } else {
     for (int t = 0; t < uActiveLayers; ++t) {
-      radiance.r += dot(coefficients(t), uLightR[t]);
-      radiance.g += dot(coefficients(uLayersPerChannel + t), uLightG[t]);
-      radiance.b += dot(coefficients(2 * uLayersPerChannel + t), uLightB[t]);
+      radiance.r += dot(coefficients(uv, t), uLightR[t]);
+      radiance.g += dot(coefficients(uv, uLayersPerChannel + t), uLightG[t]);
+      radiance.b += dot(coefficients(uv, 2 * uLayersPerChannel + t), uLightB[t]);
     }
   }
-  if (uLinearOutput) {
+  if (uAtlasSpace) {
     fragColor = vec4(radiance, 1.0);
     return;
   }

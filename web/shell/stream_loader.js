@@ -63,9 +63,8 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
   // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there
-  // (the glossy passes': prtApp.glossyBands), and the same for the texel passes.
+  // (the glossy passes': prtApp.glossyBands; the texel passes': prtApp.texelBands).
   Object.defineProperty(progress, 'loadedBands', { get: () => PASS_NAMES.map((n) => app.loadedBands(kinds[n])), configurable: true, enumerable: true });
-  Object.defineProperty(progress, 'texelBands', { get: () => PASS_NAMES.map((n) => app.texelBands(kinds[n])), configurable: true, enumerable: true });
   const generation = ++currentStream;
   const superseded = () => generation !== currentStream;
   if (!app.reserveStream(entry.bytes)) throw new Error(`Out of memory: cannot hold scene '${entry.name}' (${(entry.bytes / 1e6).toFixed(1)} MB).`);

@@ -60,12 +60,13 @@ export function installTestHook(page) {
       return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, Array.from(page.app.cpcaShape(client.ShadingMode[n]))])) : null;
     },
     // Transfer textures (docs/web-client.md, "Transfer textures"): the domain drawn now
-    // ('vertex' or 'texel'), per pass the texel pass's bands on the GPU (0: none), the atlases.
+    // ('vertex' or 'texel'), the texel passes' bands on the GPU [unshadowed, shadowed,
+    // interreflected] (0: absent or not arrived yet; like loadedBands), the atlases.
     get source() {
       return ready() ? (page.app.source() === client.TransferDomain.texel ? 'texel' : 'vertex') : null;
     },
     get texelBands() {
-      return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, page.app.texelBands(client.ShadingMode[n])])) : null;
+      return page.app ? PASS_NAMES.map((n) => page.app.texelBands(client.ShadingMode[n])) : null;
     },
     get atlases() {
       if (!ready()) return null;

@@ -81,11 +81,12 @@ val halvesToFloats(const val& halves) {
 }
 
 // Tests: the asset in `bytes` with every vertex pass (and the specular materials only they use)
-// removed, re-encoded: a file whose only transfer is per texel (Uint8Array), or a string naming
-// the error (no texel pass, a decode or encode failure).
-val texelOnlyAsset(const val& bytes) {
+// removed, named `name` ("" keeps its name), re-encoded: a file whose only transfer is per
+// texel (Uint8Array), or a string naming the error (no texel pass, a decode or encode failure).
+val texelOnlyAsset(const val& bytes, const std::string& name) {
   prt::BakedAsset asset;
   if (prt::Status s = prt::decodeAsset(bytesFrom(bytes), &asset); !s.isOk()) return val(s.toString());
+  if (!name.empty()) asset.name = name;
   std::erase_if(asset.passes, [](const prt::TransferPass& p) { return p.domain != prt::TransferDomain::kTexel; });
   if (asset.passes.empty()) return val(std::string("the asset has no texel pass"));
   asset.specular.clear();

@@ -23,7 +23,7 @@ Status TexelRenderer::link(const char* fs, Program* out) {
   out->channels = glGetUniformLocation(p, "uChannels");
   out->activeLayers = glGetUniformLocation(p, "uActiveLayers");
   out->exposure = glGetUniformLocation(p, "uExposure");
-  out->linearOutput = glGetUniformLocation(p, "uLinearOutput");
+  out->atlasSize = glGetUniformLocation(p, "uAtlasSize");
   return Status::ok();
 }
 
@@ -114,10 +114,13 @@ int TexelRenderer::passOrder(int kind) const {
   return passes_[static_cast<std::size_t>(kind)].order;
 }
 
-void TexelRenderer::useShading(const Pass& p, int displayOrder, float exposure, bool atlasSpace) {
+void TexelRenderer::useShading(const Pass& p, int displayOrder, float exposure, int atlas) {
   glUseProgram(shading_.id);
-  glUniform1i(shading_.atlasSpace, atlasSpace ? 1 : 0);
-  glUniform1i(shading_.linearOutput, atlasSpace ? 1 : 0);
+  glUniform1i(shading_.atlasSpace, atlas >= 0 ? 1 : 0);
+  if (atlas >= 0) {
+    const TextureAtlas& a = atlases_[static_cast<std::size_t>(atlas)];
+    glUniform2f(shading_.atlasSize, static_cast<float>(a.width), static_cast<float>(a.height));
+  }
   glUniform1i(shading_.transfer, 0);
   glUniform1i(shading_.layersPerChannel, p.layersPerChannel);
   glUniform1i(shading_.channels, p.channels);
@@ -152,7 +155,7 @@ bool TexelRenderer::draw(int kind, const glm::mat4& viewProjection, int displayO
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_EQUAL);
-  useShading(p, displayOrder, exposure, false);
+  useShading(p, displayOrder, exposure, -1);
   glUniformMatrix4fv(shading_.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
   for (std::size_t a = 0; a < atlases_.size(); ++a) {
     glBindTexture(GL_TEXTURE_2D_ARRAY, p.textures[a]);
@@ -192,7 +195,7 @@ Status TexelRenderer::readAtlas(int kind, int atlas, int displayOrder, std::vect
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindVertexArray(vao_);
-    useShading(p, displayOrder, 1.0f, true);
+    useShading(p, displayOrder, 1.0f, atlas);
     glBindTexture(GL_TEXTURE_2D_ARRAY, p.textures[static_cast<std::size_t>(atlas)]);
     drawAtlas(static_cast<std::size_t>(atlas));
     glBindTexture(GL_TEXTURE_2D_ARRAY, 0);

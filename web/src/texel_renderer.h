@@ -48,7 +48,7 @@ class TexelRenderer {
 
   // Renders atlas `atlas` of pass `kind` in UV space (one fragment per texel whose centre a
   // triangle covers) with the same fragment shader writing linear radiance into an RGBA32F
-  // target, and reads it back: width x height x 4 floats, row y = texel row y, alpha 1 where
+  // target, sampling at the exact texel centres (texel_prt.frag), and reads it back: width x height x 4 floats, row y = texel row y, alpha 1 where
   // a triangle covered the texel centre, 0 elsewhere. Errors: absent pass, atlas out of range,
   // no float render targets (EXT_color_buffer_float).
   Status readAtlas(int kind, int atlas, int displayOrder, std::vector<float>* out);
@@ -57,7 +57,7 @@ class TexelRenderer {
   struct Program {
     GLuint id = 0;
     GLint viewProjection = -1, atlasSpace = -1, transfer = -1, layersPerChannel = -1, channels = -1, activeLayers = -1;
-    GLint exposure = -1, linearOutput = -1;
+    GLint exposure = -1, atlasSize = -1;
   };
   struct Pass {
     std::vector<GLuint> textures;  // one per atlas
@@ -65,8 +65,9 @@ class TexelRenderer {
   };
   static Status link(const char* fs, Program* out);
   static void releasePass(Pass* p);
-  // texel_prt in use over pass `p` at `displayOrder` bands (clamped to what it holds).
-  void useShading(const Pass& p, int displayOrder, float exposure, bool atlasSpace);
+  // texel_prt in use over pass `p` at `displayOrder` bands (clamped to what it holds); with
+  // `atlas` >= 0 in UV space over that atlas (the read-back), else in the view.
+  void useShading(const Pass& p, int displayOrder, float exposure, int atlas);
   void drawAtlas(std::size_t atlas) const;  // that atlas's triangles, from the bound VAO
 
   Program shading_, depth_;
