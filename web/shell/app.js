@@ -123,6 +123,7 @@ function selectEnvironment(name) {
 function applyState() {
   if (!app) return;
   const { ShadingMode, modeNames } = client;
+  app.setSource(client.TransferDomain[state.source]);  // first: setMode asks whether the drawn domain has the pass
   app.setMode(modeNames.includes(state.mode) ? ShadingMode[state.mode] : ShadingMode.interreflected);
   app.setDisplayOrder(state.order);
   app.setExposure(state.exposure);
@@ -132,7 +133,6 @@ function applyState() {
   app.setLightColor(k * ((c >> 16) & 255) / 255, k * ((c >> 8) & 255) / 255, k * (c & 255) / 255);
   app.setBackground(state.background);
   for (const name of PASS_NAMES) app.setGlossyMix(ShadingMode[name], client.GlossyMix[state.glossyMix[name]]);
-  app.setSource(client.TransferDomain[state.source]);
   updateGlossyControl();
   updateSourceControl();
 }

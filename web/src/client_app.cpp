@@ -155,9 +155,10 @@ void ClientApp::resolveSource() {
 
 void ClientApp::setSource(TransferDomain d) {
   if (d != TransferDomain::kVertex && d != TransferDomain::kTexel) return;
+  const TransferDomain before = source_;
   wantedSource_ = d;
-  pendingMode_.reset();  // a mode waiting for its pass waited in the other domain
   resolveSource();
+  if (source_ != before) pendingMode_.reset();  // a mode waiting for its pass waited in the other domain
 }
 
 std::string ClientApp::streamTexelPass(ShadingMode mode, int bands) {
