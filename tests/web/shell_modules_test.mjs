@@ -221,10 +221,13 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   }
 }
 
-// ---- Stream loader: an asset with vertex and texel passes streams its vertex passes and never
-// fetches the texel parts (transfer textures: not rendered yet); unknown domains are refused.
+// ---- Stream loader: an asset with vertex and texel passes fetches the atlas sections with the
+// geometry, then streams the displayed domain's pass first and the other domain's after it
+// (streamPass for vertex passes, streamTexelPass for texel passes, band by band); a texel-only
+// asset streams its texel passes; unknown domains are refused.
 {
   const kinds = { unshadowed: 'U', shadowed: 'S', interreflected: 'I' };  // stand-ins for the embind enum values
+  const domains = { vertex: 'V', texel: 'T' };
   const parts = [];
   const add = (size, fields) => parts.push({ offset: parts.reduce((s, p) => s + p.size, 0), size, url: `/parts/${parts.length}`, ...fields });
   add(64, { kind: 'head' });
@@ -234,49 +237,70 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   add(80, { kind: 'section', section: 3, pass: 'shadowed', domain: 'vertex' });                 // float32 vertex pass
   add(24, { kind: 'transfer-head', section: 4, pass: 'shadowed', domain: 'texel' });
   add(40, { kind: 'transfer-band', section: 4, pass: 'shadowed', domain: 'texel', band: 0 });
+  add(40, { kind: 'transfer-band', section: 4, pass: 'shadowed', domain: 'texel', band: 1 });
   const entry = { name: 'mixed', bytes: parts.reduce((s, p) => s + p.size, 0), parts };
   checkParts(parts, entry.bytes);
   throwsMatching(() => checkParts([parts[0], { ...parts[1], size: entry.bytes - 64, domain: 'pixel' }], entry.bytes),
                  /unknown domain 'pixel'/, 'checkParts on a bad domain');
-  const fetched = [];
+  let fetched = [];
   globalThis.fetch = async (url) => {
     fetched.push(url);
     const part = parts.find((p) => p.url === url);
     return { ok: true, status: 200, statusText: 'OK', arrayBuffer: async () => new Uint8Array(part.size).fill(7).buffer };
   };
-  const streamed = [];
-  let buffer = null;
+  let streamed = [];
+  let buffer = null, source = domains.vertex, geometryAt = -1;
   const app = {
     reserveStream: (n) => { buffer = new Uint8Array(n); return true; },
     streamBuffer: () => buffer,
-    streamGeometry: () => '',
+    streamGeometry: () => { geometryAt = fetched.length; return ''; },
     mode: () => kinds.shadowed,
+    source: () => source,
     hasGlossy: () => false,
     hasAnyPass: () => true,
-    streamPass: (k, bands) => { streamed.push([k, bands]); return ''; },
+    streamPass: (k, bands) => { streamed.push(['vertex', k, bands]); return ''; },
+    streamTexelPass: (k, bands) => { streamed.push(['texel', k, bands]); return ''; },
     streamGlossyPass: () => 'no glossy pass here',
     loadedBands: () => 0,
+    texelBands: () => 0,
     endStream: () => {},
   };
+  const settle = () => new Promise((resolve) => setTimeout(resolve, 10));  // the background part of the stream
   const progress = {};
-  await streamAsset(app, entry, { kinds, progress });
-  await new Promise((resolve) => setTimeout(resolve, 10));  // the background part of the stream
-  const texelUrls = parts.filter((p) => p.domain === 'texel').map((p) => p.url);
-  check(!fetched.some((u) => texelUrls.includes(u)), `texel parts fetched: ${fetched.join(' ')}`);
-  check(fetched.length === parts.length - texelUrls.length, `fetched ${fetched.length} parts: ${fetched.join(' ')}`);
-  check(JSON.stringify(streamed) === JSON.stringify([[kinds.shadowed, 0]]), `passes streamed: ${JSON.stringify(streamed)}`);
-  const wantedBytes = parts.filter((p) => p.domain !== 'texel').reduce((s, p) => s + p.size, 0);
-  check(progress.bytesTotal === wantedBytes && progress.bytesReceived === wantedBytes,
-        `progress ${progress.bytesReceived} of ${progress.bytesTotal}, ${wantedBytes} wanted`);
-  // Only texel passes: the client's geometry step names the problem, and the stream rejects with it.
-  app.streamGeometry = () => 'invalid argument: the asset holds only texel (transfer-texture) passes';
+  await streamAsset(app, entry, { kinds, domains, progress });
+  await settle();
+  const atlasUrls = parts.filter((p) => p.domain === 'texel' && !p.pass).map((p) => p.url);
+  check(atlasUrls.every((u) => fetched.indexOf(u) >= 0 && fetched.indexOf(u) < geometryAt), `atlas sections not fetched before the geometry step: ${fetched.join(' ')}`);
+  check(fetched.length === parts.length, `fetched ${fetched.length} of ${parts.length} parts: ${fetched.join(' ')}`);
+  check(JSON.stringify(streamed) === JSON.stringify([['vertex', kinds.shadowed, 0], ['texel', kinds.shadowed, 1], ['texel', kinds.shadowed, 2]]),
+        `vertex displayed, passes streamed: ${JSON.stringify(streamed)}`);
+  check(progress.bytesTotal === entry.bytes && progress.bytesReceived === entry.bytes, `progress ${progress.bytesReceived} of ${progress.bytesTotal}, file ${entry.bytes}`);
+  // The texel domain displayed: its pass goes first and the first picture waits for its band 0.
+  source = domains.texel;
+  streamed = [];
+  fetched = [];
+  await streamAsset(app, entry, { kinds, domains });
+  check(streamed.length > 0 && streamed[0][0] === 'texel', `texel displayed, first pass streamed: ${JSON.stringify(streamed)}`);
+  await settle();
+  check(streamed.some(([d]) => d === 'vertex'), `texel displayed, the vertex pass never streamed: ${JSON.stringify(streamed)}`);
+  // Only texel passes: nothing else to stream, the texel pass gives the first picture.
+  const texelOnly = parts.filter((p) => p.pass !== 'shadowed' || p.domain === 'texel');
+  let offset = 0;
+  const only = texelOnly.map((p) => { const q = { ...p, offset }; offset += p.size; return q; });
+  streamed = [];
+  await streamAsset(app, { name: 'texel-only', bytes: offset, parts: only }, { kinds, domains });
+  await settle();
+  check(JSON.stringify(streamed) === JSON.stringify([['texel', kinds.shadowed, 1], ['texel', kinds.shadowed, 2]]), `texel-only: ${JSON.stringify(streamed)}`);
+  throwsMatching(() => streamAsset(app, entry, { kinds }), /domains must give/, 'streamAsset without domains');
+  // A geometry error (here: a made-up one) rejects the stream with the scene's name.
+  app.streamGeometry = () => 'corrupt: section 2 (indices): index 5 is out of range';
   let message = '';
   try {
-    await streamAsset(app, entry, { kinds });
+    await streamAsset(app, entry, { kinds, domains });
   } catch (e) {
     message = e.message;
   }
-  check(/Scene 'mixed' could not be loaded: .*only texel/.test(message), `texel-only stream: '${message}'`);
+  check(/Scene 'mixed' could not be loaded: .*index 5/.test(message), `geometry error: '${message}'`);
 }
 
 if (failures.length) {

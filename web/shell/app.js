@@ -36,6 +36,9 @@ const state = {
   cpca: ['expand', 'expanded'].includes(params.get('cpca')) ? 'expanded' : 'direct',
   // Per pass, which terms are drawn: 'diffuse' (vector pass), 'glossy' (matrix pass) or 'both'.
   glossyMix: { unshadowed: 'both', shadowed: 'both', interreflected: 'both' },
+  // Which passes are drawn: 'vertex' or 'texel' (transfer textures). A wish: a scene without
+  // texel passes is drawn per vertex, a texel-only one per texel (app.source() says which).
+  source: params.get('source') === 'texel' ? 'texel' : 'vertex',
 };
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // The dynamic-light settings the Lights panel edits (docs/web-client.md).
@@ -47,7 +50,7 @@ let app = null;
 // enums (client_bindings.cpp) ShadingMode (unshadowed, shadowed, interreflected: also the
 // pass kinds; lambert) and PassForm (absent, expanded, cpca); modeNames, ShadingMode's
 // value names (the transfer choices); formName(form): 'expanded', 'cpca' or null (absent).
-const client = { maxOrder: 1, ShadingMode: null, PassForm: null, GlossyMix: null, modeNames: [], formName: () => null };
+const client = { maxOrder: 1, ShadingMode: null, PassForm: null, GlossyMix: null, TransferDomain: null, modeNames: [], formName: () => null };
 // The names of an embind enum's values, in value order (the enum object also holds `values`).
 const enumNames = (e) => Object.keys(e).filter((k) => k !== 'values').sort((a, b) => e[a].value - e[b].value);
 let scenes = [];
@@ -120,6 +123,7 @@ function selectEnvironment(name) {
 function applyState() {
   if (!app) return;
   const { ShadingMode, modeNames } = client;
+  app.setSource(client.TransferDomain[state.source]);  // first: setMode asks whether the drawn domain has the pass
   app.setMode(modeNames.includes(state.mode) ? ShadingMode[state.mode] : ShadingMode.interreflected);
   app.setDisplayOrder(state.order);
   app.setExposure(state.exposure);
@@ -130,6 +134,16 @@ function applyState() {
   app.setBackground(state.background);
   for (const name of PASS_NAMES) app.setGlossyMix(ShadingMode[name], client.GlossyMix[state.glossyMix[name]]);
   updateGlossyControl();
+  updateSourceControl();
+}
+
+// The panel's "transfer source" switch (vertex / texel passes): shown only when the scene has both.
+let sourceControl = null;
+function updateSourceControl() {
+  if (!sourceControl || !app) return;
+  const { TransferDomain } = client;
+  sourceControl.show(app.hasSource(TransferDomain.vertex) && app.hasSource(TransferDomain.texel));
+  sourceControl.updateDisplay();
 }
 
 // The panel's "glossy" switch edits the displayed pass's mix; shown only when that pass has
@@ -141,7 +155,9 @@ const glossyView = {
 };
 function updateGlossyControl() {
   if (!glossyControl || !app) return;
-  const has = PASS_NAMES.includes(state.mode) && app.hasGlossy(client.ShadingMode[state.mode]);
+  // Transfer textures are diffuse only: no glossy term to switch.
+  const has = PASS_NAMES.includes(state.mode) && app.source() === client.TransferDomain.vertex &&
+    app.hasGlossy(client.ShadingMode[state.mode]);
   glossyControl.show(has);
   glossyControl.updateDisplay();
 }
@@ -211,15 +227,16 @@ async function loadScene(name) {
   document.getElementById('loading').hidden = false;
   hook.ready = false;
   app.setCpcaDirect(state.cpca === 'direct');
+  app.setSource(client.TransferDomain[state.source]);  // so the displayed domain's pass streams first
   if (entry.parts) {
     // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
     // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
     await streamAsset(app, entry, {
       kinds: client.ShadingMode,
+      domains: client.TransferDomain,
       progress: hook,
       onProgress: () => {
         stats.bytesLoaded = hook.bytesReceived;
-        // bytesTotal: the parts fetched (texel passes are skipped), not the whole file.
         progress(`Loading ${entry.name}: ${(hook.bytesReceived / 1e6).toFixed(1)} of ${(hook.bytesTotal / 1e6).toFixed(1)} MB`, hook.bytesReceived / hook.bytesTotal);
       },
       onError: (e) => fail(e.message),
@@ -249,6 +266,8 @@ function buildGui() {
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
   updateGlossyControl();
+  sourceControl = gui.add(state, 'source', ['vertex', 'texel']).name('transfer source').onChange(applyState);
+  updateSourceControl();
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')
     .onChange(() => loadScene(state.scene).catch((e) => fail(e.message)));
   gui.add(state, 'order', 1, client.maxOrder, 1).name('SH order').onChange(applyState);
@@ -343,16 +362,25 @@ function setupInput() {
 
 // " (CPCA: K clusters, N weights)" when the displayed pass is drawn from its clusters.
 function formText() {
-  if (!PASS_NAMES.includes(state.mode)) return '';
+  if (!PASS_NAMES.includes(state.mode) || app.source() === client.TransferDomain.texel) return '';
   const kind = client.ShadingMode[state.mode];
   if (app.passForm(kind) !== client.PassForm.cpca) return '';
   const [clusters, weights] = app.cpcaShape(kind);
   return ` (CPCA: ${clusters} clusters, ${weights} weights)`;
 }
 
+// " per texel (W×H atlas)" when the displayed pass is a transfer texture.
+function sourceText() {
+  if (!PASS_NAMES.includes(state.mode) || app.source() !== client.TransferDomain.texel) return '';
+  const sizes = Array.from(app.atlasSizes());
+  const atlases = [];
+  for (let i = 0; i < sizes.length; i += 2) atlases.push(`${sizes[i]}×${sizes[i + 1]}`);
+  return ` per texel (${atlases.join(', ')} atlas${atlases.length === 1 ? '' : 'es'})`;
+}
+
 // " + glossy (order b, K clusters, N' matrices)" when the displayed pass draws a glossy term.
 function glossyText() {
-  if (!PASS_NAMES.includes(state.mode)) return '';
+  if (!PASS_NAMES.includes(state.mode) || app.source() === client.TransferDomain.texel) return '';
   const kind = client.ShadingMode[state.mode];
   const bands = app.glossyBands(kind);
   if (!bands) return '';
@@ -375,7 +403,7 @@ function frame(now) {
     stats.frameMs = 0.9 * stats.frameMs + 0.1 * (performance.now() - t0 + (frame.last ? now - frame.last - (performance.now() - t0) : 0));
     stats.order = app.displayOrder();
     statsLine.textContent = `${stats.frameMs.toFixed(1)} ms/frame · ${stats.vertices.toLocaleString()} vertices · ` +
-      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode}${formText()}${glossyText()} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
+      `SH order ${stats.order} (${stats.order * stats.order} coeffs) · ${state.mode}${sourceText()}${formText()}${glossyText()} · ${(stats.bytesLoaded / 1e6).toFixed(2)} MB loaded · ` +
       `${LIGHTING_MODELS[app.lightingModel()]} lighting · ${lightSet.lights.length} light${lightSet.lights.length === 1 ? '' : 's'} ` +
       `(${lightSettings.projection} ${lightSettings.cubeSize}²)${lightSettings.environmentOn ? ' + environment' : ''}`;
   }
@@ -396,12 +424,13 @@ async function main() {
     fail(`The client's WebAssembly module could not be loaded: ${e.message || e}`);
     return;
   }
-  const { ShadingMode, PassForm, GlossyMix } = Module;
+  const { ShadingMode, PassForm, GlossyMix, TransferDomain } = Module;
   Object.assign(client, {
     maxOrder: Module.kMaxClientOrder,
     ShadingMode,
     PassForm,
     GlossyMix,
+    TransferDomain,
     modeNames: enumNames(ShadingMode),
     formName: (form) => (form === PassForm.absent ? null : enumNames(PassForm).find((n) => PassForm[n] === form)),
   });

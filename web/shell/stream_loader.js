@@ -4,8 +4,8 @@
 // band re-uploaded as it arrives so the page shows an order-1 picture early and sharpens.
 // The wasm client checks every byte (header, table, section and band checksums); this file
 // only checks that the parts tile the file and arrive at their declared sizes. Parts marked
-// "domain":"texel" (texel passes and their atlas sections: transfer textures) are not
-// fetched: the client renders vertex passes only, for now.
+// "domain":"texel" (transfer textures: texel passes, and the atlas sections that come with
+// the geometry) stream like the vertex ones; a pass is its kind, form and domain.
 
 // The catalogue's names of the transfer passes, in the asset's kind order.
 export const PASS_NAMES = ['unshadowed', 'shadowed', 'interreflected'];
@@ -37,24 +37,24 @@ export function checkParts(parts, bytes) {
 
 // Streams catalogue entry `entry` ({name, bytes, parts}) into `app` (ClientApp); `kinds`
 // maps each of PASS_NAMES to the client's pass kind (the embind enum Module.ShadingMode,
-// whose values app.mode() returns and app.streamPass / loadedBands take). Resolves
-// once the first picture can be drawn (geometry and band 0 of the displayed pass, or the
-// whole displayed pass when it is float32), and keeps loading the rest in the background.
-// `progress` (an object) gets bytesReceived, bytesTotal, transferBytesReceived,
-// transferBytesTotal, updated per part (the totals count the parts fetched: not the texel
-// ones); onProgress() is called after each. A failure before
+// whose values app.mode() returns and app.streamPass / loadedBands take), `domains` maps
+// 'vertex' and 'texel' to Module.TransferDomain (what app.source() returns). Resolves
+// once the first picture can be drawn (geometry and band 0 of the displayed pass in the
+// displayed domain, or that whole pass when it is float32), and keeps loading the rest in the
+// background. `progress` (an object) gets bytesReceived, bytesTotal, transferBytesReceived,
+// transferBytesTotal, updated per part; onProgress() is called after each. A failure before
 // the first picture rejects; one after it goes to onError(Error). Either way the message
 // names the scene and the problem (network, HTTP status, size, the decoder's own words).
-export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
+export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
   if (!kinds || PASS_NAMES.some((n) => !kinds[n])) throw new Error('streamAsset: kinds must give the client\'s pass kind for every pass name');
+  if (!domains || !domains.vertex || !domains.texel) throw new Error('streamAsset: domains must give the client\'s vertex and texel domains');
   const fail = (message) => new Error(`Scene '${entry.name}' could not be loaded: ${message}`);
   try {
     checkParts(entry.parts, entry.bytes);
   } catch (e) {
     throw fail(`the catalogue's part list is unusable: ${e.message}`);
   }
-  // Texel passes and atlas sections stay zero in the buffer: nothing the client decodes reads them.
-  const wanted = entry.parts.filter((p) => p.domain !== 'texel');
+  const wanted = entry.parts;
   const transferParts = wanted.filter((p) => p.pass !== undefined);
   Object.assign(progress, {
     bytesReceived: 0,
@@ -63,7 +63,7 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
     transferBytesTotal: transferParts.reduce((s, p) => s + p.size, 0),
   });
   // Bands on the GPU per pass [unshadowed, shadowed, interreflected], 0 = not (yet) there
-  // (the glossy passes': prtApp.glossyBands).
+  // (the glossy passes': prtApp.glossyBands; the texel passes': prtApp.texelBands).
   Object.defineProperty(progress, 'loadedBands', { get: () => PASS_NAMES.map((n) => app.loadedBands(kinds[n])), configurable: true, enumerable: true });
   const generation = ++currentStream;
   const superseded = () => generation !== currentStream;
@@ -116,10 +116,12 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
   });
 
   const run = async (onFirstPicture) => {
+    // The head, the mesh and (for transfer textures) the atlas sections.
     await fetchAll(wanted.filter((p) => p.pass === undefined), () => {});
     const geometryError = app.streamGeometry();
     if (geometryError) throw fail(geometryError);
     const displayed = app.mode();
+    const displayedDomain = app.source() === domains.texel ? 'texel' : 'vertex';
     let shown = false;
     // Glossy matrix passes the server did not cut into parts (no `form: matrix` parts: their
     // sections came whole with the geometry's): uploaded whole now.
@@ -130,15 +132,20 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
         if (error) throw fail(error);
       }
     }
-    if (app.hasAnyPass(displayed) && !transferParts.some((p) => kinds[p.pass] === displayed)) {
+    const domainOf = (p) => (p.domain === 'texel' ? 'texel' : 'vertex');
+    if (app.hasAnyPass(displayed) && !transferParts.some((p) => kinds[p.pass] === displayed && domainOf(p) === displayedDomain)) {
       shown = true;  // a glossy-only displayed pass, whole already
       onFirstPicture();
     }
-    // The displayed pass first, then the others in file order; a pass is its kind and form
-    // ("shadowed" vector pass, "shadowed/matrix" glossy pass), each streamed band by band.
-    const keyOf = (p) => `${p.pass}/${p.form === 'matrix' ? 'matrix' : 'vector'}`;
+    // The displayed pass first, then the others in file order; a pass is its kind, form and
+    // domain ("shadowed/vector/vertex", the glossy "shadowed/matrix/vertex", the transfer
+    // texture "shadowed/vector/texel"), each streamed band by band.
+    const keyOf = (p) => `${p.pass}/${p.form === 'matrix' ? 'matrix' : 'vector'}/${domainOf(p)}`;
     const passKeys = [...new Set(transferParts.map(keyOf))];
-    const isDisplayed = (key) => kinds[key.split('/')[0]] === displayed;
+    const isDisplayed = (key) => {
+      const [name, , domain] = key.split('/');
+      return kinds[name] === displayed && domain === displayedDomain;
+    };
     passKeys.sort((a, b) => isDisplayed(b) - isDisplayed(a));
     const queue = passKeys.flatMap((key) => transferParts.filter((p) => keyOf(p) === key));
     const arrived = new Array(queue.length).fill(false);
@@ -147,7 +154,7 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
     // up strictly in order whatever order the fetches finish in.
     const apply = () => {
       for (const key of passKeys) {
-        const [name, form] = key.split('/');
+        const [name, form, domain] = key.split('/');
         const k = kinds[name];
         const parts = queue.map((p, i) => [p, i]).filter(([p]) => keyOf(p) === key);
         let bands = 0, whole = false;
@@ -159,10 +166,11 @@ export function streamAsset(app, entry, { kinds, progress = {}, onProgress = () 
         if (!whole && bands === 0) continue;
         const request = whole ? 0 : bands;
         if (applied.get(key) === (whole ? 'all' : bands)) continue;
-        const error = form === 'matrix' ? app.streamGlossyPass(k, request) : app.streamPass(k, request);
+        const error = form === 'matrix' ? app.streamGlossyPass(k, request)
+          : domain === 'texel' ? app.streamTexelPass(k, request) : app.streamPass(k, request);
         if (error) throw fail(error);
         applied.set(key, whole ? 'all' : bands);
-        if (k === displayed && !shown) {
+        if (isDisplayed(key) && !shown) {
           shown = true;
           onFirstPicture();
         }

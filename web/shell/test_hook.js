@@ -7,7 +7,8 @@ import { normaliseLights } from './lights.js';
 import { randomLights } from './random_lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
-export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy'];
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
+const SOURCES = ['vertex', 'texel'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // GlRenderer's GlossyWork (web/src/gl_renderer.h) by name, for timeGlossy.
 const GLOSSY_WORK = { table: 1, relight: 2, view: 3 };
@@ -57,6 +58,31 @@ export function installTestHook(page) {
     },
     get cpcaShapes() {
       return ready() ? Object.fromEntries(PASS_NAMES.map((n) => [n, Array.from(page.app.cpcaShape(client.ShadingMode[n]))])) : null;
+    },
+    // Transfer textures (docs/web-client.md, "Transfer textures"): the domain drawn now
+    // ('vertex' or 'texel'), the texel passes' bands on the GPU [unshadowed, shadowed,
+    // interreflected] (0: absent or not arrived yet; like loadedBands), the atlases.
+    get source() {
+      return ready() ? (page.app.source() === client.TransferDomain.texel ? 'texel' : 'vertex') : null;
+    },
+    get texelBands() {
+      return page.app ? PASS_NAMES.map((n) => page.app.texelBands(client.ShadingMode[n])) : null;
+    },
+    get atlases() {
+      if (!ready()) return null;
+      const sizes = Array.from(page.app.atlasSizes());
+      return sizes.filter((_, i) => i % 2 === 0).map((width, i) => ({ width, height: sizes[2 * i + 1] }));
+    },
+    // Atlas `atlas` of texel pass `pass` rendered in UV space by the shading fragment shader with
+    // the current lighting and order, read back: {width, height, data: Float32Array of linear
+    // RGBA, row y = texel row y, alpha 1 where a triangle covers the texel centre}. Throws on error.
+    texelAtlasRadiance(pass, atlas = 0) {
+      if (!ready()) throw new Error('texelAtlasRadiance: no scene is loaded yet');
+      if (!PASS_NAMES.includes(pass)) throw new Error(`texelAtlasRadiance: pass must be one of ${PASS_NAMES.join(', ')}`);
+      const data = page.app.texelAtlasRadiance(client.ShadingMode[pass], atlas);
+      if (typeof data === 'string') throw new Error(`texelAtlasRadiance: ${data}`);
+      const sizes = Array.from(page.app.atlasSizes());
+      return { width: sizes[2 * atlas], height: sizes[2 * atlas + 1], data };
     },
     // Exit radiance of every vertex in the last frame (flat RGB, before exposure): a GPU read-back.
     vertexRadiance() {
@@ -224,6 +250,12 @@ export function installTestHook(page) {
         const bad = g === null || typeof g !== 'object' || Object.entries(g).some(([k, v]) => !PASS_NAMES.includes(k) || !GLOSSY_MIXES.includes(v));
         if (bad) throw new Error(`set: glossy must map pass names (${PASS_NAMES.join(', ')}) to one of ${GLOSSY_MIXES.join(', ')}; got ${JSON.stringify(g)}`);
       }
+      if ('source' in options) {
+        if (!SOURCES.includes(options.source)) throw new Error(`set: source must be one of ${SOURCES.join(', ')}; got ${JSON.stringify(options.source)}`);
+        if (page.app && !page.app.hasSource(client.TransferDomain[options.source])) {
+          throw new Error(`set: source '${options.source}': this scene has no ${options.source} passes`);
+        }
+      }
       const environments = page.environmentNames();
       if ('environment' in options && options.environment !== null && !environments.includes(options.environment)) {
         throw new Error(`set: environment must be null (off) or one of ${environments.map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
@@ -234,7 +266,7 @@ export function installTestHook(page) {
         if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
         normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
       }
-      for (const key of ['mode', 'order', 'exposure', 'intensity', 'background']) if (key in options) state[key] = options[key];
+      for (const key of ['mode', 'order', 'exposure', 'intensity', 'background', 'source']) if (key in options) state[key] = options[key];
       if ('glossy' in options) Object.assign(state.glossyMix, options.glossy);
       if ('envRotation' in options) {
         const r = options.envRotation;

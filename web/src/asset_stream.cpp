@@ -28,27 +28,34 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
     return Status::error(StatusCode::kCorrupt, "the asset's header declares " + std::to_string(s.fileSize) +
                                                    " bytes but the catalogue said " + std::to_string(file_.size()));
   }
-  bool anyVertexPass = false;
-  for (const AssetPassInfo& p : s.passes) anyVertexPass = anyVertexPass || p.domain == TransferDomain::kVertex;
-  if (!anyVertexPass) return Status::error(StatusCode::kInvalidArgument, kOnlyTexelPassesMessage);
-  if (Status st = decodeAssetGeometry(file_, out); !st.isOk()) return st;
+  BakedAsset decoded;
+  if (Status st = decodeAssetGeometry(file_, &decoded); !st.isOk()) return st;
+  // Empty for an asset without texel passes; else the sections must be here (checksummed).
+  if (Status st = decodeAssetAtlases(file_, &decoded); !st.isOk()) return st;
+  *out = std::move(decoded);
   summary_ = std::move(s);
   headerRead_ = true;
   return Status::ok();
 }
 
-int AssetStream::passIndex(int kind, TransferForm form) const {
-  // Vertex passes only: the client does not render transfer textures yet.
+int AssetStream::passIndex(int kind, TransferForm form, TransferDomain domain) const {
   for (std::size_t i = 0; i < summary_.passes.size(); ++i) {
     const AssetPassInfo& p = summary_.passes[i];
-    if (static_cast<int>(p.kind) == kind && p.form == form && p.domain == TransferDomain::kVertex) return static_cast<int>(i);
+    if (static_cast<int>(p.kind) == kind && p.form == form && p.domain == domain) return static_cast<int>(i);
   }
   return -1;
 }
 
-
 bool AssetStream::hasKind(int kind) const { return passIndex(kind) >= 0; }
 bool AssetStream::hasMatrixKind(int kind) const { return passIndex(kind, TransferForm::kMatrix) >= 0; }
+bool AssetStream::hasTexelKind(int kind) const { return passIndex(kind, TransferForm::kVector, TransferDomain::kTexel) >= 0; }
+
+Status AssetStream::decodeTexelPass(int kind, int bands, TransferPass* out, int* order) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = passIndex(kind, TransferForm::kVector, TransferDomain::kTexel);
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no texel pass of kind " + std::to_string(kind));
+  return decodeAssetPass(file_, i, bands, out, order);
+}
 
 Status AssetStream::decodeMatrixPassCpca(int kind, int bands, CpcaMatrixTransfer* out, TransferPass* info) {
   if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");

@@ -14,11 +14,6 @@
 
 namespace prt::web {
 
-// Why an asset whose passes are all texel passes (transfer textures) cannot be shown: this
-// client renders vertex passes only (for now).
-inline constexpr const char* kOnlyTexelPassesMessage =
-    "the asset holds only texel (transfer-texture) passes, which this client cannot render yet; bake it with vertex passes";
-
 class AssetStream {
  public:
   // A zeroed buffer of `bytes` (the catalogue's file size) for the parts; nullptr when it
@@ -27,11 +22,10 @@ class AssetStream {
   std::uint8_t* data() { return file_.data(); }
   std::size_t size() const { return file_.size(); }
 
-  // Once the head part and every non-transfer section have been placed: validates header,
-  // table, metadata and lighting (peekAssetHeader), checks that the declared file size is
-  // the buffer's, and decodes the geometry (no passes) into *out. kInvalidArgument
-  // (kOnlyTexelPassesMessage) when the asset has no vertex pass. The atlas sections are not
-  // needed: the passes below are the vertex passes, texel passes are not streamed (yet).
+  // Once the head part and every non-transfer section (the atlas sections included) have been
+  // placed: validates header, table, metadata and lighting (peekAssetHeader), checks that the
+  // declared file size is the buffer's, and decodes the geometry (no passes) into *out, with
+  // the atlas uv, atlases and texel coverage when the asset has texel passes.
   Status decodeGeometry(BakedAsset* out);
 
   // Decodes the pass of `kind` (0 unshadowed, 1 shadowed, 2 interreflected) from its first
@@ -53,6 +47,11 @@ class AssetStream {
 
   // Whether the asset holds a (vector, vertex) pass of `kind`.
   bool hasKind(int kind) const;
+  // Whether the asset holds a texel pass (transfer textures) of `kind`.
+  bool hasTexelKind(int kind) const;
+  // The texel pass of `kind` from its first `bands` bands (0: whole; float32 passes decode
+  // only whole; a CPCA-encoded one is expanded): texels x channels x order^2 floats.
+  Status decodeTexelPass(int kind, int bands, TransferPass* out, int* order);
 
   // Glossy: the matrix pass of `kind` unexpanded (decodeAssetPassCpcaMatrix) from its first
   // `bands` shells (0: every shell that has arrived); kInvalidArgument when absent or not CPCA.
@@ -68,8 +67,8 @@ class AssetStream {
   std::vector<std::uint8_t> file_;
   AssetSummary summary_;
   bool headerRead_ = false;
-  // Index into summary_.passes of the vertex pass of `kind` and `form`, or -1.
-  int passIndex(int kind, TransferForm form = TransferForm::kVector) const;
+  // Index into summary_.passes of the pass of `kind`, `form` and `domain`, or -1.
+  int passIndex(int kind, TransferForm form = TransferForm::kVector, TransferDomain domain = TransferDomain::kVertex) const;
   bool isCpcaAt(int index) const;
 };
 

@@ -61,20 +61,19 @@ std::string ClientApp::loadAsset() {
   pending_.clear();
   pending_.shrink_to_fit();
   if (!s.isOk()) return s.toString();
-  // Texel passes (transfer textures) are not rendered yet: drop them and their atlases, and
-  // say so when nothing else is left to show.
-  std::erase_if(decoded.passes, [](const TransferPass& p) { return p.domain != TransferDomain::kVertex; });
-  if (decoded.passes.empty()) return kOnlyTexelPassesMessage;
-  decoded.atlasUv = {};
-  decoded.atlases = {};
-  decoded.texelCoverage = {};
   // CPCA passes go up in their compressed form (when cpcaDirect_), the others expanded;
-  // glossy matrix passes always as CPCA (a float32 one as one cluster per vertex).
+  // glossy matrix passes always as CPCA (a float32 one as one cluster per vertex); texel
+  // passes expanded, into transfer textures.
   std::vector<std::pair<TransferKind, CpcaTransfer>> cpca;
   std::vector<std::pair<TransferKind, CpcaMatrixTransfer>> glossy;
-  std::vector<TransferPass> expanded;
+  std::vector<TransferPass> expanded, texel;
   const int glossyBands = std::min(decoded.shOrder, kMaxGlossyOrder);
   for (TransferPass& p : decoded.passes) {
+    if (p.domain == TransferDomain::kTexel) {
+      p.encoded = {};
+      texel.push_back(std::move(p));
+      continue;
+    }
     if (p.form == TransferForm::kMatrix) {
       CpcaMatrixTransfer m;
       if (!p.encoded.empty()) {
@@ -112,14 +111,82 @@ std::string ClientApp::loadAsset() {
   for (const auto& [kind, c] : cpca) {
     if (Status u = renderer_.uploadCpcaPass(kind, c); !u.isOk()) return u.message();
   }
+  for (const TransferPass& t : texel) {
+    if (Status u = renderer_.uploadTexelPass(t, decoded.shOrder); !u.isOk()) return u.message();
+  }
+  texel = {};
   adoptGeometry(std::move(decoded));
   for (auto& [kind, m] : glossy) {
     if (std::string e = uploadGlossy(kind, std::move(m)); !e.empty()) return e;
   }
-  if (!hasAnyPass(mode_)) {
-    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
-      if (hasAnyPass(m)) mode_ = m;
+  resolveSource();
+  return "";
+}
+
+bool ClientApp::hasAnyPass(ShadingMode mode) const {
+  if (!ok()) return false;
+  if (!isPassKind(mode)) return renderer_.hasPass(mode);  // Lambert: the geometry
+  if (source_ == TransferDomain::kTexel) return renderer_.texelOrder(mode) > 0;
+  return renderer_.hasPass(mode) || renderer_.glossyOrder(mode) > 0;
+}
+
+bool ClientApp::offers(ShadingMode mode, TransferDomain d) const {
+  if (!isPassKind(mode)) return false;
+  const int kind = static_cast<int>(mode);
+  if (d == TransferDomain::kTexel) return renderer_.texelOrder(mode) > 0 || stream_.hasTexelKind(kind);
+  return renderer_.hasPass(mode) || renderer_.glossyOrder(mode) > 0 || stream_.hasKind(kind) || stream_.hasMatrixKind(kind);
+}
+
+bool ClientApp::hasSource(TransferDomain d) const {
+  return offers(ShadingMode::kUnshadowed, d) || offers(ShadingMode::kShadowed, d) || offers(ShadingMode::kInterreflected, d);
+}
+
+void ClientApp::resolveSource() {
+  const TransferDomain other = wantedSource_ == TransferDomain::kTexel ? TransferDomain::kVertex : TransferDomain::kTexel;
+  source_ = !hasSource(wantedSource_) && hasSource(other) ? other : wantedSource_;
+  if (mode_ == ShadingMode::kLambert || offers(mode_, source_)) return;
+  for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed}) {
+    if (offers(m, source_)) {
+      mode_ = m;
+      return;
+    }
   }
+}
+
+void ClientApp::setSource(TransferDomain d) {
+  if (d != TransferDomain::kVertex && d != TransferDomain::kTexel) return;
+  const TransferDomain before = source_;
+  wantedSource_ = d;
+  resolveSource();
+  if (source_ != before) pendingMode_.reset();  // a mode waiting for its pass waited in the other domain
+}
+
+std::string ClientApp::streamTexelPass(ShadingMode mode, int bands) {
+  if (!ok()) return error_;
+  if (!isPassKind(mode)) return "streamTexelPass: kind must be a pass kind (unshadowed, shadowed or interreflected)";
+  TransferPass pass;
+  int order = 0;
+  if (Status s = stream_.decodeTexelPass(static_cast<int>(mode), bands, &pass, &order); !s.isOk()) return s.toString();
+  makeCurrent();
+  if (Status u = renderer_.uploadTexelPass(pass, order); !u.isOk()) return u.message();
+  if (pendingMode_ == mode && source_ == TransferDomain::kTexel) {
+    mode_ = mode;
+    pendingMode_.reset();
+  }
+  return "";
+}
+
+std::vector<int> ClientApp::atlasSizes() const {
+  std::vector<int> out;
+  for (const TextureAtlas& a : renderer_.atlases()) out.insert(out.end(), {static_cast<int>(a.width), static_cast<int>(a.height)});
+  return out;
+}
+
+std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out) {
+  if (!ok()) return error_;
+  makeCurrent();
+  prepareLighting();
+  if (Status s = renderer_.readTexelAtlas(kind, atlas, displayOrder_, out); !s.isOk()) return s.message();
   return "";
 }
 
@@ -178,7 +245,7 @@ std::string ClientApp::streamGlossyPass(ShadingMode mode, int bands) {
     }
   }
   if (std::string e = uploadGlossy(static_cast<TransferKind>(kind), std::move(cpca)); !e.empty()) return e;
-  if (pendingMode_ == mode) {
+  if (pendingMode_ == mode && source_ == TransferDomain::kVertex) {
     mode_ = mode;
     pendingMode_.reset();
   }
@@ -265,12 +332,8 @@ std::string ClientApp::streamGeometry() {
     if (Status s = stream_.decodeSpecular(&decoded.specular); !s.isOk()) return s.toString();
   }
   adoptGeometry(std::move(decoded));
-  // The displayed pass, chosen as loadAsset chooses among the passes the file holds.
-  auto streams = [this](ShadingMode m) { return stream_.hasKind(static_cast<int>(m)) || stream_.hasMatrixKind(static_cast<int>(m)); };
-  if (!streams(mode_)) {
-    for (ShadingMode m : {ShadingMode::kInterreflected, ShadingMode::kShadowed, ShadingMode::kUnshadowed})
-      if (streams(m)) mode_ = m;
-  }
+  // The drawn domain and pass, chosen as loadAsset chooses among the passes the file holds.
+  resolveSource();
   return "";
 }
 
@@ -290,7 +353,7 @@ std::string ClientApp::streamPass(ShadingMode mode, int bands) {
     makeCurrent();
     if (Status u = renderer_.uploadPass(pass, order); !u.isOk()) return u.message();
   }
-  if (pendingMode_ == mode) {
+  if (pendingMode_ == mode && source_ == TransferDomain::kVertex) {
     mode_ = mode;
     pendingMode_.reset();
   }
@@ -326,7 +389,7 @@ void ClientApp::setMode(ShadingMode m) {
   if (hasAnyPass(m) || asset_.positions.empty()) {
     mode_ = m;
     pendingMode_.reset();
-  } else if (stream_.hasKind(static_cast<int>(m)) || stream_.hasMatrixKind(static_cast<int>(m))) {
+  } else if (offers(m, source_)) {
     pendingMode_ = m;  // still streaming: switch when its first band arrives
   }
 }
@@ -386,6 +449,7 @@ void ClientApp::render(int width, int height) {
   p.eye = camera_.eye();
   p.fresnel = fresnel_;
   p.lightingVersion = lights_.lightingVersion();
+  p.domain = source_;
   lastEye_ = p.eye;
   renderer_.draw(width, height, p);
   lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);

@@ -72,6 +72,27 @@ class ClientApp {
   // GPU buffer back: tests and tools only).
   std::vector<float> vertexRadiance() const;
 
+  // ---- transfer textures (docs/web-client.md, "Transfer textures") ----
+  // Draws the passes of domain `d`: per vertex (kVertex, the default) or per texel (kTexel).
+  // Kept as the wish: a scene without passes of `d` is drawn from its other domain (a
+  // texel-only asset from its texel passes), and the next scene that has them honours it.
+  void setSource(TransferDomain d);
+  // The domain drawn now.
+  TransferDomain source() const { return source_; }
+  // Whether the scene has (or is streaming) passes of domain `d`.
+  bool hasSource(TransferDomain d) const;
+  // Decodes texel pass `kind` from its first `bands` bands (0: all; float32 passes only
+  // decode whole) and re-uploads it as transfer textures at that order. "" or the error.
+  std::string streamTexelPass(ShadingMode kind, int bands);
+  // Bands of texel pass `kind` on the GPU (0 when absent, and for Lambert).
+  int texelBands(ShadingMode kind) const { return renderer_.texelOrder(kind); }
+  // The atlases' sizes, [width0, height0, width1, height1, ...] (empty without texel passes).
+  std::vector<int> atlasSizes() const;
+  // Tests: atlas `atlas` of texel pass `kind` rendered in UV space by the shading fragment
+  // shader with this frame's lighting (updated first) at the display order, read back into
+  // *out as linear RGBA (TexelRenderer::readAtlas). "" or the error.
+  std::string texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out);
+
   // ---- glossy rendering (docs/web-client.md, "Glossy rendering") ----
   // Which terms pass `kind` draws: its diffuse vector pass, its glossy matrix pass, or both
   // (the default). Ignored for Lambert.
@@ -195,8 +216,9 @@ class ClientApp {
   int displayOrder() const { return displayOrder_; }
   ShadingMode mode() const { return mode_; }
   bool hasPass(ShadingMode mode) const { return ok() && renderer_.hasPass(mode); }
-  // A vector or a glossy pass of `mode` (Lambert: the geometry) is on the GPU.
-  bool hasAnyPass(ShadingMode mode) const { return hasPass(mode) || (ok() && renderer_.glossyOrder(mode) > 0); }
+  // A pass of `mode` in the drawn domain is on the GPU: a vector or glossy vertex pass, or the
+  // texel pass (Lambert: the geometry).
+  bool hasAnyPass(ShadingMode mode) const;
 
  private:
   bool ok() const { return error_.empty(); }
@@ -207,6 +229,11 @@ class ClientApp {
   void adoptGeometry(BakedAsset decoded);  // bounds, order, mode, framing of a new scene
   // Uploads a glossy pass and keeps its CPU copy for glossyReference. "" or the error.
   std::string uploadGlossy(TransferKind kind, CpcaMatrixTransfer cpca);
+  // Whether pass kind `mode` of domain `d` is on the GPU or still streaming.
+  bool offers(ShadingMode mode, TransferDomain d) const;
+  // source_ from wantedSource_ and what the scene has; then, if the displayed pass kind is not
+  // offered in that domain, the richest that is (interreflected, shadowed, unshadowed).
+  void resolveSource();
 
   std::string error_;
   int context_ = 0;
@@ -231,6 +258,7 @@ class ClientApp {
   float packed_[kPackedLightingFloats] = {};
 
   ShadingMode mode_ = ShadingMode::kInterreflected;
+  TransferDomain wantedSource_ = TransferDomain::kVertex, source_ = TransferDomain::kVertex;
   std::optional<ShadingMode> pendingMode_;  // a mode asked for whose pass is still streaming
   int displayOrder_ = kMaxClientOrder;
   float exposure_ = 1.0f;

@@ -71,6 +71,16 @@ val vertexGlossy(const ClientApp& app) { return val::array(app.vertexGlossy()); 
 val glossyReference(ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyReference(kind)); }
 val glossyShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyShape(kind)); }
 
+val atlasSizes(const ClientApp& app) { return val::array(app.atlasSizes()); }
+
+// Atlas `atlas` of texel pass `kind` read back in UV space (ClientApp::texelAtlasRadiance): a
+// Float32Array of width x height x 4 linear RGBA floats, or a string naming the error.
+val texelAtlasRadiance(ClientApp& app, prt::web::ShadingMode kind, int atlas) {
+  std::vector<float> rgba;
+  if (std::string e = app.texelAtlasRadiance(kind, atlas, &rgba); !e.empty()) return val(e);
+  return val(emscripten::typed_memory_view(rgba.size(), rgba.data())).call<val>("slice");  // a copy: rgba dies here
+}
+
 val project(const ClientApp& app, float x, float y, float z) { return val::array(app.project(x, y, z)); }
 val viewProjection(const ClientApp& app) { return val::array(app.viewProjection()); }
 val sceneCenter(const ClientApp& app) {
@@ -98,6 +108,10 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .value("diffuse", prt::web::GlossyMix::kDiffuse)
       .value("glossy", prt::web::GlossyMix::kGlossy)
       .value("both", prt::web::GlossyMix::kBoth);
+  // Module.TransferDomain.vertex / texel: which passes are drawn (setSource, source, hasSource).
+  emscripten::enum_<prt::TransferDomain>("TransferDomain")
+      .value("vertex", prt::TransferDomain::kVertex)
+      .value("texel", prt::TransferDomain::kTexel);
   emscripten::class_<ClientApp>("ClientApp")
       .constructor<std::string>()
       .function("error", &ClientApp::error)
@@ -114,6 +128,13 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("passForm", &ClientApp::passForm)
       .function("cpcaShape", &cpcaShape)
       .function("vertexRadiance", &vertexRadiance)
+      .function("setSource", &ClientApp::setSource)
+      .function("source", &ClientApp::source)
+      .function("hasSource", &ClientApp::hasSource)
+      .function("streamTexelPass", &ClientApp::streamTexelPass)
+      .function("texelBands", &ClientApp::texelBands)
+      .function("atlasSizes", &atlasSizes)
+      .function("texelAtlasRadiance", &texelAtlasRadiance)
       .function("setGlossyMix", &ClientApp::setGlossyMix)
       .function("glossyMix", &ClientApp::glossyMix)
       .function("hasGlossy", &ClientApp::hasGlossy)

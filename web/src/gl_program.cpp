@@ -68,4 +68,12 @@ void setNearestClamp(GLenum target) {
   glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
+Status glErrorStatus(const char* memoryFor, const char* during) {
+  const GLenum err = glGetError();
+  if (err == GL_NO_ERROR) return Status::ok();
+  return Status::error(StatusCode::kInvalidArgument, err == GL_OUT_OF_MEMORY
+                                                         ? std::string("the GPU is out of memory for ") + memoryFor
+                                                         : "WebGL error " + std::to_string(err) + " while " + during);
+}
+
 }  // namespace prt::web

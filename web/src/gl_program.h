@@ -19,4 +19,9 @@ void bindUniformBlock(GLuint program, const char* name, GLuint binding);
 // Texture parameters for texelFetch-only textures (no filtering, no wrapping).
 void setNearestClamp(GLenum target);
 
+// The GL error the calls since the last check left (glGetError) as a Status: ok when none;
+// out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
+// other error its code and what was being done ("WebGL error N while <during>").
+Status glErrorStatus(const char* memoryFor, const char* during);
+
 }  // namespace prt::web

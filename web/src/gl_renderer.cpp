@@ -40,17 +40,6 @@ GLuint makeWeightTexture(int weightBits, int width, int height, const void* leve
   return t;
 }
 
-// The GL error the calls since the last check left (glGetError) as a Status: ok when none;
-// out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
-// other error its code and what was being done ("WebGL error N while <during>").
-Status glErrorStatus(const char* memoryFor, const char* during) {
-  const GLenum err = glGetError();
-  if (err == GL_NO_ERROR) return Status::ok();
-  return Status::error(StatusCode::kInvalidArgument, err == GL_OUT_OF_MEMORY
-                                                         ? std::string("the GPU is out of memory for ") + memoryFor
-                                                         : "WebGL error " + std::to_string(err) + " while " + during);
-}
-
 }  // namespace
 
 Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* feedback) {
@@ -105,10 +94,11 @@ Status GlRenderer::init() {
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
   if (Status s = link(shaders::k_background_vert, shaders::k_background_frag, &background_); !s.isOk()) return s;
   glGenVertexArrays(1, &backgroundVao_);
-  return Status::ok();
+  return texels_.init();
 }
 
 void GlRenderer::releaseGeometry() {
+  texels_.releaseGeometry();  // first: it draws from the buffers deleted below
   for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_, &glossyBuffer_}) {
     if (*b) glDeleteBuffers(1, b);
     *b = 0;
@@ -419,6 +409,7 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
   vertexCount_ = static_cast<GLsizei>(asset.positions.size());
   indexCount_ = static_cast<GLsizei>(asset.indices.size());
   bakedOrder_ = asset.shOrder;
+  texels_.setGeometry(positions_, albedo_, indices_, asset.atlasUv, asset.atlases);  // nothing without atlases
 }
 
 Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
@@ -444,6 +435,20 @@ Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
   return glErrorStatus("this scene's transfer", "uploading a transfer pass");
 }
 
+Status GlRenderer::uploadTexelPass(const TransferPass& pass, int order) {
+  if (pass.domain != TransferDomain::kTexel || indexCount_ == 0 || order < 1 || order > bakedOrder_) {
+    return Status::error(StatusCode::kInvalidArgument, "uploadTexelPass: not a texel pass, no geometry, or an order out of range");
+  }
+  return texels_.uploadPass(pass, order);
+}
+
+int GlRenderer::texelOrder(ShadingMode mode) const { return isPassKind(mode) ? texels_.passOrder(static_cast<int>(mode)) : 0; }
+
+Status GlRenderer::readTexelAtlas(ShadingMode mode, int atlas, int displayOrder, std::vector<float>* out) {
+  if (!isPassKind(mode)) return Status::error(StatusCode::kInvalidArgument, "readTexelAtlas: not a pass kind");
+  return texels_.readAtlas(static_cast<int>(mode), atlas, displayOrder, out);
+}
+
 int GlRenderer::passOrder(ShadingMode mode) const {
   if (!isPassKind(mode)) return 0;
   const PassTexture& t = passes_[static_cast<std::size_t>(mode)];
@@ -457,7 +462,7 @@ Status GlRenderer::upload(const BakedAsset& asset) {
   std::array<TransferTexture, 3> packed;
   for (const TransferPass& pass : asset.passes) {
     const auto kind = static_cast<std::size_t>(pass.kind);
-    if (kind > 2) continue;
+    if (kind > 2 || pass.domain != TransferDomain::kVertex) continue;  // texel passes: uploadTexelPass
     if (Status s = packTransfer(pass, asset.shOrder, asset.positions.size(), maxSize, &packed[kind]); !s.isOk()) return s;
   }
   release();
@@ -600,6 +605,10 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glUniformMatrix4fv(lambert_.viewProjection, 1, GL_FALSE, glm::value_ptr(p.viewProjection));
     glUniform1f(lambert_.exposure, p.exposure);  // lighting: the bound Lighting block
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+    return;
+  }
+  if (p.domain == TransferDomain::kTexel) {
+    (void)texels_.draw(static_cast<int>(p.mode), p.viewProjection, p.displayOrder, p.exposure);
     return;
   }
   // The terms of the pass: diffuse (vector pass) and glossy (matrix pass), each captured into

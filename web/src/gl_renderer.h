@@ -1,5 +1,6 @@
 // WebGL2 drawing of a baked asset: geometry buffers, one transfer texture per pass, the PRT
-// and Lambert programs and the SH background (emitters: dynamic_lighting.h). All GL in the project lives in web/.
+// and Lambert programs and the SH background (emitters: dynamic_lighting.h; texel passes,
+// transfer textures: texel_renderer.h). All GL in the project lives in web/.
 #pragma once
 
 #include <GLES3/gl3.h>
@@ -14,6 +15,7 @@
 #include "glm_types.h"
 #include "prt/asset.h"
 #include "prt/status.h"
+#include "texel_renderer.h"
 #include "transfer_texture.h"
 
 namespace prt::web {
@@ -52,6 +54,9 @@ struct FrameParams {
   // Changes whenever the bound lighting block may hold other values: the glossy pass keeps
   // its transferred radiance (view-independent) while this and the display order stay put.
   unsigned lightingVersion = 0;
+  // Which pass of `mode` is drawn: the vertex pass (with its glossy term) or the texel pass
+  // (transfer textures, diffuse only; docs/web-client.md "Transfer textures").
+  TransferDomain domain = TransferDomain::kVertex;
 };
 
 // How much of the glossy work shadeGlossy does (docs/web-client.md, "Glossy rendering").
@@ -99,6 +104,17 @@ class GlRenderer {
   // The glossy radiance the last frame computed, RGB per vertex (synchronous read-back).
   std::vector<float> readGlossy(std::size_t vertices) const;
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
+  // Uploads texel pass `pass` (domain kTexel) holding `order` bands (<= the baked order) into
+  // transfer textures, replacing the texel pass of its kind. Needs geometry with atlases; a
+  // pass that does not fit changes nothing.
+  Status uploadTexelPass(const TransferPass& pass, int order);
+  // Bands the texel pass of `mode` holds; 0 when absent (and for Lambert).
+  int texelOrder(ShadingMode mode) const;
+  // The scene's atlases (empty without transfer textures).
+  const std::vector<TextureAtlas>& atlases() const { return texels_.atlases(); }
+  // Atlas `atlas` of texel pass `mode` rendered in UV space and read back as linear RGBA
+  // floats (TexelRenderer::readAtlas), with the bound lighting block at `displayOrder` bands.
+  Status readTexelAtlas(ShadingMode mode, int atlas, int displayOrder, std::vector<float>* out);
   bool hasPass(ShadingMode mode) const;
   // How pass `mode` is drawn (kAbsent for Lambert).
   PassForm passForm(ShadingMode mode) const;
@@ -187,6 +203,7 @@ class GlRenderer {
   int bakedOrder_ = 0;
   std::array<PassTexture, 3> passes_{};
   std::array<GlossyPass, 3> glossy_{};  // by TransferKind (unshadowed unused: no such matrix pass is baked)
+  TexelRenderer texels_;  // texel passes, drawn from this class's position, albedo and index buffers
 };
 
 }  // namespace prt::web

@@ -1,0 +1,234 @@
+// Transfer textures (per-texel PRT) in the page, headless Chromium (SwiftShader) against a real
+// prt-serve: the default room baked with --texels, streamed in parts. The fragment shader's
+// radiance read back in UV space must equal the baker's per-texel radiance (prt-bake shade
+// --texels) at the sampled texel centres; the picture in texel mode must be lit, differ from
+// vertex mode at the contact shadows and switch back to the same vertex picture; an asset with
+// texel passes only must render (and equal the full asset's texel picture).
+// Usage: node browser_texel_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR PRT_CORE_NODE_JS ENV_EXR
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase } from './browser_harness.mjs';
+
+const [caseName, prtServe, prtBake, webDist, workDir, coreJs, envExr] = process.argv.slice(2);
+const checks = makeChecks();
+const { check } = checks;
+for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['prt_core_node.js', coreJs], ['environment map', envExr]]) {
+  if (!p || !fs.existsSync(p)) {
+    console.error(`${what} not found at ${p} (build the native and wasm presets)`);
+    process.exit(1);
+  }
+}
+
+// ---- fixture: the default room with texel passes (the built-in atlas keeps its gutters from
+// 512 texels a side), order 3, one bounce, q16 so the texel passes stream band by band. About
+// 10 s on the 2-core machine.
+const root = path.join(workDir, 'root');
+fs.rmSync(workDir, { recursive: true, force: true });
+fs.mkdirSync(root, { recursive: true });
+const asset = path.join(root, 'room-texel.prt');
+const bakeStart = Date.now();
+execFileSync(prtBake, ['--default', '--texels', '--texture-size', '512', '--samples', '64', '--bounces', '1', '--order', '3',
+  '--passes', 'shadowed,interreflected', '--compress', 'q16', '--name', 'room-texel', '-o', asset, '--quiet']);
+console.log(`bake: ${((Date.now() - bakeStart) / 1000).toFixed(1)} s, ${(fs.statSync(asset).size / 1e6).toFixed(1)} MB`);
+fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
+
+// The page's constant lighting: the white furnace (radiance 1), environment on, no lights.
+const FURNACE = '?env=white%20furnace';
+const waitAll = (page) => page.waitForFunction(() => window.prtApp.error || (window.prtApp.ready && window.prtApp.bytesReceived === window.prtApp.bytesTotal),
+  null, { timeout: 90000 });
+
+// Atlas `atlas` of texel pass `pass` read back in UV space, as {width, height, rgba: Float32Array}
+// (sent base64: a million floats as JSON would be slow).
+async function readAtlas(page, pass, atlas = 0) {
+  const r = await page.evaluate(([p, a]) => {
+    const { width, height, data } = window.prtApp.texelAtlasRadiance(p, a);
+    const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+    let s = '';
+    for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+    return { width, height, b64: btoa(s) };
+  }, [pass, atlas]);
+  const buf = Buffer.from(r.b64, 'base64');
+  return { width: r.width, height: r.height, rgba: new Float32Array(buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.length)) };
+}
+
+// Fraction of pixels clearly brighter than the clear colour, and the mean luminance.
+function litStats(img) {
+  let lit = 0, sum = 0;
+  for (let y = 0; y < img.height; y++)
+    for (let x = 0; x < img.width; x++) {
+      const l = luminance(img, x, y);
+      sum += l;
+      if (l > 40) lit++;
+    }
+  return { litFraction: lit / (img.width * img.height), mean: sum / (img.width * img.height) };
+}
+
+function maxChannelDifference(a, b) {
+  let m = 0;
+  for (let i = 0; i < a.data.length; i += 4)
+    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
+  return m;
+}
+
+const cases = {
+  // (a) The GPU's per-fragment radiance at texel centres against the CPU reference, for the
+  // interreflected (RGB) and the shadowed (scalar x albedo) pass under constant radiance 1.
+  // Tolerance: the RGBA16F coefficients are the float ones rounded to 11 significant bits
+  // (relative error <= 2^-11 = 4.9e-4; constant light reads coefficient 0 alone, so the
+  // radiance inherits that bound), plus float32 arithmetic and texel-centre interpolation:
+  // 1e-3 of the texel's own radiance, and 1e-4 of the atlas's peak for texels near black.
+  async texel_atlas_matches_baker(browser) {
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const entry = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes.find((e) => e.name === 'room-texel');
+      const texelBandParts = (entry?.parts ?? []).filter((p) => p.domain === 'texel' && p.kind === 'transfer-band').length;
+      check(texelBandParts === 6, `the catalogue lists ${texelBandParts} texel band parts, not 2 passes x 3 bands: the texel passes would not stream band by band`);
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&source=texel`, { waitReady: false });
+      await waitAll(page);
+      const state = await page.evaluate(() => ({ error: window.prtApp.error, source: window.prtApp.source, texelBands: window.prtApp.texelBands,
+        atlases: window.prtApp.atlases, environment: window.prtApp.environment, lights: window.prtApp.lights.length }));
+      check(state.error === null, `page error: ${state.error}`);
+      check(state.source === 'texel', `source is ${state.source}, not texel`);
+      check(JSON.stringify(state.texelBands) === '[0,3,3]', `texel bands ${JSON.stringify(state.texelBands)} (want [0, 3, 3]: no unshadowed pass, order 3)`);
+      check(state.environment === 'white furnace' && state.lights === 0, `lighting: ${state.environment}, ${state.lights} lights`);
+      // Constant light reads coefficient 0 alone; the forest map (unrotated, the page's and the
+      // baker's projection of the same file) weighs all 9, so every layer and lane is checked.
+      for (const [pass, light] of [['interreflected', 'constant'], ['shadowed', 'constant'], ['interreflected', 'forest']]) {
+        const t0 = Date.now();
+        if (light === 'forest') await page.evaluate(() => window.prtApp.set({ environment: 'forest', envRotation: [0, 0], intensity: 1 }));
+        const reference = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', light === 'forest' ? envExr : 'constant',
+          '--pass', pass, '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
+        const gpu = await readAtlas(page, pass);
+        const what = `${pass} under ${light} light`;
+        const [atlas] = reference.atlases;
+        if (!check(gpu.width === atlas.width && gpu.height === atlas.height, `${what}: read back ${gpu.width}x${gpu.height}, atlas ${atlas.width}x${atlas.height}`)) continue;
+        let peak = 0;
+        for (const t of reference.texels) peak = Math.max(peak, ...t.radiance);
+        let compared = 0, worstRelative = 0, worstAbsolute = 0, bad = 0, firstBad = '';
+        for (const t of reference.texels) {
+          const i = 4 * (t.y * gpu.width + t.x);  // read-back row y is texel row y: no flip
+          if (gpu.rgba[i + 3] !== 1) continue;  // the texel's centre lies outside every triangle (a chart's edge texel)
+          compared++;
+          for (let c = 0; c < 3; c++) {
+            const want = t.radiance[c], got = gpu.rgba[i + c], error = Math.abs(got - want);
+            worstAbsolute = Math.max(worstAbsolute, error / peak);
+            if (Math.abs(want) > 0.01 * peak) worstRelative = Math.max(worstRelative, error / Math.abs(want));
+            if (!(error <= 1e-3 * Math.abs(want) + 1e-4 * peak)) {
+              if (!bad) firstBad = `texel (${t.x}, ${t.y}) channel ${c}: GPU ${got}, baker ${want}`;
+              bad++;
+            }
+          }
+        }
+        console.log(`${what}: ${compared} of ${reference.texels.length} sampled texels compared, worst relative error ${worstRelative.toExponential(2)}, ` +
+          `worst absolute ${worstAbsolute.toExponential(2)} of the peak ${peak.toFixed(3)} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
+        check(compared > 0.5 * reference.texels.length, `${what}: only ${compared} of ${reference.texels.length} sampled texels were drawn in UV space`);
+        check(bad === 0, `${what}: ${bad} channel values beyond 1e-3 relative + 1e-4 of the peak (${firstBad})`);
+        check(peak > 0.1, `${what}: the reference is dark (peak ${peak})`);
+      }
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // (b) The full-screen picture per texel: lit, different from the vertex picture where the
+  // shading changes fastest (the contact shadows along the cube's base and under the sphere,
+  // which the vertex grid, 6.25 cm apart, blurs and the 512 atlas, about 2 cm a texel, resolves)
+  // and much less on open floor; switching back draws the vertex picture of before; lights
+  // still light the texel picture (they only change the lighting vector).
+  async texel_switch_and_shadows(browser) {
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}`, { waitReady: false });
+      await waitAll(page);
+      check(await page.evaluate(() => window.prtApp.source) === 'vertex', 'the page does not start per vertex');
+      const vertex = await capture(page, { source: 'vertex', background: false });
+      const texel = await capture(page, { source: 'texel' });
+      check(await page.evaluate(() => window.prtApp.source) === 'texel', 'set({source: texel}) did not switch');
+      const back = await capture(page, { source: 'vertex' });
+      const lit = litStats(texel), litVertex = litStats(vertex);
+      console.log(`lit fraction: texel ${lit.litFraction.toFixed(3)} (mean ${lit.mean.toFixed(1)}), vertex ${litVertex.litFraction.toFixed(3)} (mean ${litVertex.mean.toFixed(1)})`);
+      check(lit.litFraction > 0.3 && Math.abs(lit.mean - litVertex.mean) < 0.1 * litVertex.mean,
+        `texel picture: ${(100 * lit.litFraction).toFixed(1)} % lit, mean ${lit.mean.toFixed(1)} against the vertex picture's ${litVertex.mean.toFixed(1)}`);
+      check(maxChannelDifference(vertex, back) === 0, `back in vertex mode the picture differs from before by up to ${maxChannelDifference(vertex, back)}/255`);
+      // World points: just outside the cube's base (centre (0.9, 0, 0.6), side 1, turned 25 deg
+      // about +y: x' = x cos + z sin, z' = -x sin + z cos), at the sphere's contact point (-0.9,
+      // 0, 0.5) on its camera side, and on open floor far from every object.
+      const yaw = 25 * Math.PI / 180, cube = (lx, lz) => [0.9 + lx * Math.cos(yaw) + lz * Math.sin(yaw), 0.002, 0.6 - lx * Math.sin(yaw) + lz * Math.cos(yaw)];
+      const contact = [];
+      for (const t of [-0.35, -0.2, 0, 0.2, 0.35]) contact.push(cube(0.52, t), cube(-0.52, t), cube(t, 0.52));
+      for (const a of [0, 0.5, 1, 1.5, 2, 2.5, 3]) contact.push([-0.9 + 0.06 * Math.cos(a - 1.5), 0.002, 0.5 + 0.06 * Math.sin(a - 1.5) + 0.04]);
+      const open = [[0, 0.002, 1.6], [-1.6, 0.002, 1.6], [0.2, 0.002, 1.2], [-0.3, 0.002, 0.9], [1.6, 0.002, 1.7], [0.0, 0.002, 1.9]];
+      const pixels = await page.evaluate((pts) => pts.map((p) => window.prtApp.project(p)), [...contact, ...open]);
+      const difference = (ps) => ps.reduce((sum, p) => sum + Math.abs(windowLuminance(texel, p, 2) - windowLuminance(vertex, p, 2)), 0) / ps.length;
+      const atContact = difference(pixels.slice(0, contact.length)), onOpenFloor = difference(pixels.slice(contact.length));
+      console.log(`|texel - vertex| luminance: ${atContact.toFixed(2)} at the contact shadows, ${onOpenFloor.toFixed(2)} on open floor`);
+      check(atContact > 1.5 && atContact > 4 * onOpenFloor,
+        `texel and vertex pictures differ by ${atContact.toFixed(2)} at the contact shadows and ${onOpenFloor.toFixed(2)} on open floor`);
+      // A light above the cube: the texel picture brightens, in texel mode still.
+      await page.evaluate(() => window.prtApp.set({ source: 'texel' }));
+      const before = await capture(page, {});
+      const withLight = await capture(page, { lights: [{ shape: 'sphere', position: [0.9, 2.2, 0.6], radius: 0.15, intensity: 60 }] });
+      check(litStats(withLight).mean > litStats(before).mean + 2, `a light did not brighten the texel picture (${litStats(before).mean.toFixed(1)} -> ${litStats(withLight).mean.toFixed(1)})`);
+      let refused = '';
+      try {
+        await page.evaluate(() => window.prtApp.set({ source: 'pixel' }));
+      } catch (e) {
+        refused = e.message;
+      }
+      check(/source must be one of vertex, texel/.test(refused), `set({source: 'pixel'}) was not refused: ${refused}`);
+      await page.screenshot({ path: path.join(workDir, 'texel.png') });
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // (c) An asset whose only transfer is per texel renders (whole-file loads: the server cuts no
+  // parts, so loadAsset's path is the one taken), per texel, and draws exactly what the full
+  // asset draws per texel; asking it for vertex passes is refused.
+  async texel_only_asset(browser) {
+    // The wasm bytes handed over directly: Node's global fetch (which the harness needs) cannot
+    // load a file path.
+    const core = await createRequire(import.meta.url)(path.resolve(coreJs))({ wasmBinary: fs.readFileSync(coreJs.replace(/\.js$/, ".wasm")) });
+    const only = core.texelOnlyAsset(fs.readFileSync(asset), 'room-texel-only');
+    if (typeof only === 'string') throw new Error(`texelOnlyAsset: ${only}`);
+    fs.writeFileSync(path.join(root, 'room-texel-only.prt'), only);
+    const server = await startServer(prtServe, root, webDist, ['--max-parts-mib', '0']);
+    try {
+      const open = async (scene, source) => {
+        const opened = await openPage(browser, `${server.base}/${FURNACE}&scene=${scene}${source ? `&source=${source}` : ''}`);
+        return { ...opened, img: await capture(opened.page, { background: false }) };
+      };
+      const onlyPage = await open('room-texel-only');
+      const state = await onlyPage.page.evaluate(() => ({ error: window.prtApp.error, source: window.prtApp.source,
+        texelBands: window.prtApp.texelBands, stats: document.getElementById('stats').textContent }));
+      check(state.error === null, `the texel-only asset was refused: ${state.error}`);
+      check(state.source === 'texel' && JSON.stringify(state.texelBands) === '[0,3,3]', `texel-only asset: source ${state.source}, texel bands ${JSON.stringify(state.texelBands)}`);
+      check(/per texel \(512×512 atlas\)/.test(state.stats), `stats line: ${state.stats}`);
+      const lit = litStats(onlyPage.img);
+      check(lit.litFraction > 0.3, `the texel-only picture is ${(100 * lit.litFraction).toFixed(1)} % lit`);
+      let refused = '';
+      try {
+        await onlyPage.page.evaluate(() => window.prtApp.set({ source: 'vertex' }));
+      } catch (e) {
+        refused = e.message;
+      }
+      check(/no vertex passes/.test(refused), `set({source: 'vertex'}) on a texel-only asset: ${refused || 'accepted'}`);
+      // One page at a time: SwiftShader runs every page's GL in one process, and a page drawing
+      // texel frames (about 0.3 s each) starves another's loading (80 s instead of 4 s seen).
+      await onlyPage.page.close();
+      const full = await open('room-texel', 'texel');
+      check(await full.page.evaluate(() => window.prtApp.source) === 'texel', 'the full asset with ?source=texel is not drawn per texel');
+      const d = maxChannelDifference(onlyPage.img, full.img);
+      check(d === 0, `the texel-only asset's picture differs from the full asset's texel picture by up to ${d}/255`);
+      check(onlyPage.consoleErrors.length === 0 && full.consoleErrors.length === 0, `console errors: ${[...onlyPage.consoleErrors, ...full.consoleErrors].join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+};
+
+await runCase(caseName, cases, checks);

@@ -1,0 +1,167 @@
+// Transfer textures in the client's wasm core under Node (web/src/texel_texture.h, half_float.h):
+// a texel pass baked by the native baker, decoded as the streaming client decodes it, must pack
+// into the RGBA16F layers at exactly the positions docs/web-client.md "Transfer textures" gives,
+// every value the correctly rounded half of the float pass (checked against an independent
+// reference rounding here), zero padding, prefixes of bands as order-b passes, and device limits
+// refused with messages naming both numbers. Also: the per-fragment shader's tone mapping is
+// shade.frag's, and texel-only assets (for the browser test) decode with texel passes only.
+// Usage: node texel_core_node_test.mjs PRT_CORE_NODE_JS NATIVE_PRT_BAKE WORK_DIR
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const [coreJs, prtBake, workDir] = process.argv.slice(2);
+const here = path.dirname(fileURLToPath(import.meta.url));
+const failures = [];
+let checks = 0;
+const check = (ok, message) => {
+  checks++;
+  if (!ok) failures.push(message);
+  return ok;
+};
+for (const [what, p] of [['prt_core_node.js', coreJs], ['native prt-bake', prtBake]]) {
+  if (!p || !fs.existsSync(p)) {
+    console.error(`${what} not found at ${p}: build the native and wasm presets first`);
+    process.exit(1);
+  }
+}
+fs.rmSync(workDir, { recursive: true, force: true });
+fs.mkdirSync(workDir, { recursive: true });
+const core = await createRequire(import.meta.url)(path.resolve(coreJs))();
+
+// The half's value from its bits, written independently of the C++ (sign, exponent, mantissa).
+function halfValue(bits) {
+  const sign = bits & 0x8000 ? -1 : 1, e = (bits >> 10) & 31, m = bits & 1023;
+  if (e === 31) return m ? NaN : sign * Infinity;
+  return sign * (e ? (1 + m / 1024) * 2 ** (e - 15) : m * 2 ** -24);
+}
+// The half nearest float32 value f, ties to even, by arithmetic on the value (not its bits).
+function nearestHalf(f) {
+  if (Number.isNaN(f)) return NaN;
+  const a = Math.abs(f);
+  if (a === 0) return f;
+  if (a >= 65520) return Math.sign(f) * Infinity;
+  let e = Math.floor(Math.log2(a));
+  if (2 ** e > a) e--;
+  if (2 ** (e + 1) <= a) e++;
+  const ulp = 2 ** (Math.max(e, -14) - 10);  // below 2^-14 the spacing stays 2^-24 (subnormals)
+  const q = a / ulp;
+  let r = Math.floor(q);
+  const rest = q - r;
+  if (rest > 0.5 || (rest === 0.5 && r % 2 === 1)) r++;
+  return Math.sign(f) * r * ulp;
+}
+const same = (a, b) => (Number.isNaN(a) && Number.isNaN(b)) || a === b;
+
+// ---- floatToHalf / halfToFloat on the cases that break converters ----
+{
+  const f = Math.fround;
+  const cases = [0, 1, -1, 0.1, 65504, f(65519.99), 65520, 1e6, -1e6, 2 ** -14, 2 ** -24, 2 ** -25, 1.5 * 2 ** -25, 2 ** -26,
+    f(2 ** -14 - 2 ** -25), 1 + 2 ** -11, 1 + 3 * 2 ** -11, 1 + 2 ** -11 + 2 ** -20, 3 * 2 ** -25, 1 / 3, -2.5e-6, NaN].map(f);
+  const halves = core.floatsToHalves(cases);
+  const back = core.halvesToFloats(Array.from(halves));
+  cases.forEach((x, i) => {
+    check(same(halfValue(halves[i]), nearestHalf(x)), `floatToHalf(${x}) = 0x${halves[i].toString(16)} (${halfValue(halves[i])}), nearest half ${nearestHalf(x)}`);
+    check(same(back[i], halfValue(halves[i])), `halfToFloat(0x${halves[i].toString(16)}) = ${back[i]}, expected ${halfValue(halves[i])}`);
+  });
+  check(halves[1] === 0x3c00 && halves[4] === 0x7bff && halves[6] === 0x7c00 && halves[10] === 0x0001 && halves[11] === 0,
+    `landmark bits: 1 -> ${halves[1].toString(16)}, 65504 -> ${halves[4].toString(16)}, 65520 -> ${halves[6].toString(16)}, 2^-24 -> ${halves[10]}, 2^-25 -> ${halves[11]}`);
+  // Every half bit pattern survives halfToFloat -> floatToHalf.
+  const all = Array.from({ length: 65536 }, (_, i) => i).filter((b) => (b & 0x7c00) !== 0x7c00 || (b & 0x3ff) === 0);
+  const again = core.floatsToHalves(Array.from(core.halvesToFloats(all)));
+  check(all.every((b, i) => again[i] === b), 'some half does not round-trip through float');
+}
+
+// ---- packing a baked texel pass ----
+// The default room's atlas keeps its gutters from 512 texels a side (smaller atlases fail the
+// baker's atlas check); order 3 (9 coefficients: 3 layers per channel, 3 padding lanes); q16 so
+// that the passes are encoded and decode band by band like a streamed one.
+const asset = path.join(workDir, 'room-texel.prt');
+execFileSync(prtBake, ['--default', '--texels', '--texture-size', '512', '--samples', '16', '--bounces', '1', '--order', '3',
+  '--passes', 'shadowed,interreflected', '--compress', 'q16', '-o', asset, '--quiet']);
+const bytes = fs.readFileSync(asset);
+const info = core.inspectAsset(bytes);
+check(info.ok && info.passes.filter((p) => p.domain === 'texel').length === 2, `the bake has no texel passes: ${JSON.stringify(info)}`);
+
+for (const kind of ['shadowed', 'interreflected']) {
+  for (const bands of [0, 2]) {
+    const what = `${kind} at ${bands || 'all'} bands`;
+    const r = core.texelPackCheck(bytes, kind, bands, 16384, 2048);
+    if (!check(typeof r === 'object', `${what}: ${r}`)) continue;
+    const order = bands || 3, n2 = order * order, channels = kind === 'shadowed' ? 1 : 3, perChannel = Math.ceil(n2 / 4);
+    check(r.order === order && r.channels === channels && r.layersPerChannel === perChannel && r.atlases.length === 1,
+      `${what}: order ${r.order}, ${r.channels} channels, ${r.layersPerChannel} layers per channel, ${r.atlases.length} atlases`);
+    const a = r.atlases[0], texels = a.width * a.height;
+    check(a.width === 512 && a.height === 512 && a.layers === channels * perChannel && a.halves.length === texels * a.layers * 4,
+      `${what}: atlas ${a.width}x${a.height}, ${a.layers} layers, ${a.halves.length} halves`);
+    check(r.floats.length === texels * channels * n2, `${what}: ${r.floats.length} floats for ${texels} texels`);
+    let wrongRounding = 0, padding = 0, worstRelative = 0, nonZero = 0, first = '';
+    for (let t = 0; t < texels; t++) {
+      for (let c = 0; c < channels; c++) {
+        for (let i = 0; i < 4 * perChannel; i++) {
+          // Texel t = y * width + x of the pass is texel (x, y) of every layer: layer c * perChannel + i / 4, lane i % 4.
+          const h = a.halves[((c * perChannel + Math.floor(i / 4)) * texels + t) * 4 + (i % 4)];
+          if (i >= n2) {
+            if (h !== 0) padding++;
+            continue;
+          }
+          const f = r.floats[(t * channels + c) * n2 + i], v = halfValue(h);
+          if (f !== 0) nonZero++;
+          if (!same(v, nearestHalf(f))) {
+            if (!wrongRounding) first = `texel ${t} channel ${c} coefficient ${i}: ${f} packed as ${v}, nearest half ${nearestHalf(f)}`;
+            wrongRounding++;
+          }
+          if (Math.abs(f) >= 2 ** -14) worstRelative = Math.max(worstRelative, Math.abs(v - f) / Math.abs(f));
+        }
+      }
+    }
+    check(wrongRounding === 0, `${what}: ${wrongRounding} values not the nearest half (${first})`);
+    check(padding === 0, `${what}: ${padding} padding lanes not zero`);
+    check(worstRelative <= 2 ** -11, `${what}: worst relative half error ${worstRelative} > 2^-11`);
+    check(nonZero > texels / 4, `${what}: only ${nonZero} non-zero coefficients: the comparison proves little`);
+    if (bands === 0) console.log(`${kind}: ${texels} texels x ${channels} x ${n2} coefficients, worst relative half error ${worstRelative.toExponential(2)}`);
+  }
+}
+
+// ---- device limits: clear errors naming both numbers ----
+{
+  const small = core.texelPackCheck(bytes, 'interreflected', 0, 256, 2048);
+  check(typeof small === 'string' && /512x512/.test(small) && /MAX_TEXTURE_SIZE is 256/.test(small), `a 512 atlas on a 256 device: ${small}`);
+  const layers = core.texelPackCheck(bytes, 'interreflected', 0, 16384, 8);
+  check(typeof layers === 'string' && /needs 9 texture layers/.test(layers) && /MAX_ARRAY_TEXTURE_LAYERS is 8/.test(layers), `9 layers on an 8-layer device: ${layers}`);
+  const absent = core.texelPackCheck(bytes, 'unshadowed', 0, 16384, 2048);
+  check(typeof absent === 'string' && /no texel pass 'unshadowed'/.test(absent), `an absent pass: ${absent}`);
+  const damaged = Buffer.from(bytes);
+  damaged[damaged.length - 100] ^= 0x40;
+  const bad = core.texelPackCheck(damaged, 'interreflected', 0, 16384, 2048);
+  check(typeof bad === 'string' && /checksum/.test(bad), `a damaged texel pass: ${bad}`);
+}
+
+// ---- texel-only assets (browser_texel_test.mjs makes one to load) ----
+{
+  const only = core.texelOnlyAsset(bytes, 'room-texel-only');
+  const i = typeof only === 'string' ? { ok: false, error: only } : core.inspectAsset(only);
+  check(i.ok && i.name === 'room-texel-only' && i.passes.length === 2 && i.passes.every((p) => p.domain === 'texel'), `texel-only asset: ${JSON.stringify(i)}`);
+  const vertexOnly = path.join(workDir, 'room-vertex.prt');
+  execFileSync(prtBake, ['--default', '--samples', '16', '--order', '2', '-o', vertexOnly, '--quiet']);
+  const refused = core.texelOnlyAsset(fs.readFileSync(vertexOnly), '');
+  check(typeof refused === 'string' && /no texel pass/.test(refused), `texel-only from a vertex-only asset: ${refused}`);
+}
+
+// ---- the per-fragment shader tone-maps exactly as shade.frag ----
+{
+  const shaderText = (name) => fs.readFileSync(path.join(here, '../../web/shaders', name), 'utf8');
+  const fn = (text, name) => (text.match(new RegExp(`vec3 ${name}\\(vec3 [a-z]+\\) \\{[^}]*\\}`)) || [null])[0];
+  for (const name of ['acesFit', 'linearToSrgb']) {
+    const a = fn(shaderText('shade.frag'), name), b = fn(shaderText('texel_prt.frag'), name);
+    check(a !== null && a === b, `${name} differs between shade.frag and texel_prt.frag`);
+  }
+}
+
+if (failures.length) {
+  console.error(`${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
+  process.exit(1);
+}
+console.log(`texel core: ${checks} checks passed`);
