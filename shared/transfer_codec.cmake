@@ -4,7 +4,7 @@
 # bare name): only prt/transfer_codec.h is public. Tests of the internals add the path
 # themselves; tests/codec_private_check.cmake keeps everyone else out.
 target_sources(prt_shared PRIVATE
-  ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_half.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/prt/half_float.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_streams.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_container.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_settings.cpp

@@ -27,7 +27,7 @@
 #include "prt/sh_basis.h"
 #include "prt/sh_zonal.h"
 #include "transfer_codec_eigen.h"
-#include "transfer_codec_half.h"
+#include "prt/half_float.h"
 #include "transfer_codec_kmeans.h"
 #include "transfer_codec_streams.h"
 
@@ -248,15 +248,15 @@ double relativeError(const std::vector<float>& a, const std::vector<float>& b) {
 TEST(TransferCodecHalf, HalfToFloatIsExactForEveryBitPattern) {
   for (std::uint32_t h = 0; h < 65536; ++h) {
     const double want = halfValue(static_cast<std::uint16_t>(h));
-    const float got = tc::halfToFloat(static_cast<std::uint16_t>(h));
+    const float got = prt::halfToFloat(static_cast<std::uint16_t>(h));
     if (std::isnan(want)) {
       EXPECT_TRUE(std::isnan(got)) << h;
     } else {
       EXPECT_EQ(static_cast<double>(got), want) << h;
       EXPECT_EQ(std::signbit(got), (h & 0x8000u) != 0) << h;
-      EXPECT_EQ(tc::floatToHalf(got), h) << "round trip of " << h;
+      EXPECT_EQ(prt::floatToHalf(got), h) << "round trip of " << h;
     }
-    EXPECT_EQ(tc::isFiniteHalf(static_cast<std::uint16_t>(h)), std::isfinite(want)) << h;
+    EXPECT_EQ(prt::isFiniteHalf(static_cast<std::uint16_t>(h)), std::isfinite(want)) << h;
   }
 }
 
@@ -289,11 +289,11 @@ TEST(TransferCodecHalf, FloatToHalfRoundsToNearestEven) {
   for (int i = 0; i < 20000; ++i) xs.push_back(floatOf(rng.next() & 0x7fffffffu));  // every magnitude
   for (float x : xs) {
     if (!std::isfinite(x)) continue;
-    EXPECT_EQ(tc::floatToHalf(x), referenceNearestHalf(x)) << x;
+    EXPECT_EQ(prt::floatToHalf(x), referenceNearestHalf(x)) << x;
   }
-  EXPECT_EQ(tc::floatToHalf(std::numeric_limits<float>::infinity()), 0x7c00);
-  EXPECT_FALSE(tc::isFiniteHalf(tc::floatToHalf(std::numeric_limits<float>::quiet_NaN())));
-  EXPECT_TRUE(std::isnan(tc::halfToFloat(tc::floatToHalf(std::numeric_limits<float>::quiet_NaN()))));
+  EXPECT_EQ(prt::floatToHalf(std::numeric_limits<float>::infinity()), 0x7c00);
+  EXPECT_FALSE(prt::isFiniteHalf(prt::floatToHalf(std::numeric_limits<float>::quiet_NaN())));
+  EXPECT_TRUE(std::isnan(prt::halfToFloat(prt::floatToHalf(std::numeric_limits<float>::quiet_NaN()))));
 }
 
 // ---- Streams ------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-// Transfer textures in the client's wasm core under Node (web/src/texel_texture.h, half_float.h):
+// Transfer textures in the client's wasm core under Node (web/src/texel_texture.h, shared/prt/half_float.h):
 // a texel pass baked by the native baker, decoded as the streaming client decodes it, must pack
 // into the RGBA16F layers at exactly the positions docs/web-client.md "Transfer textures" gives,
 // every value the correctly rounded half of the float pass (checked against an independent

@@ -1,4 +1,4 @@
-// Embind bindings of the GL-free transfer-texture code (texel_texture.h, half_float.h) and a
+// Embind bindings of the GL-free transfer-texture code (texel_texture.h, prt/half_float.h) and a
 // test helper that makes texel-only assets; compiled into both the browser module and the Node
 // module the tests load (tests/web/texel_core_node_test.mjs, browser_texel_test.mjs).
 #include <emscripten/bind.h>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "half_float.h"
+#include "prt/half_float.h"
 #include "prt/asset.h"
 #include "texel_texture.h"
 
@@ -68,7 +68,7 @@ val texelPackCheck(const val& bytes, const std::string& kind, int bands, int max
 val floatsToHalves(const val& values) {
   const std::vector<float> in = emscripten::convertJSArrayToNumberVector<float>(values);
   std::vector<std::uint16_t> out(in.size());
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = prt::web::floatToHalf(in[i]);
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = prt::floatToHalf(in[i]);
   return copyOut(out);
 }
 
@@ -76,7 +76,7 @@ val floatsToHalves(const val& values) {
 val halvesToFloats(const val& halves) {
   const std::vector<std::uint16_t> in = emscripten::convertJSArrayToNumberVector<std::uint16_t>(halves);
   std::vector<float> out(in.size());
-  for (std::size_t i = 0; i < in.size(); ++i) out[i] = prt::web::halfToFloat(in[i]);
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = prt::halfToFloat(in[i]);
   return copyOut(out);
 }
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "half_float.h"
+#include "prt/half_float.h"
 #include "transfer_texture.h"
 
 namespace prt::web {

@@ -7,7 +7,7 @@
 #include "prt/transfer_codec.h"
 #include "transfer_codec_container.h"
 #include "transfer_codec_decode_util.h"
-#include "transfer_codec_half.h"
+#include "prt/half_float.h"
 #include "transfer_codec_streams.h"
 
 namespace prt {

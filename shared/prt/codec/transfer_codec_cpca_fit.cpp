@@ -5,7 +5,7 @@
 
 #include "transfer_codec_cpca.h"
 #include "transfer_codec_eigen.h"
-#include "transfer_codec_half.h"
+#include "prt/half_float.h"
 #include "transfer_codec_kmeans.h"
 #include "transfer_codec_streams.h"
 

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "transfer_codec_eigen.h"
-#include "transfer_codec_half.h"
+#include "prt/half_float.h"
 #include "transfer_codec_kmeans.h"
 #include "transfer_codec_matrix.h"
 #include "transfer_codec_streams.h"

@@ -1,11 +1,12 @@
-// IEEE-754 binary16 ("half") conversion for the transfer codec (docs/transfer-codec.md).
+// IEEE-754 binary16 ("half") conversion: the transfer codec's float16 settings
+// (docs/transfer-codec.md) and the web client's RGBA16F transfer textures.
 // Written out bit by bit rather than with _Float16 or F16C so that native and wasm builds
 // agree exactly and no target feature is needed.
 #pragma once
 
 #include <cstdint>
 
-namespace prt::transfer_codec {
+namespace prt {
 
 // Nearest binary16 to `value`, ties to even. Values whose magnitude rounds past 65504
 // become +-infinity; NaN stays NaN (quiet, payload dropped). Subnormals are produced.
@@ -20,4 +21,4 @@ constexpr bool isFiniteHalf(std::uint16_t bits) noexcept { return (bits & 0x7c00
 // The largest finite half, 65504.
 inline constexpr float kMaxHalf = 65504.0f;
 
-}  // namespace prt::transfer_codec
+}  // namespace prt

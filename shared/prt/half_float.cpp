@@ -1,8 +1,8 @@
-#include "transfer_codec_half.h"
+#include "prt/half_float.h"
 
 #include <cstring>
 
-namespace prt::transfer_codec {
+namespace prt {
 namespace {
 
 std::uint32_t bitsOf(float f) {
@@ -67,4 +67,4 @@ float halfToFloat(std::uint16_t bits) noexcept {
   return floatOf(sign | (static_cast<std::uint32_t>(e) << 23) | ((mantissa & 0x3ffu) << 13));
 }
 
-}  // namespace prt::transfer_codec
+}  // namespace prt
