@@ -54,10 +54,8 @@ inline std::string jsonArray(const std::vector<std::string>& items) {
   return s + "]";
 }
 
-// A 2×2 sRGB PNG as a data URI: top-left grey 128, top-right red, bottom-left green,
-// bottom-right blue.
-inline std::string twoByTwoPngDataUri() {
-  const unsigned char rgb[] = {128, 128, 128, 255, 0, 0, 0, 255, 0, 0, 0, 255};
+// An RGB PNG of width x height pixels (rgb: 3 bytes a pixel, rows top to bottom) as a data URI.
+inline std::string rgbPngDataUri(int width, int height, const unsigned char* rgb) {
   std::vector<std::uint8_t> png;
   stbi_write_png_to_func(
       [](void* context, void* data, int size) {
@@ -65,8 +63,15 @@ inline std::string twoByTwoPngDataUri() {
         const auto* bytes = static_cast<const std::uint8_t*>(data);
         out->insert(out->end(), bytes, bytes + size);
       },
-      &png, 2, 2, 3, rgb, 6);
+      &png, width, height, 3, rgb, width * 3);
   return "data:image/png;base64," + base64(png);
+}
+
+// A 2×2 sRGB PNG as a data URI: top-left grey 128, top-right red, bottom-left green,
+// bottom-right blue.
+inline std::string twoByTwoPngDataUri() {
+  const unsigned char rgb[] = {128, 128, 128, 255, 0, 0, 0, 255, 0, 0, 0, 255};
+  return rgbPngDataUri(2, 2, rgb);
 }
 
 enum class BufferStorage { kDataUri, kExternal, kGlb };

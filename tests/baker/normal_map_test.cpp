@@ -22,18 +22,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::vector<std::uint8_t> pngBytes(int width, int height, const std::vector<unsigned char>& rgb) {
-  std::vector<std::uint8_t> png;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-        const auto* bytes = static_cast<const std::uint8_t*>(data);
-        out->insert(out->end(), bytes, bytes + size);
-      },
-      &png, width, height, 3, rgb.data(), width * 3);
-  return png;
-}
-
 unsigned char encode(float c) { return static_cast<unsigned char>(std::lround((c + 1.0f) * 0.5f * 255.0f)); }
 
 // The tangent-space normal every test map below stores: tilted towards +x and +y.
@@ -58,8 +46,8 @@ std::string tiltedSquareGltf(float sx, bool tangent) {
   w.materials = {"{\"normalTexture\":{\"index\":0}}"};
   w.textures = {"{\"source\":0}"};
   const unsigned char r = encode(kTilt.x), g = encode(kTilt.y), b = encode(kTilt.z);
-  w.images = {"{\"uri\":\"data:image/png;base64," + test::base64(pngBytes(2, 2, {r, g, b, r, g, b, r, g, b, r, g, b})) +
-              "\"}"};
+  const unsigned char pixels[] = {r, g, b, r, g, b, r, g, b, r, g, b};
+  w.images = {"{\"uri\":\"" + test::rgbPngDataUri(2, 2, pixels) + "\"}"};
   w.nodes = {"{\"mesh\":0,\"scale\":[" + std::to_string(sx) + ",1,1]}"};
   return w.json(test::BufferStorage::kDataUri);
 }
