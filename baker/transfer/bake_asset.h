@@ -30,6 +30,11 @@ struct TexelBakeSettings {
   int padding = 2;             // gutter texels the atlas must keep between charts at that size
   int dilation = 3;            // gutter texels filled from the charts (texel_bake.h)
   bool keepVertexPasses = true;  // store the per-vertex vector passes as well (the panel compares them)
+  // > 0: also bake and store the texels' TPFL visibility pass at this order (2..kMaxShOrder;
+  // 2n - 1 for order-n lighting is exact, fewer bands an approximation: docs/transfer-textures.md,
+  // "Glossy by the triple product"). Distant lighting only; the scene gets the glossy material
+  // split (options.glossyMaterials) as with transfer.glossy, and the asset its specular materials.
+  int visibilityOrder = 0;
 };
 
 // The atlas side for `settings` on `scene`'s set `texcoord`: textureSize when given, else
@@ -48,8 +53,9 @@ struct AssetBakeOptions {
   // Which passes the asset stores (unshadowed and shadowed cost nothing extra to compute;
   // interreflected is computed only when stored).
   bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
-  // With transfer.glossy: the glossy material split (applied to the scene before the bake)
-  // and the matrix passes stored: shadowed always, interreflected when transfer.glossyBounces > 0.
+  // With transfer.glossy or texels->visibilityOrder: the glossy material split (applied to the
+  // scene before the bake). transfer.glossy stores the matrix passes: shadowed always,
+  // interreflected when transfer.glossyBounces > 0.
   GlossyMaterialOptions glossyMaterials;
   std::optional<std::string> name;                 // default: the scene's name
   std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
@@ -64,6 +70,7 @@ struct TexelBakeReport {
   std::size_t normalMappedTexels = 0;  // sampled texels shaded with a normal map's normal
   std::vector<std::string> rejected;  // why the other UV set was not used
   int bounces = 0;
+  int visibilityOrder = 0;           // the stored TPFL visibility pass's order; 0 without one
   std::vector<PassStats> passes;
 };
 
@@ -91,7 +98,8 @@ struct AssetBakeReport {
 // a given (scene, options). `started`, when set, is called once with the report's vertices,
 // triangles and lighting filled in, before the long part. Errors: the bake's and the codec's,
 // prefixed with the pass they belong to; with options.texels, kInvalidArgument when neither
-// UV set is a valid atlas at the chosen size (the message gives each set's reason).
+// UV set is a valid atlas at the chosen size (the message gives each set's reason), or when a
+// visibility pass is asked for under local lighting (before any work).
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 
