@@ -1144,8 +1144,9 @@ Status locatePass(std::span<const std::uint8_t> file, int pass, int bands, const
   return Status::ok();
 }
 
-// The lighting a matrix pass's packing depends on: the lighting section (which must have
-// arrived) or distant when the file has none; then the float32 matrix sizes against it.
+// The lighting a matrix pass's packing and a visibility pass's validity depend on: the
+// lighting section (which must have arrived) or distant when the file has none; then the
+// float32 matrix sizes and the visibility rule against it (checkMatrixPackings).
 Status progressiveLighting(std::span<const std::uint8_t> file, const Parsed& p, LightingInfo* out) {
   *out = LightingInfo{};
   if (p.lighting >= 0) {
