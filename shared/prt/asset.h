@@ -47,7 +47,7 @@ const char* transferFormName(TransferForm form);
 enum class TransferDomain : std::uint32_t {
   kVertex = 0,  // one transfer per vertex, interpolated across each triangle
   kTexel = 1,   // one per texel of the asset's atlases (PRTT), filtered bilinearly at the
-                // atlas UV; vector passes only
+                // atlas UV; vector and visibility passes (no matrices)
 };
 
 // "vertex" | "texel", or "unknown".
