@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "baker/cli/report_failure.h"
+#include "baker/cli/shade_texels.h"
 #include "baker/texture/asset_texels.h"
 #include "native/cli_args.h"
 #include "native/exit_status.h"
@@ -42,7 +43,8 @@ constexpr const char* kInfoHelp =
     "\n"
     "Verifies a baked asset (every checksum and value) and prints its contents, the lighting\n"
     "model its transfer was baked for included (distant, or a local sphere's centre and radius),\n"
-    "each pass's domain (per vertex, or per texel of the transfer-texture atlases) and the atlases.\n";
+    "each pass's domain (per vertex, or per texel of the transfer-texture atlases), its order (a\n"
+    "TPFL visibility pass has its own) and the atlases.\n";
 
 // The atlases of a verified asset as a JSON array: [{"width": W, "height": H,
 // "firstTriangle": F, "triangleCount": C}, ...]; [] without texel passes.
@@ -86,7 +88,10 @@ constexpr const char* kShadeHelp =
     "  --glossy-only       print the glossy term alone (k_s x the lobe integral), no diffuse\n"
     "  --order N           truncate to N bands (default: the asset's order)\n"
     "  --texels            the transfer-texture pass instead (bake --texels): the texel's own\n"
-    "                      stored transfer, unfiltered; vector passes only\n"
+    "                      stored transfer, unfiltered; with --pass glossy or glossy-shadowed\n"
+    "                      (and --view) the texel diffuse pass plus the TPFL glossy term of the\n"
+    "                      visibility pass (bake --texels --texel-glossy), the texel's material\n"
+    "                      interpolated from its triangle's vertices\n"
     "  --json              JSON instead of a table\n";
 
 // "X,Y,Z": three finite numbers.
@@ -142,62 +147,6 @@ void flushWhenLarge(std::string* text, std::FILE* out) {
   text->clear();
 }
 
-// shade --texels: every sampled texel's sample and exit radiance from its own transfer.
-int printTexels(const BakedAsset& asset, const TransferPass& pass, const std::string& path, const std::string& light,
-                int order, const std::vector<Rgb>& lighting, bool json, std::FILE* out, std::FILE* err) {
-  std::vector<bake::AtlasTexel> texels;
-  if (Status s = bake::assetTexelSamples(asset, &texels); !s.isOk()) {
-    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
-  }
-  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
-  const std::size_t perTexel = n2 * static_cast<std::size_t>(pass.channels);
-  std::vector<float> transfer(texels.size() * perTexel);
-  std::vector<Rgb> albedo(texels.size());
-  for (std::size_t t = 0; t < texels.size(); ++t) {
-    std::copy_n(pass.coeffs.begin() + static_cast<std::ptrdiff_t>(texels[t].index * perTexel), perTexel,
-                transfer.begin() + static_cast<std::ptrdiff_t>(t * perTexel));
-    albedo[t] = texels[t].albedo;
-  }
-  std::vector<float> exit(3 * texels.size(), 0.0f);
-  if (Status s = exitRadiance(transfer, pass.channels, n2, albedo, lighting, exit); !s.isOk()) {
-    return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
-  }
-  std::string text;
-  if (json) {
-    text = "{\n  \"asset\": " + jsonString(path) + ",\n  \"pass\": \"" + transferKindName(pass.kind) +
-           "\",\n  \"domain\": \"texel\",\n  \"order\": " + std::to_string(order) + ",\n  \"light\": " +
-           jsonString(light) + ",\n  \"atlases\": [";
-    for (std::size_t a = 0; a < asset.atlases.size(); ++a) {
-      text += std::string(a ? ", " : "") + "{\"width\": " + std::to_string(asset.atlases[a].width) +
-              ", \"height\": " + std::to_string(asset.atlases[a].height) + "}";
-    }
-    text += "],\n  \"texels\": [\n";
-  }
-  for (std::size_t t = 0; t < texels.size(); ++t) {
-    const bake::AtlasTexel& s = texels[t];
-    const float* e = &exit[3 * t];
-    if (json) {
-      text += "    {\"atlas\": " + std::to_string(s.atlas) + ", \"x\": " + std::to_string(s.x) + ", \"y\": " +
-              std::to_string(s.y) + ", \"position\": [" + jsonNumber(s.position.x) + ", " + jsonNumber(s.position.y) +
-              ", " + jsonNumber(s.position.z) + "], \"normal\": [" + jsonNumber(s.normal.x) + ", " +
-              jsonNumber(s.normal.y) + ", " + jsonNumber(s.normal.z) + "], \"radiance\": [" + jsonNumber(e[0]) + ", " +
-              jsonNumber(e[1]) + ", " + jsonNumber(e[2]) + "]}" + (t + 1 < texels.size() ? ",\n" : "\n");
-    } else {
-      char line[320];
-      std::snprintf(line, sizeof line, "%u %d %d %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", s.atlas, s.x, s.y,
-                    static_cast<double>(s.position.x), static_cast<double>(s.position.y),
-                    static_cast<double>(s.position.z), static_cast<double>(s.normal.x),
-                    static_cast<double>(s.normal.y), static_cast<double>(s.normal.z), static_cast<double>(e[0]),
-                    static_cast<double>(e[1]), static_cast<double>(e[2]));
-      text += line;
-    }
-    flushWhenLarge(&text, out);
-  }
-  if (json) text += "  ]\n}\n";
-  std::fputs(text.c_str(), out);
-  return kExitOk;
-}
-
 }  // namespace
 
 int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
@@ -240,7 +189,8 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       const auto& ps = sum.passes[i];
       s += std::string(i ? ", " : "") + "{\"kind\": \"" + transferKindName(ps.kind) + "\", \"form\": \"" +
            transferFormName(ps.form) + "\", \"domain\": \"" + transferDomainName(ps.domain) +
-           "\", \"channels\": " + std::to_string(ps.channels) +
+           "\", \"order\": " + std::to_string(ps.form == TransferForm::kVisibility ? ps.order : sum.shOrder) +
+           ", \"channels\": " + std::to_string(ps.channels) +
            ", \"bounces\": " + std::to_string(ps.bounces) + ", \"encoded\": " + (ps.encoded ? "true" : "false") +
            ", \"bytes\": " + std::to_string(ps.bytes) + "}";
     }
@@ -262,7 +212,13 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       std::fprintf(out, "lighting: %s\n", lightingModelName(sum.lighting.model));
     }
     for (const auto& ps : sum.passes) {
-      if (ps.form == TransferForm::kMatrix) {
+      if (ps.form == TransferForm::kVisibility) {
+        // TPFL glossy (docs/transfer-textures.md): exact when the order is 2n - 1.
+        const int exact = 2 * sum.shOrder - 1;
+        std::fprintf(out, "pass: texel %s visibility (TPFL glossy), order %d (%d coefficients per texel, %s)",
+                     transferKindName(ps.kind), ps.order, ps.order * ps.order,
+                     ps.order >= exact ? "exact" : ("approximate: exact needs " + std::to_string(exact)).c_str());
+      } else if (ps.form == TransferForm::kMatrix) {
         const MatrixPacking packing = matrixPackingFor(ps.kind, sum.lighting.model);
         std::fprintf(out, "pass: %s glossy matrix, %s, %s packing (%zu entries per channel)", transferKindName(ps.kind),
                      ps.channels == 3 ? "RGB" : "scalar (one matrix for r, g, b)", matrixPackingName(packing),
@@ -309,8 +265,9 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   }
   const bool glossyOnly = p.has("--glossy-only");
   const bool texels = p.has("--texels");
-  if (texels && wanted.glossy) {
-    return reportFailure(err, "shade", usageError("--texels shades the vector passes: glossy transfer is baked per vertex"));
+  if (texels && wanted.glossy && wanted.kind == TransferKind::kInterreflected) {
+    return reportFailure(err, "shade", usageError("texel glossy is the shadowed TPFL visibility pass (it has no bounces): "
+                                                  "use --pass glossy or glossy-shadowed with --texels"));
   }
   int order = 0;
   if (const std::string* o = p.value("--order")) {
@@ -334,10 +291,19 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   };
   const TransferDomain domain = texels ? TransferDomain::kTexel : TransferDomain::kVertex;
   const char* domainWhat = texels ? " texel pass (bake with --texels)" : " pass";
+  // Texel glossy is the visibility pass (TPFL), shaded with the texel diffuse pass asked for.
+  const TransferPass* visibility = nullptr;
+  if (texels && wanted.glossy) {
+    visibility = findPass(asset, TransferKind::kShadowed, TransferForm::kVisibility, TransferDomain::kTexel);
+    if (!visibility) {
+      return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument,
+                                                       "'" + path + "' has no texel visibility pass (bake with --texels --texel-glossy)"));
+    }
+  }
   if (wanted.kind) {
     pass = findPass(asset, *wanted.kind, TransferForm::kVector, domain);
     if (!pass) return noPass(*wanted.kind, domainWhat);
-    if (wanted.glossy) {
+    if (wanted.glossy && !texels) {
       matrix = findPass(asset, *wanted.kind, TransferForm::kMatrix);
       if (!matrix) return noPass(*wanted.kind, " glossy matrix pass (bake with --glossy)");
     }
@@ -345,15 +311,16 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     for (TransferKind k : {TransferKind::kInterreflected, TransferKind::kShadowed, TransferKind::kUnshadowed}) {
       const TransferPass* vector = findPass(asset, k, TransferForm::kVector, domain);
       const TransferPass* m = findPass(asset, k, TransferForm::kMatrix);
-      if (pass || !vector || (wanted.glossy && !m)) continue;
+      const bool vertexGlossy = wanted.glossy && !texels;  // texel glossy pairs with any texel pass
+      if (pass || !vector || (vertexGlossy && !m)) continue;
       pass = vector;
-      matrix = wanted.glossy ? m : nullptr;
+      matrix = vertexGlossy ? m : nullptr;
     }
     if (!pass) {
       return reportFailure(err, "shade", Status::error(StatusCode::kInvalidArgument,
                                                        "'" + path + "' has no " +
-                                                           (wanted.glossy ? "glossy matrix pass with its diffuse pass (bake with --glossy)"
-                                                            : texels      ? "texel transfer pass (bake with --texels)"
+                                                           (texels ? "texel transfer pass (bake with --texels)"
+                                                            : wanted.glossy ? "glossy matrix pass with its diffuse pass (bake with --glossy)"
                                                                           : "transfer pass")));
     }
   }
@@ -371,7 +338,7 @@ int runShadeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   }
 
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
-  if (texels) return printTexels(asset, *pass, path, *light, order, lighting, p.has("--json"), out, err);
+  if (texels) return printTexels(asset, {pass, visibility, eye, glossyOnly}, path, *light, order, lighting, p.has("--json"), out, err);
   std::vector<float> exit(3 * asset.positions.size(), 0.0f);
   if (!glossyOnly) {
     if (Status s = exitRadiance(pass->coeffs, pass->channels, n2, asset.albedo, lighting, exit); !s.isOk()) {

@@ -35,6 +35,7 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--specular-exponent", true}, {"--max-specular-exponent", true},
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
     {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
+    {"--texel-glossy", false}, {"--visibility-order", true},
 };
 
 constexpr const char* kHelp =
@@ -78,6 +79,7 @@ constexpr const char* kHelp =
     "  --glossy-bounces N        bounces gathered into the interreflected matrix, 0..--bounces\n"
     "                            (default 1; 0 stores the shadowed matrix only)\n"
     "  --specular-exponent S     one Phong exponent S >= 0 for every vertex instead of roughness\n"
+    "                            (with --glossy or --texel-glossy)\n"
     "  --max-specular-exponent S the exponent roughness 0 (a mirror) maps to (default 10000)\n"
     "  --texels                  also bake the vector passes per texel (transfer textures,\n"
     "                            docs/transfer-textures.md) over the glTF's lightmap atlas:\n"
@@ -91,6 +93,11 @@ constexpr const char* kHelp =
     "                            never: fail instead\n"
     "  --blender PATH            the Blender that generates it (default: blender on PATH)\n"
     "  --unwrap-timeout S        seconds one Blender run may take before it is killed (default 600)\n"
+    "  --texel-glossy            also bake each texel's visibility vector for glossy shading by\n"
+    "                            the triple product (TPFL, docs/transfer-textures.md), with the\n"
+    "                            glossy material split of --glossy (needs --texels, distant lighting)\n"
+    "  --visibility-order M      its SH bands, 2..16 (default 2N-1 for --order N: exact; M = N is\n"
+    "                            the economy form, M^2 floats a texel, and an approximation)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -183,9 +190,10 @@ Status parseUnwrapArgs(const ParsedArgs& p, bake::TexelBakeSettings* t) {
 
 Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
   for (const char* flag : {"--texture-size", "--texels-per-unit", "--atlas-padding", "--dilation", "--unwrap",
-                           "--blender", "--unwrap-timeout"}) {
+                           "--blender", "--unwrap-timeout", "--texel-glossy"}) {
     if (p.has(flag) && !p.has("--texels")) return usage(std::string(flag) + " needs --texels");
   }
+  if (p.has("--visibility-order") && !p.has("--texel-glossy")) return usage("--visibility-order needs --texel-glossy");
   if (!p.has("--texels")) return Status::ok();
   bake::TexelBakeSettings t;
   if (p.has("--texture-size") && p.has("--texels-per-unit")) {
@@ -212,17 +220,25 @@ Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
     t.dilation = v;
   }
   if (Status st = parseUnwrapArgs(p, &t); !st.isOk()) return st;
+  if (p.has("--texel-glossy")) {
+    // TPFL is a product with distant light (docs/transfer-textures.md, "Glossy by the triple product").
+    if (isLocalLighting(c->bake.transfer.lighting.model)) {
+      return usage("--texel-glossy needs distant lighting (the default --lighting): TPFL multiplies each texel's "
+                   "visibility with the distant light, which local lighting is not");
+    }
+    t.visibilityOrder = 2 * c->bake.transfer.order - 1;  // exact (docs/triple-product.md)
+    if (const std::string* s = p.value("--visibility-order")) {
+      if (Status st = parseIntArg("--visibility-order", *s, kMinVisibilityOrder, kMaxShOrder, &v); !st.isOk()) return st;
+      t.visibilityOrder = v;
+    }
+  }
   c->bake.texels = t;
   return Status::ok();
 }
 
-Status parseGlossyArgs(const ParsedArgs& p, BakeCli* c) {
+// --glossy-bounces (default 1), against the diffuse bounces it gathers from.
+Status parseGlossyBounces(const ParsedArgs& p, BakeCli* c) {
   bake::BakeOptions& t = c->bake.transfer;
-  t.glossy = p.has("--glossy");
-  for (const char* flag : {"--glossy-bounces", "--specular-exponent", "--max-specular-exponent"}) {
-    if (p.has(flag) && !t.glossy) return usage(std::string(flag) + " needs --glossy");
-  }
-  if (!t.glossy) return Status::ok();
   t.glossyBounces = 1;
   if (const std::string* s = p.value("--glossy-bounces")) {
     int v = 0;
@@ -236,6 +252,11 @@ Status parseGlossyArgs(const ParsedArgs& p, BakeCli* c) {
   if (t.glossyBounces > t.maxBounces) {
     return usage("--glossy-bounces " + std::to_string(t.glossyBounces) + " exceeds --bounces " + std::to_string(t.maxBounces));
   }
+  return Status::ok();
+}
+
+// --specular-exponent and --max-specular-exponent: the glossy material split's lobe.
+Status parseGlossyMaterialArgs(const ParsedArgs& p, BakeCli* c) {
   const float big = std::numeric_limits<float>::max();
   float x = 0.0f;
   if (const std::string* s = p.value("--specular-exponent")) {
@@ -247,6 +268,21 @@ Status parseGlossyArgs(const ParsedArgs& p, BakeCli* c) {
     c->bake.glossyMaterials.maxExponent = x;
   }
   return Status::ok();
+}
+
+// The material flags apply to both glossy bakes (matrices, --glossy, and texel visibility,
+// --texel-glossy), which split the material the same way; the bounces only to matrices.
+Status parseGlossyArgs(const ParsedArgs& p, BakeCli* c) {
+  bake::BakeOptions& t = c->bake.transfer;
+  t.glossy = p.has("--glossy");
+  const bool materials = t.glossy || p.has("--texel-glossy");
+  if (p.has("--glossy-bounces") && !t.glossy) return usage("--glossy-bounces needs --glossy");
+  for (const char* flag : {"--specular-exponent", "--max-specular-exponent"}) {
+    if (p.has(flag) && !materials) return usage(std::string(flag) + " needs --glossy or --texel-glossy");
+  }
+  if (!materials) return Status::ok();
+  if (t.glossy) PRT_RETURN_IF_ERROR(parseGlossyBounces(p, c));
+  return parseGlossyMaterialArgs(p, c);
 }
 
 std::string describeLighting(const LightingInfo& l) {
@@ -360,6 +396,7 @@ std::string describeCompression(const std::vector<bake::CompressedPass>& passes)
     std::snprintf(line, sizeof line, "%s%s%s %zu -> %zu bytes (relative RMS error %.2e%s)", summary.empty() ? "" : "; ",
                   transferKindName(p.kind),
                   p.form == TransferForm::kMatrix         ? " glossy"
+                  : p.form == TransferForm::kVisibility   ? " texel visibility"
                   : p.domain == TransferDomain::kTexel    ? " texel"
                                                           : "", p.floatBytes, p.encodedBytes, p.codec.relativeError,
                   p.codec.clusters > 0 ? (", " + std::to_string(p.codec.clusters) + " clusters").c_str() : "");
@@ -446,6 +483,14 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       if (t.normalMappedTexels > 0) {
         std::fprintf(err, "prt-bake: transfer textures: %zu texels shaded with normal maps\n", t.normalMappedTexels);
       }
+      if (t.visibilityOrder > 0) {
+        // 2n - 1 bands make TPFL exact; fewer are the economy form (docs/transfer-textures.md).
+        const int exact = 2 * c.bake.transfer.order - 1;
+        std::fprintf(err, "prt-bake: transfer textures: TPFL glossy visibility, order %d (%d coefficients a texel; %s)\n",
+                     t.visibilityOrder, t.visibilityOrder * t.visibilityOrder,
+                     t.visibilityOrder >= exact ? "exact for this lighting order"
+                                                : ("approximate: exact needs " + std::to_string(exact)).c_str());
+      }
     }
     if (report.verticesOutsideLight > 0 && !c.quiet) {
       std::fprintf(err,
@@ -495,7 +540,8 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       s += ", \"size\": " + std::to_string(t.size) +
            ", \"texels\": " + std::to_string(t.texels) + ", \"sampled\": " + std::to_string(t.sampledTexels) +
            ", \"charts\": " + std::to_string(t.charts) + ", \"normal_mapped\": " + std::to_string(t.normalMappedTexels) +
-           ", \"bounces\": " + std::to_string(t.bounces) + ", \"passes\": [";
+           ", \"bounces\": " + std::to_string(t.bounces) + ", \"visibility_order\": " + std::to_string(t.visibilityOrder) +
+           ", \"passes\": [";
       for (std::size_t i = 0; i < t.passes.size(); ++i) {
         s += std::string(i ? ", " : "") + "{\"name\": " + jsonString(t.passes[i].name) +
              ", \"seconds\": " + jsonNumber(t.passes[i].seconds) + ", \"rays\": " + std::to_string(t.passes[i].rays) + "}";

@@ -31,4 +31,32 @@ Status assetTexelSamples(const BakedAsset& asset, std::vector<AtlasTexel>* out) 
   return Status::ok();
 }
 
+Status assetTexelSpecular(const BakedAsset& asset, std::span<const AtlasTexel> texels, std::vector<SpecularMaterial>* out) {
+  out->clear();
+  if (asset.specular.empty() || asset.specular.size() != asset.positions.size()) {
+    return Status::error(StatusCode::kInvalidArgument, "the asset has no specular materials (one per vertex) to shade glossy texels with");
+  }
+  std::vector<SpecularMaterial> materials(texels.size());
+  for (std::size_t t = 0; t < texels.size(); ++t) {
+    const AtlasTexel& s = texels[t];
+    if (std::size_t{s.triangle} >= asset.indices.size() / 3) {
+      return Status::error(StatusCode::kCorrupt, "texel " + std::to_string(s.index) + "'s triangle " +
+                                                     std::to_string(s.triangle) + " is not one of the asset's");
+    }
+    SpecularMaterial m{{0, 0, 0}, 0.0f, 0.0f};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = asset.indices[3 * std::size_t{s.triangle} + static_cast<std::size_t>(k)];
+      if (v >= asset.specular.size()) return Status::error(StatusCode::kCorrupt, "index " + std::to_string(v) + " out of range");
+      const SpecularMaterial& c = asset.specular[v];
+      const float w = s.bary[static_cast<std::size_t>(k)];
+      m.f0 = m.f0 + c.f0 * w;
+      m.f90 += w * c.f90;
+      m.exponent += w * c.exponent;
+    }
+    materials[t] = m;
+  }
+  *out = std::move(materials);
+  return Status::ok();
+}
+
 }  // namespace prt::bake

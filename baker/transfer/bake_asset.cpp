@@ -13,6 +13,8 @@
 namespace prt::bake {
 namespace {
 
+bool wantsVisibility(const AssetBakeOptions& o) { return o.texels && o.texels->visibilityOrder > 0; }
+
 LightingInfo resolveLighting(const Scene& scene, const AssetBakeOptions& o) {
   LightingInfo l = o.transfer.lighting;
   if (!isLocalLighting(l.model)) return l;
@@ -43,8 +45,9 @@ BakedAsset makeAsset(Scene&& scene, BakeResult&& r, const AssetBakeOptions& o, c
       a.passes.push_back(
           {TransferKind::kInterreflected, 3, r.glossyBounces, std::move(r.glossyInterreflected), {}, TransferForm::kMatrix});
     }
-    a.specular = std::move(scene.specular);
   }
+  // Matrix and visibility passes both shade with the vertices' glossy materials.
+  if (o.transfer.glossy || wantsVisibility(o)) a.specular = std::move(scene.specular);
   return a;
 }
 
@@ -56,15 +59,18 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
     c.form = pass.form;
     c.domain = pass.domain;
     c.floatBytes = pass.coeffs.size() * sizeof(float);
+    // A visibility pass is a vector pass of its own order (its blob's order is the pass's).
+    const int order = pass.form == TransferForm::kVisibility ? pass.order : a->shOrder;
     const Status s = pass.form == TransferForm::kMatrix
                          ? encodeTransferMatrix(pass.coeffs, a->shOrder, matrixPackingFor(pass.kind, a->lighting.model),
                                                 pass.channels, settings, &pass.encoded, &c.codec)
-                         : encodeTransfer(pass.coeffs, a->shOrder, pass.channels, settings, &pass.encoded, &c.codec);
+                         : encodeTransfer(pass.coeffs, order, pass.channels, settings, &pass.encoded, &c.codec);
     if (!s.isOk()) {
       return Status::error(s.code(), std::string("cannot compress: ") + transferKindName(pass.kind) + " " +
                                          (pass.form == TransferForm::kMatrix         ? "glossy matrix"
-                                          : pass.domain == TransferDomain::kTexel ? "texel transfer"
-                                                                                  : "transfer") + ": " +
+                                          : pass.form == TransferForm::kVisibility ? "texel visibility"
+                                          : pass.domain == TransferDomain::kTexel  ? "texel transfer"
+                                                                                   : "transfer") + ": " +
                                          s.message());
     }
     c.encodedBytes = pass.encoded.size();
@@ -76,7 +82,8 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
 }
 
 // The texel passes of `scene` over its chosen atlas, appended to *passes (unshadowed,
-// shadowed, interreflected as options stores them, domain kTexel); fills the atlas fields.
+// shadowed, interreflected as options stores them, then the visibility pass when asked for;
+// domain kTexel); fills the atlas fields.
 struct TexelBake {
   std::vector<float> atlasUv;
   std::vector<TextureAtlas> atlases;
@@ -190,6 +197,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   options.transfer = transfer;
   options.transfer.glossy = false;  // glossy stays per vertex (matrices)
   options.dilation = t.dilation;
+  options.visibilityOrder = t.visibilityOrder;
   if (transfer.progress) {
     // The same bar as the vertex passes, named "texel direct", "texel bounce N".
     options.transfer.progress = [&transfer](const BakeProgress& p) {
@@ -203,6 +211,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   report->sampledTexels = r.sampledTexels;
   report->normalMappedTexels = r.normalMappedTexels;
   report->bounces = r.bounces;
+  report->visibilityOrder = r.visibilityOrder;
   report->passes = r.passes;
 
   out->atlasUv.resize(2 * uv.size());
@@ -220,6 +229,12 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   if (o.storeShadowed) out->passes.push_back(texelPass(TransferKind::kShadowed, 1, 0, std::move(r.shadowed)));
   if (o.storeInterreflected) {
     out->passes.push_back(texelPass(TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected)));
+  }
+  if (r.visibilityOrder > 0) {
+    TransferPass v = texelPass(TransferKind::kShadowed, 1, 0, std::move(r.visibility));
+    v.form = TransferForm::kVisibility;
+    v.order = r.visibilityOrder;
+    out->passes.push_back(std::move(v));
   }
   return Status::ok();
 }
@@ -268,7 +283,18 @@ Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings&
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started) {
   *report = AssetBakeReport{};
-  if (options.transfer.glossy) PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
+  // Checked before any work (the texel bake would refuse it too, but only after the atlas).
+  if (wantsVisibility(options) && isLocalLighting(options.transfer.lighting.model)) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         std::string("the texel visibility pass (TPFL glossy) needs distant lighting, not ") +
+                             lightingModelName(options.transfer.lighting.model) +
+                             ": TPFL multiplies each texel's visibility with the distant light");
+  }
+  // A visibility pass is glossy too: it shades with the split's lobe, and the diffuse passes
+  // must then hold the split's diffuse part, exactly as with transfer.glossy.
+  if (options.transfer.glossy || wantsVisibility(options)) {
+    PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
+  }
   // Before the vertex order and the report: a generated atlas splits vertices at its seams.
   TexelAtlasPick atlas;
   if (options.texels) PRT_RETURN_IF_ERROR(pickTexelAtlas(*options.texels, &scene, &atlas));

@@ -35,6 +35,11 @@ struct TexelBakeSettings {
   // When neither UV set is a valid atlas: generate one (unwrapUvAtlas; its size, padding and
   // sideFromLayout come from the fields above). nullopt: fail instead.
   std::optional<UvUnwrapOptions> unwrap;
+  // > 0: also bake and store the texels' TPFL visibility pass at this order (2..kMaxShOrder;
+  // 2n - 1 for order-n lighting is exact, fewer bands an approximation: docs/transfer-textures.md,
+  // "Glossy by the triple product"). Distant lighting only; the scene gets the glossy material
+  // split (options.glossyMaterials) as with transfer.glossy, and the asset its specular materials.
+  int visibilityOrder = 0;
 };
 
 // The atlas side for `settings` on `scene`'s set `texcoord`: textureSize when given, else
@@ -53,8 +58,9 @@ struct AssetBakeOptions {
   // Which passes the asset stores (unshadowed and shadowed cost nothing extra to compute;
   // interreflected is computed only when stored).
   bool storeUnshadowed = true, storeShadowed = true, storeInterreflected = true;
-  // With transfer.glossy: the glossy material split (applied to the scene before the bake)
-  // and the matrix passes stored: shadowed always, interreflected when transfer.glossyBounces > 0.
+  // With transfer.glossy or texels->visibilityOrder: the glossy material split (applied to the
+  // scene before the bake). transfer.glossy stores the matrix passes: shadowed always,
+  // interreflected when transfer.glossyBounces > 0.
   GlossyMaterialOptions glossyMaterials;
   std::optional<std::string> name;                 // default: the scene's name
   std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
@@ -70,6 +76,7 @@ struct TexelBakeReport {
   std::size_t normalMappedTexels = 0;  // sampled texels shaded with a normal map's normal
   std::vector<std::string> rejected;  // why the other UV set (or both, when generated) was not used
   int bounces = 0;
+  int visibilityOrder = 0;           // the stored TPFL visibility pass's order; 0 without one
   std::vector<PassStats> passes;
 };
 
@@ -98,7 +105,8 @@ struct AssetBakeReport {
 // triangles and lighting filled in, before the long part. Errors: the bake's and the codec's,
 // prefixed with the pass they belong to; with options.texels, when neither UV set is a valid
 // atlas at the chosen size, the generator's (texels.unwrap) or, without it, kInvalidArgument
-// giving each set's reason. A generated atlas splits vertices at its seams, before `started`.
+// giving each set's reason (a generated atlas splits vertices at its seams, before `started`);
+// kInvalidArgument when a visibility pass is asked for under local lighting (before any work).
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 

@@ -30,20 +30,24 @@ enum class TransferKind : std::uint32_t {
 // "unshadowed" | "shadowed" | "interreflected", or "unknown" for other values.
 const char* transferKindName(TransferKind kind);
 
-// Diffuse passes are SH vectors; glossy passes are SH matrices (docs/glossy.md).
+// Diffuse passes are SH vectors; glossy passes are SH matrices (docs/glossy.md) or, per texel,
+// visibility vectors for the triple product (docs/transfer-textures.md, "Glossy by the triple
+// product").
 enum class TransferForm : std::uint32_t {
-  kVector = 0,  // exit radiance = (albedo *) sum_i T_i L_i
-  kMatrix = 1,  // transferred incident radiance M L, convolved with the glossy lobe at R
+  kVector = 0,      // exit radiance = (albedo *) sum_i T_i L_i
+  kMatrix = 1,      // transferred incident radiance M L, convolved with the glossy lobe at R
+  kVisibility = 2,  // V_k = integral V(x, w) [n.w > 0] y_k(w) dw at its own order (TransferPass::order);
+                    // transferred incident radiance P(L) V (prt::tpflGlossyExitRadiance); texel, shadowed, 1 channel
 };
 
-// "vector" | "matrix", or "unknown".
+// "vector" | "matrix" | "visibility", or "unknown".
 const char* transferFormName(TransferForm form);
 
 // Where a pass's transfer lives (docs/transfer-textures.md).
 enum class TransferDomain : std::uint32_t {
   kVertex = 0,  // one transfer per vertex, interpolated across each triangle
   kTexel = 1,   // one per texel of the asset's atlases (PRTT), filtered bilinearly at the
-                // atlas UV; vector passes only
+                // atlas UV; vector and visibility passes (no matrices)
 };
 
 // "vertex" | "texel", or "unknown".
@@ -71,7 +75,14 @@ struct TransferPass {
   // atlas after atlas, texel y * width + x within one (BakedAsset::texelCoverage's order),
   // unused texels included (0, or a gutter's dilated value).
   TransferDomain domain = TransferDomain::kVertex;
+  // kVisibility: the visibility vector's own bands m (kMinVisibilityOrder..kMaxShOrder; 2n - 1
+  // for lighting of order n makes TPFL glossy exact), coeffs [texel][coefficient] with m^2 per
+  // texel. 0 for the other forms, whose order is the asset's. Last, like form and domain.
+  int order = 0;
 };
+
+// The smallest visibility order a pass may have: one band carries no direction at all.
+inline constexpr int kMinVisibilityOrder = 2;
 
 // One transfer-texture atlas: a width x height texture covering a contiguous run of the
 // asset's triangles (a texture set, PRTT §4.3: one per object or material group).
@@ -127,7 +138,7 @@ struct BakedAsset {
   std::vector<Rgb> albedo;           // one per position, linear
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
   std::vector<TransferPass> passes;  // 1..kMaxAssetPasses, at most one per (kind, form, domain); order is kept
-  // One per position when the asset has a matrix pass (the glossy material), else empty.
+  // One per position when the asset has a matrix or visibility pass (the glossy material), else empty.
   std::vector<SpecularMaterial> specular;
   // Bake metadata. samples and seed are 64-bit because the baker's options are
   // (BakeOptions::samples is a size_t, ::seed a uint64_t); narrowing would lose the seed.
@@ -161,8 +172,9 @@ const TransferPass* findPass(const BakedAsset& asset, TransferKind kind, Transfe
 inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
 // New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular,
-// 4: transfer textures: atlas uv, atlases, texel coverage, texel transfer float32 and encoded).
-inline constexpr std::uint16_t kAssetVersionMinor = 4;
+// 4: transfer textures: atlas uv, atlases, texel coverage, texel transfer float32 and encoded,
+// 5: texel visibility float32 and encoded, for TPFL glossy).
+inline constexpr std::uint16_t kAssetVersionMinor = 5;
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -200,6 +212,9 @@ enum class AssetSectionType : std::uint32_t {
   kTexelCoverage = 14,   // bytes: one TexelCoverage per texel, atlases in order
   kTexelTransfer = 15,   // float32 [texel][channel][coefficient]; args as kTransfer
   kEncodedTexelTransfer = 16,  // bytes: a transfer codec blob with texels as its "vertices"; args as kTransfer
+  // TPFL glossy visibility (since 1.5): arg0 kind (shadowed), arg1 channels (1), arg2 its order m.
+  kTexelVisibility = 17,         // float32 [texel][coefficient], m^2 per texel; needs specular and the atlases
+  kEncodedTexelVisibility = 18,  // bytes: a transfer codec blob of order m, 1 channel, texels as rows
 };
 
 // Transfer-texture limits: an atlas side as large as common GPUs' maximum texture size, and
@@ -207,8 +222,9 @@ enum class AssetSectionType : std::uint32_t {
 inline constexpr std::uint32_t kMaxAssetAtlasSize = 16384;
 inline constexpr std::uint32_t kMaxAssetAtlases = 1024;
 inline constexpr std::uint64_t kMaxAssetTexels = 1ull << 28;
-// At most one pass per (kind, form, domain): 3 vector + 3 matrix vertex passes, 3 texel passes.
-inline constexpr std::size_t kMaxAssetPasses = 9;
+// At most one pass per (kind, form, domain): 3 vector + 3 matrix vertex passes, 3 texel vector
+// passes and the one texel visibility pass (shadowed only).
+inline constexpr std::size_t kMaxAssetPasses = 10;
 
 // Bytes per vertex of the specular section: float32 f0 r, g, b, f90, exponent.
 inline constexpr std::size_t kAssetSpecularBytesPerVertex = 20;
@@ -276,10 +292,12 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // many normals and albedos, 1..kMaxAssetTriangles triangles with every index in range,
 // every float finite, 1..kMaxAssetPasses passes of distinct valid (kind, form, domain) with
 // channels 1 or 3, bounces 0 except for interreflection, coefficient counts matching, valid
-// name and sampling, and valid lighting (checkLightingInfo). With a matrix pass: one specular
-// material per vertex, f0 and f90 in [0, 1] and exponent finite and >= 0; without one, no
-// specular materials. Texel passes are vector form, with assetTexelCount as their vertex
-// count; with one: 1..kMaxAssetAtlases atlases of sides 1..kMaxAssetAtlasSize covering the
+// name and sampling, and valid lighting (checkLightingInfo). With a matrix or visibility pass:
+// one specular material per vertex, f0 and f90 in [0, 1] and exponent finite and >= 0;
+// without one, no specular materials. Texel passes are vector or visibility form, with
+// assetTexelCount as their vertex count; a visibility pass is shadowed, 1 channel, order
+// kMinVisibilityOrder..kMaxShOrder with order^2 coefficients per texel (other passes have
+// order 0), under distant lighting (TPFL is a product with distant light). With a texel pass: 1..kMaxAssetAtlases atlases of sides 1..kMaxAssetAtlasSize covering the
 // triangles contiguously in order, at most kMaxAssetTexels texels, atlasUv 2 per vertex in
 // [0, 1], texelCoverage one value (0, 1 or 2) per texel; without one, all three empty.
 Status checkAsset(const BakedAsset& asset);
@@ -296,6 +314,7 @@ struct AssetPassInfo {
   std::uint32_t section = 0;  // its index in the section table
   TransferForm form = TransferForm::kVector;
   TransferDomain domain = TransferDomain::kVertex;
+  int order = 0;  // kVisibility: the visibility vector's bands (the section's arg2); else 0
 };
 
 // One entry of the section table, as validated by the reader (offsets from the file start).
@@ -365,7 +384,9 @@ Status decodeAssetGeometry(std::span<const std::uint8_t> file, BakedAsset* out);
 // may hold only the codec's header and the parts of its first `bands` bands (the bands the
 // caller knows have arrived; 0 = all of them), and decodes as an order-`bands` pass (out->coeffs has
 // channels * bands^2 floats per vertex, or per texel for a texel pass, whose texel count is the
-// coverage section's size; *bandsDecoded says how many). out->encoded is left empty.
+// coverage section's size; *bandsDecoded says how many). For a visibility pass `bands` counts
+// the vector's own bands (0..out->order, its order m, not the header's): the first b bands of V.
+// out->encoded is left empty.
 Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, TransferPass* out, int* bandsDecoded);
 
 // Like decodeAssetPassCpca for an encoded CPCA matrix pass (kEncodedMatrixTransfer): *out gets
@@ -387,7 +408,8 @@ Status decodeAssetSpecular(std::span<const std::uint8_t> file, std::vector<Specu
 // the compressed form): *out gets the cluster ids and the first `bands` bands (0 = every band
 // that has arrived), *info the pass's kind, channels and bounces (no coefficients).
 // kInvalidArgument for a float32 pass or a blob of another encoding. Texel passes (type 16)
-// work the same, with one row per texel instead of per vertex. Safe on untrusted input.
+// work the same, with one row per texel instead of per vertex, and so does an encoded
+// visibility pass (type 18), whose bands are its own (0..m). Safe on untrusted input.
 Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int bands, CpcaTransfer* out, TransferPass* info);
 
 }  // namespace prt

@@ -78,11 +78,21 @@ constexpr std::uint32_t kTypeAtlases = static_cast<std::uint32_t>(AssetSectionTy
 constexpr std::uint32_t kTypeTexelCoverage = static_cast<std::uint32_t>(AssetSectionType::kTexelCoverage);
 constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kTexelTransfer);
 constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
+constexpr std::uint32_t kTypeTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kTexelVisibility);
+constexpr std::uint32_t kTypeEncodedTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelVisibility);
 
 bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
-bool isTexelType(std::uint32_t type) { return type == kTypeTexelTransfer || type == kTypeEncodedTexelTransfer; }
+bool isVisibilityType(std::uint32_t type) { return type == kTypeTexelVisibility || type == kTypeEncodedTexelVisibility; }
+// Texel passes: vector (15, 16) and visibility (17, 18) sections, one row per texel.
+bool isTexelType(std::uint32_t type) {
+  return type == kTypeTexelTransfer || type == kTypeEncodedTexelTransfer || isVisibilityType(type);
+}
 bool isEncodedType(std::uint32_t type) {
-  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer;
+  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer ||
+         type == kTypeEncodedTexelVisibility;
+}
+TransferForm formOf(std::uint32_t type) {
+  return isMatrixType(type) ? TransferForm::kMatrix : isVisibilityType(type) ? TransferForm::kVisibility : TransferForm::kVector;
 }
 constexpr std::uint32_t kFormatFloat32 = static_cast<std::uint32_t>(AssetElementFormat::kFloat32);
 constexpr std::uint32_t kFormatUint32 = static_cast<std::uint32_t>(AssetElementFormat::kUint32);
@@ -104,9 +114,16 @@ std::string sectionLabel(const Entry& e) {
     case kTypeEncodedMatrixTransfer:
     case kTypeTexelTransfer:
     case kTypeEncodedTexelTransfer:
+    case kTypeTexelVisibility:
+    case kTypeEncodedTexelVisibility:
       s += isEncodedType(e.type) ? "encoded " : "";
       s += isMatrixType(e.type) ? "matrix " : "";
       s += isTexelType(e.type) ? "texel " : "";
+      if (isVisibilityType(e.type)) {  // "texel visibility shadowed"
+        s += e.arg0 <= 2 ? std::string("visibility ") + transferKindName(static_cast<TransferKind>(e.arg0))
+                         : "visibility kind " + num(e.arg0);
+        break;
+      }
       s += e.arg0 <= 2 ? std::string("transfer ") + transferKindName(static_cast<TransferKind>(e.arg0))
                        : "transfer kind " + num(e.arg0);
       break;
@@ -122,6 +139,23 @@ std::string sectionLabel(const Entry& e) {
 }
 
 Status corrupt(std::string message) { return Status::error(StatusCode::kCorrupt, std::move(message)); }
+
+// The bands a transfer section's vectors have: a visibility section's own (arg2), else the header's.
+std::uint32_t passOrder(const Entry& e, const Parsed& p) { return isVisibilityType(e.type) ? e.arg2 : p.order; }
+
+// A transfer section's pass without coefficients: kind, channels, bounces (arg2; for a
+// visibility section arg2 is its order instead), form, domain.
+TransferPass passHeader(const Entry& e) {
+  TransferPass t;
+  const bool visibility = isVisibilityType(e.type);
+  t.kind = static_cast<TransferKind>(e.arg0);
+  t.channels = static_cast<int>(e.arg1);
+  t.bounces = visibility ? 0 : static_cast<int>(e.arg2);
+  t.form = formOf(e.type);
+  t.domain = isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex;
+  t.order = visibility ? static_cast<int>(e.arg2) : 0;
+  return t;
+}
 
 // Magic, version, header checksum and header fields. Needs only the first 64 bytes.
 Status parseHeader(std::span<const std::uint8_t> bytes, Parsed* p) {
@@ -278,6 +312,29 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       if (Status t = once(&p->coverage); !t.isOk()) return t;
       p->texelCount = e.size;
       return Status::ok();
+    case kTypeTexelVisibility:
+    case kTypeEncodedTexelVisibility: {
+      // TPFL glossy visibility (since 1.5): shadowed, one channel, arg2 its own order. A float32
+      // section's size depends on the texel count: checked in parseTable (checkTexelSections).
+      const bool encoded = e.type == kTypeEncodedTexelVisibility;
+      if (!(s = encoded ? expectFormat(kFormatBytes, "bytes") : expectFormat(kFormatFloat32, "float32")).isOk()) return s;
+      if (e.arg0 != static_cast<std::uint32_t>(TransferKind::kShadowed)) {
+        return corrupt(label + " has transfer kind " + num(e.arg0) + "; visibility sections are shadowed (1)");
+      }
+      if (e.arg1 != 1) return corrupt(label + " has " + num(e.arg1) + " channels; visibility sections have 1");
+      if (e.arg2 < static_cast<std::uint32_t>(kMinVisibilityOrder) || e.arg2 > static_cast<std::uint32_t>(kMaxShOrder)) {
+        return corrupt(label + " has visibility order " + num(e.arg2) + "; " + num(kMinVisibilityOrder) + " to " +
+                       num(kMaxShOrder) + " expected");
+      }
+      for (int other : p->transfer) {
+        if (isVisibilityType(p->entries[static_cast<std::size_t>(other)].type)) {
+          return corrupt(label + " repeats the visibility pass of section " + num(static_cast<std::uint64_t>(other)) +
+                         "; at most one is allowed");
+        }
+      }
+      p->transfer.push_back(static_cast<int>(e.index));
+      return Status::ok();
+    }
     case kTypeTransfer:
     case kTypeEncodedTransfer:
     case kTypeMatrixTransfer:
@@ -322,7 +379,7 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       }
       for (int other : p->transfer) {
         const Entry& o = p->entries[static_cast<std::size_t>(other)];
-        if (o.arg0 == e.arg0 && isMatrixType(o.type) == matrix && isTexelType(o.type) == texel) {
+        if (o.arg0 == e.arg0 && formOf(o.type) == formOf(e.type) && isTexelType(o.type) == texel) {
           return corrupt(label + " repeats the transfer kind of section " + num(static_cast<std::uint64_t>(other)));
         }
       }
@@ -348,6 +405,15 @@ Status checkTexelSections(const Parsed& p) {
   }
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    if (e.type == kTypeTexelVisibility) {
+      // texels <= 2^28, order^2 <= 256 (the entry check bounded arg2): below 2^40.
+      const std::uint64_t want = p.texelCount * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(e.arg2))) * 4;
+      if (e.size != want) {
+        return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(want) + " expected (4 bytes per texel and coefficient, " +
+                       num(p.texelCount) + " texels, visibility order " + num(e.arg2) + ")");
+      }
+      continue;
+    }
     if (e.type != kTypeTexelTransfer) continue;
     // texels <= 2^28, channels <= 3, order^2 <= 256: below 2^40.
     const std::uint64_t want = p.texelCount * e.arg1 * static_cast<std::uint64_t>(shCoeffCount(static_cast<int>(p.order))) * 4;
@@ -425,19 +491,29 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
     if (slot < 0) return corrupt(std::string("the required ") + name + " section is missing");
   }
   if (p->transfer.empty()) return corrupt("the asset has no transfer section");
-  bool anyMatrix = false;
-  for (int t : p->transfer) anyMatrix = anyMatrix || isMatrixType(p->entries[static_cast<std::size_t>(t)].type);
-  if (anyMatrix && p->specular < 0) return corrupt("the asset has a matrix transfer section but no specular section");
-  if (!anyMatrix && p->specular >= 0) {
-    return corrupt(sectionLabel(p->entries[static_cast<std::size_t>(p->specular)]) + " is present without a matrix transfer section");
+  // Both glossy forms need the specular materials: matrices per vertex, visibility per texel
+  // (interpolated from the vertices').
+  bool anyGlossy = false;
+  for (int t : p->transfer) {
+    const std::uint32_t type = p->entries[static_cast<std::size_t>(t)].type;
+    anyGlossy = anyGlossy || isMatrixType(type) || isVisibilityType(type);
+  }
+  if (anyGlossy && p->specular < 0) return corrupt("the asset has a matrix or visibility transfer section but no specular section");
+  if (!anyGlossy && p->specular >= 0) {
+    return corrupt(sectionLabel(p->entries[static_cast<std::size_t>(p->specular)]) +
+                   " is present without a matrix or visibility transfer section");
   }
   return checkTexelSections(*p);
 }
 
-// A float32 matrix section's size must match its packing, which the lighting model decides.
+// What depends on the lighting model: a float32 matrix section's size must match its
+// packing, and a visibility section needs distant lighting (TPFL multiplies V with it).
 Status checkMatrixPackings(const Parsed& p, const LightingInfo& lighting) {
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
+    if (isVisibilityType(e.type) && isLocalLighting(lighting.model)) {
+      return corrupt(sectionLabel(e) + " needs distant lighting; the lighting section says " + lightingModelName(lighting.model));
+    }
     if (e.type != kTypeMatrixTransfer) continue;
     const MatrixPacking packing = matrixPackingFor(static_cast<TransferKind>(e.arg0), lighting.model);
     const std::uint64_t want = std::uint64_t{p.vertexCount} * e.arg1 * matrixEntryCount(static_cast<int>(p.order), packing) * 4;
@@ -659,14 +735,16 @@ Status checkEncodedTransfer(std::span<const std::uint8_t> payload, const Entry& 
                      matrixPackingName(packing) + " packing");
     }
   }
-  // A texel pass's blob has one "vertex" per texel.
+  // A texel pass's blob has one "vertex" per texel; a visibility blob has the section's order.
   const bool texel = isTexelType(e.type);
   const std::uint64_t rows = texel ? p.texelCount : p.vertexCount;
   const char* rowName = texel ? " texels" : " vertices";
-  if (info.order != static_cast<int>(p.order) || info.channels != static_cast<int>(e.arg1) || info.vertexCount != rows) {
+  const std::uint32_t order = passOrder(e, p);
+  if (info.order != static_cast<int>(order) || info.channels != static_cast<int>(e.arg1) || info.vertexCount != rows) {
     return corrupt(sectionLabel(e) + ": its blob is order " + num(static_cast<std::uint64_t>(info.order)) + ", " +
-                   num(static_cast<std::uint64_t>(info.channels)) + " channels, " + num(info.vertexCount) +
-                   " rows; the asset says order " + num(p.order) + ", " + num(e.arg1) + " channels, " + num(rows) + rowName);
+                   num(static_cast<std::uint64_t>(info.channels)) + " channels, " + num(info.vertexCount) + " rows; the " +
+                   (isVisibilityType(e.type) ? "section" : "asset") + " says order " + num(order) + ", " + num(e.arg1) +
+                   " channels, " + num(rows) + rowName);
   }
   const int available = info.bandsAvailable;
   const int want = bands <= 0 ? available : std::min(bands, available);
@@ -717,7 +795,8 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeSpecular: s = checkSpecularPayload(payload, e); break;
       case kTypeTransfer:
       case kTypeMatrixTransfer:
-      case kTypeTexelTransfer: s = checkTransferFloats(payload, e); break;
+      case kTypeTexelTransfer:
+      case kTypeTexelVisibility: s = checkTransferFloats(payload, e); break;
       case kTypeIndices: s = checkIndices(payload, e, p->vertexCount); break;
       case kTypeMetadata: s = parseMetadata(payload, e, m); break;
       case kTypeLighting: break;  // parsed above
@@ -726,11 +805,12 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeTexelCoverage: s = checkCoverage(payload, e); break;
       case kTypeEncodedTransfer:
       case kTypeEncodedMatrixTransfer:
-      case kTypeEncodedTexelTransfer: {
+      case kTypeEncodedTexelTransfer:
+      case kTypeEncodedTexelVisibility: {
         const std::size_t slot = static_cast<std::size_t>(
             std::find(p->transfer.begin(), p->transfer.end(), static_cast<int>(e.index)) - p->transfer.begin());
         if (payload.size() != e.size) return corrupt(sectionLabel(e) + ": size mismatch");
-        s = checkEncodedTransfer(payload, e, *p, static_cast<int>(p->order),
+        s = checkEncodedTransfer(payload, e, *p, static_cast<int>(passOrder(e, *p)),
                                  decoded != nullptr ? &(*decoded)[slot] : nullptr, nullptr, nullptr, &m->lighting);
         // The whole section is here: its blob must be exactly the section.
         if (s.isOk()) {
@@ -760,10 +840,11 @@ void fillSummary(const Parsed& p, Metadata&& m, AssetSummary* out) {
   s.fileSize = p.fileSize;
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
-    s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), static_cast<int>(e.arg2),
-                        isEncodedType(e.type), e.size, e.index,
-                        isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector,
-                        isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex});
+    const bool visibility = isVisibilityType(e.type);  // arg2 is its order, not bounces
+    s.passes.push_back({static_cast<TransferKind>(e.arg0), static_cast<int>(e.arg1), visibility ? 0 : static_cast<int>(e.arg2),
+                        isEncodedType(e.type), e.size, e.index, formOf(e.type),
+                        isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex,
+                        visibility ? static_cast<int>(e.arg2) : 0});
   }
   s.texelCount = p.texelCount;
   s.samples = m.samples;
@@ -842,6 +923,7 @@ const char* transferFormName(TransferForm form) {
   switch (form) {
     case TransferForm::kVector: return "vector";
     case TransferForm::kMatrix: return "matrix";
+    case TransferForm::kVisibility: return "visibility";
   }
   return "unknown";
 }
@@ -977,12 +1059,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
   }
   for (int t : p.transfer) {
     const Entry& e = p.entries[static_cast<std::size_t>(t)];
-    TransferPass pass;
-    pass.kind = static_cast<TransferKind>(e.arg0);
-    pass.channels = static_cast<int>(e.arg1);
-    pass.bounces = static_cast<int>(e.arg2);
-    pass.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
-    pass.domain = isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex;
+    TransferPass pass = passHeader(e);
     if (isEncodedType(e.type)) {
       const std::size_t slot = a.passes.size();
       pass.coeffs = std::move(decoded[slot]);
@@ -1056,26 +1133,20 @@ Status locatePass(std::span<const std::uint8_t> file, int pass, int bands, const
     return Status::error(StatusCode::kInvalidArgument,
                          std::string(caller) + ": pass " + std::to_string(pass) + " of " + std::to_string(p->transfer.size()));
   }
-  if (bands < 0 || bands > static_cast<int>(p->order)) {
+  const Entry& e = p->entries[static_cast<std::size_t>(p->transfer[static_cast<std::size_t>(pass)])];
+  // A visibility pass's bands are its own (its order m may exceed the header's n).
+  const std::uint32_t order = passOrder(e, *p);
+  if (bands < 0 || bands > static_cast<int>(order)) {
     return Status::error(StatusCode::kInvalidArgument, std::string(caller) + ": bands " + std::to_string(bands) +
-                                                           " outside 0.." + std::to_string(p->order));
+                                                           " outside 0.." + std::to_string(order));
   }
-  *entry = &p->entries[static_cast<std::size_t>(p->transfer[static_cast<std::size_t>(pass)])];
+  *entry = &e;
   return Status::ok();
 }
 
-TransferPass passHeader(const Entry& e) {
-  TransferPass t;
-  t.kind = static_cast<TransferKind>(e.arg0);
-  t.channels = static_cast<int>(e.arg1);
-  t.bounces = static_cast<int>(e.arg2);
-  t.form = isMatrixType(e.type) ? TransferForm::kMatrix : TransferForm::kVector;
-  t.domain = isTexelType(e.type) ? TransferDomain::kTexel : TransferDomain::kVertex;
-  return t;
-}
-
-// The lighting a matrix pass's packing depends on: the lighting section (which must have
-// arrived) or distant when the file has none; then the float32 matrix sizes against it.
+// The lighting a matrix pass's packing and a visibility pass's validity depend on: the
+// lighting section (which must have arrived) or distant when the file has none; then the
+// float32 matrix sizes and the visibility rule against it (checkMatrixPackings).
 Status progressiveLighting(std::span<const std::uint8_t> file, const Parsed& p, LightingInfo* out) {
   *out = LightingInfo{};
   if (p.lighting >= 0) {
@@ -1096,9 +1167,10 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
   const Entry& e = *entry;
   const auto payload = payloadOf(file, e);
   TransferPass t = passHeader(e);
-  int decodedBands = static_cast<int>(p.order);
+  const int order = static_cast<int>(passOrder(e, p));
+  int decodedBands = order;
   LightingInfo lighting;
-  if (isMatrixType(e.type)) {
+  if (isMatrixType(e.type) || isVisibilityType(e.type)) {  // packing; visibility needs distant lighting
     if (Status s = progressiveLighting(file, p, &lighting); !s.isOk()) return s;
   }
   if (isEncodedType(e.type)) {
@@ -1107,7 +1179,7 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
     // pass's prefix holds the order-`bands` leading blocks (the packing's prefix rule).
     if (Status s = checkEncodedTransfer(payload, e, p, bands, &t.coeffs, &decodedBands, nullptr, &lighting); !s.isOk()) return s;
   } else {
-    if (bands != 0 && bands != static_cast<int>(p.order)) {
+    if (bands != 0 && bands != order) {
       // A float32 section is coefficient-interleaved: it cannot be cut into bands.
       return Status::error(StatusCode::kInvalidArgument, sectionLabel(e) + " is float32: only all bands decode");
     }
@@ -1126,10 +1198,15 @@ Status decodeAssetPassCpca(std::span<const std::uint8_t> file, int pass, int ban
   Parsed p;
   const Entry* entry = nullptr;
   if (Status s = locatePass(file, pass, bands, "decodeAssetPassCpca", &p, &entry); !s.isOk()) return s;
-  if (entry->type != kTypeEncodedTransfer && entry->type != kTypeEncodedTexelTransfer) {
+  if (entry->type != kTypeEncodedTransfer && entry->type != kTypeEncodedTexelTransfer &&
+      entry->type != kTypeEncodedTexelVisibility) {
     return Status::error(StatusCode::kInvalidArgument,
                          sectionLabel(*entry) + (entry->type == kTypeEncodedMatrixTransfer ? " holds matrices: use decodeAssetPassCpcaMatrix"
                                                                                           : " is float32, not CPCA"));
+  }
+  if (isVisibilityType(entry->type)) {  // as decodeAssetPass: a visibility pass needs distant lighting
+    LightingInfo lighting;
+    if (Status s = progressiveLighting(file, p, &lighting); !s.isOk()) return s;
   }
   CpcaTransfer cpca;
   if (Status s = checkEncodedTransfer(payloadOf(file, *entry), *entry, p, bands, nullptr, nullptr, &cpca); !s.isOk()) return s;

@@ -59,16 +59,18 @@ Status checkTriples(const std::vector<T>& v, const char* what) {
   return Status::ok();
 }
 
-// One material per vertex exactly when a matrix pass needs it (prt/asset.h).
-Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyMatrix, std::size_t vertexCount) {
-  if (!anyMatrix) {
+// One material per vertex exactly when a glossy pass (matrix, or texel visibility) needs it
+// (prt/asset.h).
+Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyGlossy, std::size_t vertexCount) {
+  if (!anyGlossy) {
     if (specular.empty()) return Status::ok();
     return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(specular.size()) +
-                                                           " specular materials but no matrix pass; they are kept only with one");
+                                                           " specular materials but no matrix or visibility pass; they are kept only with one");
   }
   if (specular.size() != vertexCount) {
     return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(specular.size()) + " specular materials for " +
-                                                        std::to_string(vertexCount) + " vertices; a matrix pass needs one per vertex");
+                                                        std::to_string(vertexCount) +
+                                                        " vertices; a matrix or visibility pass needs one per vertex");
   }
   for (std::size_t i = 0; i < specular.size(); ++i) {
     const SpecularMaterial& m = specular[i];
@@ -184,6 +186,31 @@ Status checkAtlasData(const BakedAsset& asset) {
   return Status::ok();
 }
 
+// A texel visibility pass (TPFL glossy): shadowed, one channel, no bounces, its own order, and
+// distant lighting, since TPFL multiplies it with the distant light (docs/asset-format.md).
+Status checkVisibilityPass(const TransferPass& pass, const std::string& named, LightingModel model) {
+  if (pass.domain != TransferDomain::kTexel) {
+    return Status::error(StatusCode::kInvalidArgument, named + ": visibility passes are texel passes only");
+  }
+  if (pass.kind != TransferKind::kShadowed) {
+    return Status::error(StatusCode::kInvalidArgument, named + ": visibility passes are shadowed (V(x, w) is the shadow test)");
+  }
+  if (pass.channels != 1) {
+    return Status::error(StatusCode::kInvalidArgument, named + " has " + std::to_string(pass.channels) +
+                                                           " channels; visibility passes have 1 (visibility has no colour)");
+  }
+  if (pass.order < kMinVisibilityOrder || pass.order > kMaxShOrder) {
+    return Status::error(StatusCode::kInvalidArgument, named + " has order " + std::to_string(pass.order) + "; " +
+                                                           std::to_string(kMinVisibilityOrder) + " to " +
+                                                           std::to_string(kMaxShOrder) + " are allowed");
+  }
+  if (isLocalLighting(model)) {
+    return Status::error(StatusCode::kInvalidArgument, named + ": visibility passes need distant lighting, the asset is " +
+                                                           lightingModelName(model));
+  }
+  return Status::ok();
+}
+
 // One section as laid out: table entry fields plus where its payload comes from.
 struct PlannedSection {
   AssetSectionType type;
@@ -191,7 +218,7 @@ struct PlannedSection {
   std::uint32_t arg0 = 0, arg1 = 0, arg2 = 0;
   std::uint64_t size = 0;
   std::uint64_t offset = 0;
-  const TransferPass* pass = nullptr;  // for the transfer sections (5, 8, 9, 10, 15, 16)
+  const TransferPass* pass = nullptr;  // for the transfer sections (5, 8, 9, 10, 15 to 18)
 };
 
 std::uint64_t alignUp(std::uint64_t v) { return (v + (kAssetAlignment - 1)) & ~static_cast<std::uint64_t>(kAssetAlignment - 1); }
@@ -233,7 +260,7 @@ Status checkAsset(const BakedAsset& asset) {
   const bool anyTexel = hasTexelPass(asset);
   if (Status s = anyTexel ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
   const std::uint64_t texelCount = assetTexelCount(asset);
-  bool anyMatrix = false;
+  bool anyGlossy = false;  // a matrix or visibility pass: the specular materials are needed
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
   for (std::size_t p = 0; p < asset.passes.size(); ++p) {
     const TransferPass& pass = asset.passes[p];
@@ -242,7 +269,7 @@ Status checkAsset(const BakedAsset& asset) {
       return Status::error(StatusCode::kInvalidArgument,
                            label + " has unknown kind " + std::to_string(static_cast<std::uint32_t>(pass.kind)));
     }
-    if (pass.form != TransferForm::kVector && pass.form != TransferForm::kMatrix) {
+    if (pass.form != TransferForm::kVector && pass.form != TransferForm::kMatrix && pass.form != TransferForm::kVisibility) {
       return Status::error(StatusCode::kInvalidArgument,
                            label + " has unknown form " + std::to_string(static_cast<std::uint32_t>(pass.form)));
     }
@@ -251,13 +278,23 @@ Status checkAsset(const BakedAsset& asset) {
                            label + " has unknown domain " + std::to_string(static_cast<std::uint32_t>(pass.domain)));
     }
     const bool matrix = pass.form == TransferForm::kMatrix;
+    const bool visibility = pass.form == TransferForm::kVisibility;
     const bool texel = pass.domain == TransferDomain::kTexel;
-    anyMatrix = anyMatrix || matrix;
-    const std::string named =
-        label + " (" + (texel ? "texel " : "") + (matrix ? "matrix " : "") + transferKindName(pass.kind) + ")";
+    anyGlossy = anyGlossy || matrix || visibility;
+    const std::string named = label + " (" + (texel ? "texel " : "") + (matrix ? "matrix " : "") +
+                              (visibility ? "visibility " : "") + transferKindName(pass.kind) + ")";
     if (texel && matrix) {
-      return Status::error(StatusCode::kInvalidArgument, named + ": texel passes are vector form only (no glossy transfer textures)");
+      return Status::error(StatusCode::kInvalidArgument,
+                           named + ": texel passes are vector or visibility form (glossy texels are visibility vectors, not matrices)");
     }
+    if (visibility) {
+      if (Status s = checkVisibilityPass(pass, named, asset.lighting.model); !s.isOk()) return s;
+    } else if (pass.order != 0) {
+      return Status::error(StatusCode::kInvalidArgument, named + " has order " + std::to_string(pass.order) +
+                                                             "; only visibility passes have their own order (0 otherwise)");
+    }
+    // The bands this pass's vectors have: a visibility pass's own, else the asset's.
+    const int passOrder = visibility ? pass.order : asset.shOrder;
     for (std::size_t q = 0; q < p; ++q) {
       if (asset.passes[q].kind == pass.kind && asset.passes[q].form == pass.form && asset.passes[q].domain == pass.domain) {
         return Status::error(StatusCode::kInvalidArgument, named + " repeats the kind of pass " + std::to_string(q) +
@@ -305,26 +342,29 @@ Status checkAsset(const BakedAsset& asset) {
                              named + " encoded blob holds " + (info.matrix ? std::string(matrixPackingName(info.packing)) + " matrices" : "vectors") +
                                  "; the pass needs " + (matrix ? std::string(matrixPackingName(packing)) + " matrices" : "vectors"));
       }
-      if (info.order != asset.shOrder || info.channels != pass.channels || info.vertexCount != rows ||
+      if (info.order != passOrder || info.channels != pass.channels || info.vertexCount != rows ||
           info.blobSize != pass.encoded.size()) {
         return Status::error(StatusCode::kSizeMismatch,
                              named + " encoded blob is order " + std::to_string(info.order) + ", " +
                                  std::to_string(info.channels) + " channels, " + std::to_string(info.vertexCount) +
                                  " rows, " + std::to_string(info.blobSize) + " bytes declared of " +
-                                 std::to_string(pass.encoded.size()) + "; the asset needs order " +
-                                 std::to_string(asset.shOrder) + ", " + std::to_string(pass.channels) + " channels, " +
+                                 std::to_string(pass.encoded.size()) + "; the " + (visibility ? "pass" : "asset") +
+                                 " needs order " + std::to_string(passOrder) + ", " + std::to_string(pass.channels) + " channels, " +
                                  std::to_string(rows) + " " + rowName);
       }
       continue;
     }
-    const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, packing) : coeffsPerChannel;
+    const std::uint64_t perChannel = matrix       ? matrixEntryCount(asset.shOrder, packing)
+                                     : visibility ? static_cast<std::uint64_t>(shCoeffCount(pass.order))
+                                                  : coeffsPerChannel;
     const std::uint64_t expected = rows * static_cast<std::uint64_t>(pass.channels) * perChannel;
     if (pass.coeffs.size() != expected) {
       return Status::error(StatusCode::kSizeMismatch,
                            named + " has " + std::to_string(pass.coeffs.size()) + " coefficients, " + std::to_string(expected) +
-                               (matrix ? " expected (vertices * channels * " + std::to_string(perChannel) + " " +
-                                             matrixPackingName(packing) + " packed entries)"
-                                       : " expected (" + std::string(rowName) + " * channels * order^2)"));
+                               (matrix       ? " expected (vertices * channels * " + std::to_string(perChannel) + " " +
+                                                   matrixPackingName(packing) + " packed entries)"
+                                : visibility ? " expected (texels * the pass's order^2)"
+                                             : " expected (" + std::string(rowName) + " * channels * order^2)"));
     }
     for (std::size_t i = 0; i < pass.coeffs.size(); ++i) {
       if (!std::isfinite(pass.coeffs[i])) {
@@ -336,7 +376,7 @@ Status checkAsset(const BakedAsset& asset) {
       }
     }
   }
-  if (Status st = checkSpecular(asset.specular, anyMatrix, vertexCount); !st.isOk()) return st;
+  if (Status st = checkSpecular(asset.specular, anyGlossy, vertexCount); !st.isOk()) return st;
   if (!isValidAssetName(asset.name)) {
     return Status::error(StatusCode::kInvalidArgument,
                          "asset name must be at most " + std::to_string(kMaxAssetNameBytes) +
@@ -385,20 +425,28 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
   const std::uint64_t texelCount = assetTexelCount(asset);
   for (const TransferPass& pass : asset.passes) {
     const bool matrix = pass.form == TransferForm::kMatrix;
-    const bool texel = pass.domain == TransferDomain::kTexel;  // vector form only (checkAsset)
+    const bool visibility = pass.form == TransferForm::kVisibility;  // texel domain (checkAsset)
+    const bool texel = pass.domain == TransferDomain::kTexel;        // vector or visibility form (checkAsset)
+    // A visibility section's arg2 is its order; the other passes' is their bounces.
+    const std::uint32_t arg2 = static_cast<std::uint32_t>(visibility ? pass.order : pass.bounces);
     if (!pass.encoded.empty()) {
-      sections.push_back({texel ? AssetSectionType::kEncodedTexelTransfer
-                                : matrix ? AssetSectionType::kEncodedMatrixTransfer : AssetSectionType::kEncodedTransfer,
+      sections.push_back({visibility ? AssetSectionType::kEncodedTexelVisibility
+                          : texel    ? AssetSectionType::kEncodedTexelTransfer
+                          : matrix   ? AssetSectionType::kEncodedMatrixTransfer
+                                     : AssetSectionType::kEncodedTransfer,
                           AssetElementFormat::kBytes, static_cast<std::uint32_t>(pass.kind),
-                          static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
-                          pass.encoded.size(), 0, &pass});
+                          static_cast<std::uint32_t>(pass.channels), arg2, pass.encoded.size(), 0, &pass});
       continue;
     }
-    const std::uint64_t perChannel = matrix ? matrixEntryCount(asset.shOrder, matrixPackingFor(pass.kind, asset.lighting.model))
-                                            : coeffsPerChannel;
-    sections.push_back({texel ? AssetSectionType::kTexelTransfer : matrix ? AssetSectionType::kMatrixTransfer : AssetSectionType::kTransfer,
+    const std::uint64_t perChannel = matrix       ? matrixEntryCount(asset.shOrder, matrixPackingFor(pass.kind, asset.lighting.model))
+                                     : visibility ? static_cast<std::uint64_t>(shCoeffCount(pass.order))
+                                                  : coeffsPerChannel;
+    sections.push_back({visibility ? AssetSectionType::kTexelVisibility
+                        : texel    ? AssetSectionType::kTexelTransfer
+                        : matrix   ? AssetSectionType::kMatrixTransfer
+                                   : AssetSectionType::kTransfer,
                         AssetElementFormat::kFloat32, static_cast<std::uint32_t>(pass.kind),
-                        static_cast<std::uint32_t>(pass.channels), static_cast<std::uint32_t>(pass.bounces),
+                        static_cast<std::uint32_t>(pass.channels), arg2,
                         (texel ? texelCount : vertexCount) * static_cast<std::uint64_t>(pass.channels) * perChannel * 4, 0, &pass});
   }
 
@@ -451,10 +499,12 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         break;
       case AssetSectionType::kTransfer:
       case AssetSectionType::kMatrixTransfer:
-      case AssetSectionType::kTexelTransfer: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
+      case AssetSectionType::kTexelTransfer:
+      case AssetSectionType::kTexelVisibility: putFloats(p, s.pass->coeffs.data(), s.pass->coeffs.size()); break;
       case AssetSectionType::kEncodedTransfer:
       case AssetSectionType::kEncodedMatrixTransfer:
-      case AssetSectionType::kEncodedTexelTransfer: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
+      case AssetSectionType::kEncodedTexelTransfer:
+      case AssetSectionType::kEncodedTexelVisibility: std::memcpy(p, s.pass->encoded.data(), s.pass->encoded.size()); break;
       case AssetSectionType::kAtlasUv: putFloats(p, asset.atlasUv.data(), asset.atlasUv.size()); break;
       case AssetSectionType::kAtlases:
         for (std::size_t a = 0; a < asset.atlases.size(); ++a) {
@@ -489,8 +539,10 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
 
   std::memcpy(base + L::kMagic, kAssetMagic, 4);
   writeLe16(base + L::kVersionMajor, kAssetVersionMajor);
-  // Always the current minor version (1.4): older readers skip the section types they do
-  // not know, so a glossy or texel file still shows them its vertex diffuse passes.
+  // Always the current minor version (1.5): older readers skip the section types they do
+  // not know, so a glossy or texel file still shows them its vertex diffuse passes (a file
+  // with a visibility pass but no matrix pass they reject: its specular section has no
+  // matrix section they know, docs/asset-format.md "Versioning").
   writeLe16(base + L::kVersionMinor, kAssetVersionMinor);
   writeLe32(base + L::kFlags, 0);
   writeLe32(base + L::kShOrder, static_cast<std::uint32_t>(asset.shOrder));

@@ -1,6 +1,7 @@
 // bakeAsset, the baker's library entry point: the same numbers as bakeTransfer on the
 // reordered scene, the chosen passes only, local-lighting defaults from the scene, the codec
-// applied to every pass, and the `started` report before the first progress call.
+// applied to every pass, the `started` report before the first progress call, and the texel
+// visibility pass (TPFL glossy) with the glossy material split and its refusal of local light.
 #include "baker/transfer/bake_asset.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <atomic>
 #include <vector>
 
+#include "baker/scene/default_scene.h"
 #include "baker/scene/mesh_order.h"
 #include "baker/test_scenes.h"
 #include "baker/transfer/local_sphere.h"
@@ -154,6 +156,55 @@ TEST(BakeAsset, PassesTheBakesErrorsThrough) {
   const Status s = bakeAsset(twoObjects(), o, &asset, &report);
   EXPECT_FALSE(s.isOk());
   EXPECT_NE(s.message().find("order"), std::string::npos) << s.message();
+}
+
+// The default room has a lightmap atlas valid at 512 texels a side.
+TEST(BakeAsset, StoresTheTexelVisibilityPassWithTheGlossyMaterials) {
+  AssetBakeOptions o;
+  o.transfer.order = 2;
+  o.transfer.samples = 16;
+  o.transfer.maxBounces = 0;
+  o.transfer.bounceThreshold = 0.0;
+  o.storeUnshadowed = o.storeInterreflected = false;
+  TexelBakeSettings t;
+  t.textureSize = 512;
+  t.visibilityOrder = 3;
+  o.texels = t;
+  TransferCodecSettings f16;
+  f16.encoding = TransferEncoding::kFloat16;
+  o.compress = f16;
+  BakedAsset asset;
+  AssetBakeReport report;
+  const Status s = bakeAsset(makeDefaultScene(), o, &asset, &report);
+  ASSERT_TRUE(s.isOk()) << s.message();
+  ASSERT_TRUE(report.texels.has_value());
+  EXPECT_EQ(report.texels->visibilityOrder, 3);
+  const TransferPass* v = findPass(asset, TransferKind::kShadowed, TransferForm::kVisibility, TransferDomain::kTexel);
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v, &asset.passes.back());
+  EXPECT_EQ(v->order, 3);
+  TransferBlobInfo info;
+  ASSERT_TRUE(readTransferBlobInfo(v->encoded, &info).isOk());
+  EXPECT_EQ(info.order, 3) << "compressed at its own order, not the asset's";
+  EXPECT_EQ(info.vertexCount, assetTexelCount(asset));
+  // The glossy split: a material per vertex, and the metal torus's diffuse albedo is 0
+  // ((1 - metallic) x base colour), as with the matrix bake.
+  ASSERT_EQ(asset.specular.size(), asset.positions.size());
+  std::size_t glossy = 0, black = 0;
+  for (const SpecularMaterial& m : asset.specular) glossy += m.f0.r > 0.0f ? 1 : 0;
+  for (const Rgb& a : asset.albedo) black += a.r == 0.0f && a.g == 0.0f && a.b == 0.0f ? 1 : 0;
+  EXPECT_GT(glossy, 1000u);
+  EXPECT_GT(black, 100u);
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(encodeAsset(asset, &bytes).isOk());
+
+  // TPFL needs distant light: refused before any work, naming the model.
+  o.transfer.lighting.model = LightingModel::kLocalSphere;
+  bool started = false;
+  const Status local = bakeAsset(makeDefaultScene(), o, &asset, &report, [&](const AssetBakeReport&) { started = true; });
+  EXPECT_EQ(local.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(local.message().find("needs distant lighting, not local-sphere"), std::string::npos) << local.message();
+  EXPECT_FALSE(started);
 }
 
 }  // namespace

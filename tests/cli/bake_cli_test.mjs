@@ -6,6 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 
 import { bowlGltf } from './bowl_gltf.mjs';
+import { planeGltf } from './plane_gltf.mjs';
 
 const [caseName, bake, workDir, texelTool] = process.argv.slice(2);
 if (!workDir) {
@@ -66,7 +67,7 @@ const cases = {
     const wrote = JSON.parse(made.stdout);
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.4', `version ${info.version}`);
+      check(info.version === '1.5', `version ${info.version}`);
       const seen = info.passes.map((p) => ({ kind: p.kind, domain: p.domain, encoded: p.encoded }));
       check(JSON.stringify(seen) === JSON.stringify(wrote.passes), `passes ${JSON.stringify(seen)}, wrote ${JSON.stringify(wrote.passes)}`);
       check(info.texels === wrote.texels, `texels ${info.texels}, wrote ${wrote.texels}`);
@@ -235,7 +236,110 @@ const cases = {
     expectExit([...base, '--texels', '--unwrap-timeout', '0'], 2, /--unwrap-timeout expects seconds > 0/);
     check(!fs.existsSync(work('x.prt')), 'a failed texel bake wrote an asset');
     expectExit(['shade', out, '--texels', '--light', 'constant'], EXIT_INVALID_INPUT, /bake with --texels/);
-    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', '1,2,3'], 2, /--texels shades the vector passes/);
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', '1,2,3'], EXIT_INVALID_INPUT,
+               /no texel visibility pass \(bake with --texels --texel-glossy\)/);
+    // TPFL glossy texels (--texel-glossy), each misuse named.
+    expectExit([...base, '--texel-glossy'], 2, /--texel-glossy needs --texels/);
+    expectExit([...base, '--texels', '--visibility-order', '5'], 2, /--visibility-order needs --texel-glossy/);
+    for (const m of ['1', '17', 'x']) expectExit([...base, '--texels', '--texel-glossy', '--visibility-order', m], 2, /--visibility-order/);
+    expectExit([...base, '--texels', '--texel-glossy', '--lighting', 'local'], 2, /--texel-glossy needs distant lighting/);
+    expectExit([...base, '--specular-exponent', '8'], 2, /--specular-exponent needs --glossy or --texel-glossy/);
+    expectExit([...base, '--texel-glossy', '--texels', '--glossy-bounces', '1'], 2, /--glossy-bounces needs --glossy/);
+    check(!fs.existsSync(work('x.prt')), 'a refused texel-glossy bake wrote an asset');
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy-interreflected', '--view', '1,2,3'], 2,
+               /texel glossy is the shadowed TPFL visibility pass/);
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy'], 2, /needs --view X,Y,Z/);
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', '1,nan,3'], 2, /--view expects X,Y,Z of finite numbers/);
+    expectExit(['shade', out, '--texels', '--light', 'constant', '--view', '1,2,3'], 2, /--view needs a glossy --pass/);
+  },
+
+  texel_glossy() {
+    // TPFL glossy transfer textures (--texels --texel-glossy): the visibility pass in the bake's
+    // report and in `info`, and `shade --texels --pass glossy --view` against physics.
+    // 1. A lone glossy plane (tests/cli/plane_gltf.mjs): nothing occludes it, so under uniform
+    //    white light its glossy term has the closed form of docs/glossy.md for a Phong lobe of
+    //    exponent 1: k_s (1 + n.v)/2 (the lobe above the horizon, R at angle acos(n.v) from
+    //    n), k_s Schlick's with f0 = mix(0.04, base, metallic), f90 = 1. With order 3 lighting
+    //    and visibility order 5 the TPFL product is exact, and the exponent-1 lobe meets the
+    //    hemisphere only in bands 0 and 1, so what is left is the Monte Carlo error of the
+    //    1024-sample visibility: measured 0.4% (eye above) and 0.9% (grazing eye) at worst,
+    //    10% with 64 samples; tolerance 2%.
+    fs.writeFileSync(work('plane.gltf'), planeGltf());
+    const plane = work('plane.prt');
+    const r = expectExit([work('plane.gltf'), '-o', plane, '--samples', '1024', '--order', '3', '--bounces', '0', '--quiet', '--json',
+                          '--texels', '--texture-size', '64', '--texel-glossy', '--specular-exponent', '1'], 0);
+    const stats = json(r);
+    check(stats?.texels?.visibility_order === 5, `bake report: ${JSON.stringify(stats?.texels)}`);
+    const f0 = [0.8, 0.4, 0.2].map((b) => 0.5 * 0.04 + 0.5 * b);
+    const shadeTexels = (file, extra) =>
+      json(expectExit(['shade', file, '--texels', '--light', 'constant', '--json', ...extra], 0));
+    for (const eye of [[0.3, 1.5, 0.8], [-3, 0.4, 1]]) {
+      const s = shadeTexels(plane, ['--pass', 'glossy', '--view', eye.join(','), '--glossy-only']);
+      if (!s) return;
+      check(s.glossy === 'visibility' && s.visibility_order === 5 && s.product?.transfer_order === 5, `shade header: ${JSON.stringify({ ...s, texels: undefined })}`);
+      check(s.texels.length > 2000, `plane texels: ${s.texels.length}`);
+      let worst = 0;
+      for (const t of s.texels) {
+        const d = eye.map((e, i) => e - t.position[i]);
+        const nv = d[1] / Math.hypot(...d);
+        for (let c = 0; c < 3; c++) {
+          const want = (f0[c] + (1 - f0[c]) * (1 - nv) ** 5) * (1 + nv) / 2;
+          worst = Math.max(worst, Math.abs(t.radiance[c] - want) / want);
+        }
+      }
+      check(worst < 0.02, `eye ${eye}: TPFL glossy differs from k_s (1 + n.v)/2 by ${worst} (relative) at worst`);
+    }
+    // Compressed like the other texel passes: encoded in info, shading within the codec's error.
+    const packed = work('plane-q16.prt');
+    expectExit([work('plane.gltf'), '-o', packed, '--samples', '1024', '--order', '3', '--bounces', '0', '--quiet', '--texels',
+                '--texture-size', '64', '--texel-glossy', '--specular-exponent', '1', '--compress', 'q16'], 0);
+    const vis = json(expectExit(['info', packed, '--json'], 0))?.passes?.find((p) => p.form === 'visibility');
+    check(vis?.encoded === true && vis.order === 5, `compressed visibility pass: ${JSON.stringify(vis)}`);
+    const a = shadeTexels(plane, ['--pass', 'glossy', '--view', '0.3,1.5,0.8', '--glossy-only']);
+    const b = shadeTexels(packed, ['--pass', 'glossy', '--view', '0.3,1.5,0.8', '--glossy-only']);
+    if (a && b && check(a.texels.length === b.texels.length, 'compressed texel count')) {
+      const diff = Math.max(...a.texels.map((t, i) => Math.max(...t.radiance.map((x, c) => Math.abs(x - b.texels[i].radiance[c])))));
+      check(diff < 1e-3, `q16 visibility shades ${diff} away from float32`);
+    }
+
+    // 2. The default room (its atlas needs 512 texels a side): the pass in `info`, the matte
+    //    room's glossy term exactly 0, the polished sphere's and the metal torus's following
+    //    the eye, every value finite, and diffuse + glossy the sum of the two terms.
+    const { out, r: room } = bakeDefault('room-glossy.prt', ['--bounces', '0', '--texels', '--texture-size', '512', '--texel-glossy', '--json']);
+    check(json(room)?.texels?.visibility_order === 5, 'room bake reports visibility order 5');
+    const info = json(expectExit(['info', out, '--json'], 0));
+    const v = info?.passes?.filter((p) => p.form === 'visibility') ?? [];
+    check(v.length === 1 && v[0].kind === 'shadowed' && v[0].domain === 'texel' && v[0].order === 5 && v[0].channels === 1,
+          `info visibility pass: ${JSON.stringify(info?.passes)}`);
+    check(info?.version === '1.5', `version ${info?.version}`);
+    const text = expectExit(['info', out], 0).stdout;
+    check(/^pass: texel shadowed visibility \(TPFL glossy\), order 5 \(25 coefficients per texel, exact\), float32, \d+ bytes$/m.test(text),
+          `info text: ${text}`);
+    const eyeA = ['--view', '-0.9,0.9,3'], eyeB = ['--view', '2,2.5,-0.5'];
+    const glossyA = shadeTexels(out, ['--pass', 'glossy', ...eyeA, '--glossy-only']);
+    const glossyB = shadeTexels(out, ['--pass', 'glossy', ...eyeB, '--glossy-only']);
+    const both = shadeTexels(out, ['--pass', 'glossy-shadowed', ...eyeA]);
+    const diffuse = shadeTexels(out, ['--pass', 'shadowed']);
+    if (!glossyA || !glossyB || !both || !diffuse) return;
+    const n = glossyA.texels.length;
+    check(n > 100000 && glossyB.texels.length === n && both.texels.length === n && diffuse.texels.length === n, `texel counts ${n}`);
+    let floorZero = 0, floorLit = 0, moved = 0, finite = true, sumError = 0;
+    for (let t = 0; t < n; t++) {
+      const a = glossyA.texels[t], b = glossyB.texels[t];
+      finite &&= [...a.radiance, ...b.radiance, ...both.texels[t].radiance].every(Number.isFinite);
+      if (Math.abs(a.position[1]) < 1e-4 && a.normal[1] > 0.999) {  // the matte floor
+        if (a.radiance.every((x) => x === 0) && b.radiance.every((x) => x === 0)) floorZero++;
+        else floorLit++;
+      }
+      if (Math.abs(a.radiance[0] - b.radiance[0]) > 1e-3) moved++;
+      for (let c = 0; c < 3; c++) {
+        sumError = Math.max(sumError, Math.abs(both.texels[t].radiance[c] - (diffuse.texels[t].radiance[c] + a.radiance[c])));
+      }
+    }
+    check(finite, 'a texel radiance is not finite');
+    check(floorZero > 10000 && floorLit === 0, `matte floor texels: ${floorZero} with no glossy term, ${floorLit} with one`);
+    check(moved > 1000, `texels whose glossy term follows the eye: ${moved}`);
+    check(sumError < 1e-4, `diffuse + glossy differs from the sum of the terms by ${sumError}`);
   },
 
   default_scene() {
@@ -346,7 +450,7 @@ const cases = {
     }
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.4' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
+      check(info.version === '1.5' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
       check(info.lighting?.model === 'local-sphere' && Math.abs(info.lighting.radius - radius) < 1e-5,
             `info lighting: ${JSON.stringify(info.lighting)}`);
     }

@@ -12,8 +12,9 @@
 // encoded and then damaged by (position, xor) edits, so that the matrix, encoded matrix and
 // specular sections are explored from well-formed files. With bit 2 set (and bit 1 clear),
 // the input describes a small asset with transfer textures (atlases, atlas uv, coverage, a
-// texel pass float32 or encoded, optionally a vertex pass), likewise encoded and damaged, so
-// that the atlas and texel sections (format 1.4) are explored from well-formed files.
+// texel pass float32 or encoded, optionally a vertex pass and a TPFL visibility pass of its
+// own order with the specular materials it needs), likewise encoded and damaged, so that the
+// atlas, texel and visibility sections (formats 1.4, 1.5) are explored from well-formed files.
 //
 // Beyond "no crash, no sanitizer report", it traps when the entry points disagree:
 // decodeAsset and verifyAsset must return the same code; whatever decodes must also pass
@@ -95,7 +96,7 @@ bool sameAsset(const prt::BakedAsset& a, const prt::BakedAsset& b) {
   for (std::size_t i = 0; i < a.passes.size(); ++i) {
     const prt::TransferPass &p = a.passes[i], &q = b.passes[i];
     if (p.kind != q.kind || p.channels != q.channels || p.bounces != q.bounces || p.form != q.form ||
-        p.domain != q.domain || !sameBits(p.coeffs, q.coeffs) || p.encoded != q.encoded) {
+        p.domain != q.domain || p.order != q.order || !sameBits(p.coeffs, q.coeffs) || p.encoded != q.encoded) {
       return false;
     }
   }
@@ -142,7 +143,8 @@ std::size_t glossyFromInput(const std::uint8_t* data, std::size_t size, std::vec
 
 // An asset with transfer textures from the input: [order][flags][triangles][atlas sizes...]
 // [values...]; the rest are edits. One or two atlases of up to 8 x 8 texels over 1 to 4
-// triangles, a texel pass (kind and encoding from the flags), a vertex pass when flags & 1.
+// triangles, a texel pass (kind and encoding from the flags), a vertex pass when flags & 1,
+// and, per one more input byte, a visibility pass of order 2 to 5, float32 or encoded.
 std::size_t texelFromInput(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>* file) {
   if (size < 3) return 0;
   prt::BakedAsset a;
@@ -185,6 +187,24 @@ std::size_t texelFromInput(const std::uint8_t* data, std::size_t size, std::vect
     if (!prt::encodeTransfer(texel.coeffs, a.shOrder, texel.channels, s, &texel.encoded).isOk()) return 0;
   }
   a.passes.push_back(std::move(texel));
+  if (const std::uint8_t visibility = next(); visibility & 1) {
+    prt::TransferPass v;
+    v.kind = prt::TransferKind::kShadowed;
+    v.form = prt::TransferForm::kVisibility;
+    v.domain = prt::TransferDomain::kTexel;
+    v.order = 2 + (visibility >> 2) % 4;
+    v.coeffs.resize(static_cast<std::size_t>(prt::assetTexelCount(a)) * static_cast<std::size_t>(v.order * v.order));
+    for (float& x : v.coeffs) x = static_cast<float>(static_cast<int>(next()) - 128) / 32.0f;
+    if (visibility & 2) {
+      static const char* const kSettings[] = {"f16", "q8", "cpca8@0.1"};
+      prt::TransferCodecSettings s;
+      if (!prt::parseTransferSetting(kSettings[(visibility >> 4) % 3], {}, &s).isOk()) return 0;
+      s.cpcaMaxClusters = 3;
+      if (!prt::encodeTransfer(v.coeffs, v.order, 1, s, &v.encoded).isOk()) return 0;
+    }
+    a.passes.push_back(std::move(v));
+    for (std::uint32_t i = 0; i < V; ++i) a.specular.push_back({{next() / 255.0f, 0.04f, 1.0f}, static_cast<float>(next()), next() / 255.0f});
+  }
   if (!prt::encodeAsset(a, file).isOk()) return 0;
   return std::min(used, size);
 }
@@ -231,10 +251,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t i = 0; i < verified.passes.size(); ++i) {
     check(peeked.passes[i].form == verified.passes[i].form && asset.passes[i].form == verified.passes[i].form);
     check(peeked.passes[i].domain == verified.passes[i].domain && asset.passes[i].domain == verified.passes[i].domain);
+    check(peeked.passes[i].order == verified.passes[i].order && asset.passes[i].order == verified.passes[i].order);
     prt::TransferPass pass;
     int bands = 0;
     check(prt::decodeAssetPass(bytes, static_cast<int>(i), 0, &pass, &bands).isOk());
-    check(bands == asset.shOrder && sameBits(pass.coeffs, asset.passes[i].coeffs));
+    // A visibility pass's bands are its own order; every other pass has the asset's.
+    const int order = asset.passes[i].form == prt::TransferForm::kVisibility ? asset.passes[i].order : asset.shOrder;
+    check(bands == order && pass.order == asset.passes[i].order && sameBits(pass.coeffs, asset.passes[i].coeffs));
   }
   std::vector<prt::SpecularMaterial> specular;
   check(prt::decodeAssetSpecular(bytes, &specular).isOk() && specular.size() == asset.specular.size());

@@ -17,97 +17,16 @@
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
+#include "shared/asset_raw_file.h"
 
 namespace prt {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
+using namespace prt::test;  // NOLINT: the raw-file helpers
 namespace L = asset_layout;
 
 constexpr std::uint32_t kTypeAtlasUv = 12, kTypeAtlases = 13, kTypeCoverage = 14, kTypeTexelTransfer = 15,
                         kTypeEncodedTexelTransfer = 16;
-
-std::uint32_t rd32(const Bytes& b, std::size_t at) {
-  return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
-         static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
-}
-std::uint64_t rd64(const Bytes& b, std::size_t at) { return std::uint64_t{rd32(b, at)} | std::uint64_t{rd32(b, at + 4)} << 32; }
-void wr32(Bytes& b, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-void wr64(Bytes& b, std::size_t at, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) b[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-std::uint32_t bitsOf(float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, 4);
-  return u;
-}
-
-// ---- A file as parts, rebuilt with fresh offsets and checksums (the layout of the document) --
-
-struct RawSection {
-  std::uint32_t type = 0, format = 0, arg0 = 0, arg1 = 0, arg2 = 0;
-  Bytes payload;
-};
-struct RawAsset {
-  Bytes header;
-  std::vector<RawSection> sections;
-};
-
-std::size_t entryAt(std::size_t i) { return kAssetHeaderSize + i * kAssetSectionEntrySize; }
-
-RawAsset split(const Bytes& b) {
-  RawAsset r;
-  r.header.assign(b.begin(), b.begin() + kAssetHeaderSize);
-  for (std::size_t i = 0; i < rd32(b, L::kSectionCount); ++i) {
-    const std::size_t e = entryAt(i);
-    RawSection s{rd32(b, e + L::kEntryType), rd32(b, e + L::kEntryFormat), rd32(b, e + L::kEntryArg0),
-                 rd32(b, e + L::kEntryArg1), rd32(b, e + L::kEntryArg2), {}};
-    const auto off = static_cast<std::ptrdiff_t>(rd64(b, e + L::kEntryOffset));
-    const auto size = static_cast<std::ptrdiff_t>(rd64(b, e + L::kEntrySize));
-    s.payload.assign(b.begin() + off, b.begin() + off + size);
-    r.sections.push_back(std::move(s));
-  }
-  return r;
-}
-
-Bytes build(const RawAsset& r) {
-  std::size_t end = kAssetHeaderSize + r.sections.size() * kAssetSectionEntrySize;
-  std::vector<std::size_t> offsets;
-  for (const RawSection& s : r.sections) {
-    offsets.push_back((end + 15) / 16 * 16);
-    end = offsets.back() + s.payload.size();
-  }
-  Bytes b(end, 0);
-  std::copy(r.header.begin(), r.header.end(), b.begin());
-  wr32(b, L::kSectionCount, static_cast<std::uint32_t>(r.sections.size()));
-  wr64(b, L::kFileSize, end);
-  for (std::size_t i = 0; i < r.sections.size(); ++i) {
-    const RawSection& s = r.sections[i];
-    std::copy(s.payload.begin(), s.payload.end(), b.begin() + static_cast<std::ptrdiff_t>(offsets[i]));
-    const std::size_t e = entryAt(i);
-    wr32(b, e + L::kEntryType, s.type);
-    wr32(b, e + L::kEntryFormat, s.format);
-    wr64(b, e + L::kEntryOffset, offsets[i]);
-    wr64(b, e + L::kEntrySize, s.payload.size());
-    wr32(b, e + L::kEntryArg0, s.arg0);
-    wr32(b, e + L::kEntryArg1, s.arg1);
-    wr32(b, e + L::kEntryArg2, s.arg2);
-    wr32(b, e + L::kEntryCrc, crc32c(s.payload));
-  }
-  const std::size_t tableBytes = r.sections.size() * kAssetSectionEntrySize;
-  wr32(b, L::kTableCrc, crc32c({b.data() + kAssetHeaderSize, tableBytes}));
-  wr32(b, L::kHeaderCrc, crc32c({b.data(), L::kHeaderCrc}));
-  return b;
-}
-
-RawSection* findSection(RawAsset& r, std::uint32_t type) {
-  for (RawSection& s : r.sections)
-    if (s.type == type) return &s;
-  ADD_FAILURE() << "no section of type " << type;
-  return &r.sections.front();
-}
 
 // ---- Test assets ----------------------------------------------------------------------------
 
@@ -212,11 +131,11 @@ TEST(AssetTexel, FloatAndEncodedTexelPassesRoundTripWithVertexPasses) {
   encodeTexelPasses(&encodedPart, "q16");
   a.passes.push_back(encodedPart.passes.back());  // texel interreflected, a q16 blob
   const Bytes file = encodeOrDie(a);
-  EXPECT_EQ(rd32(file, L::kVersionMinor) & 0xFFFFu, 4u);
+  EXPECT_EQ(rd32(file, L::kVersionMinor) & 0xFFFFu, 5u);
 
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
-  EXPECT_EQ(summary.versionMinor, 4);
+  EXPECT_EQ(summary.versionMinor, 5);
   EXPECT_EQ(summary.texelCount, assetTexelCount(a));
   ASSERT_EQ(summary.passes.size(), 3u);
   EXPECT_EQ(summary.passes[0].domain, TransferDomain::kVertex);
@@ -310,7 +229,7 @@ TEST(AssetTexel, CheckAssetRefusesEveryBrokenTexelRule) {
   BakedAsset a = good;
 
   a.passes[texelPass].form = TransferForm::kMatrix;
-  expectRefused(a, StatusCode::kInvalidArgument, "texel passes are vector form only");
+  expectRefused(a, StatusCode::kInvalidArgument, "texel passes are vector or visibility form");
   a = good;
   a.passes[texelPass].domain = static_cast<TransferDomain>(5);
   expectRefused(a, StatusCode::kInvalidArgument, "unknown domain 5");
