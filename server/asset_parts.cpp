@@ -15,9 +15,12 @@ constexpr std::uint32_t kTypeAtlasUv = static_cast<std::uint32_t>(AssetSectionTy
 constexpr std::uint32_t kTypeTexelCoverage = static_cast<std::uint32_t>(AssetSectionType::kTexelCoverage);
 constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kTexelTransfer);
 constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
+constexpr std::uint32_t kTypeTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kTexelVisibility);
+constexpr std::uint32_t kTypeEncodedTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelVisibility);
 
 bool isEncodedTransfer(std::uint32_t type) {
-  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer;
+  return type == kTypeEncodedTransfer || type == kTypeEncodedMatrixTransfer || type == kTypeEncodedTexelTransfer ||
+         type == kTypeEncodedTexelVisibility;
 }
 
 AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind, int section,
@@ -28,7 +31,8 @@ AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind
   p.kind = kind;
   p.section = section;
   p.matrix = info.type == kTypeMatrixTransfer || info.type == kTypeEncodedMatrixTransfer;
-  const bool texelPass = info.type == kTypeTexelTransfer || info.type == kTypeEncodedTexelTransfer;
+  p.visibility = info.type == kTypeTexelVisibility || info.type == kTypeEncodedTexelVisibility;
+  const bool texelPass = info.type == kTypeTexelTransfer || info.type == kTypeEncodedTexelTransfer || p.visibility;
   p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer || p.matrix || texelPass;
   p.pass = p.hasPass ? static_cast<TransferKind>(info.arg0) : TransferKind::kUnshadowed;
   const bool atlasSection = info.type >= kTypeAtlasUv && info.type <= kTypeTexelCoverage;

@@ -28,10 +28,11 @@ struct AssetPart {
   std::uint64_t size = 0;    // > 0
   AssetPartKind kind = AssetPartKind::kHead;
   int section = -1;          // index in the section table; -1 for the head
-  bool hasPass = false;      // a part of a transfer section (type 5, 8, matrix 9, 10, texel 15, 16)...
+  bool hasPass = false;      // a part of a transfer section (type 5, 8, matrix 9, 10, texel 15-18)...
   TransferKind pass = TransferKind::kUnshadowed;  // ...of this pass (the section's arg0)
   bool matrix = false;       // ...a glossy matrix pass (types 9, 10): listed with "form":"matrix"
-  // kTexel for a texel pass's parts (types 15, 16) and the atlas sections' (12-14), which only
+  bool visibility = false;   // ...a TPFL texel visibility pass (types 17, 18): "form":"visibility"
+  // kTexel for a texel pass's parts (types 15-18) and the atlas sections' (12-14), which only
   // texel passes need: listed with "domain":"texel" (pass parts otherwise "domain":"vertex").
   TransferDomain domain = TransferDomain::kVertex;
   int band = -1;             // kTransferBand: the SH band l; -1 otherwise
@@ -41,7 +42,7 @@ struct AssetPart {
 // in file order. They tile the file exactly: the first starts at 0, each next one where the
 // previous ends, the last ends at file.size(). The head runs up to the first payload; each
 // section's part runs from its payload to the next payload (padding folded in). An
-// encoded-transfer section (type 8, 10 or 16) whose payload is a readable blob of exactly its size
+// encoded-transfer section (type 8, 10, 16 or 18) whose payload is a readable blob of exactly its size
 // is cut further at the blob's part boundaries (blob head, clusters, band 0, band 1, ...);
 // otherwise it is one section part. Empty ranges (zero-size sections) get no part. Empty
 // when the table does not fit `file` (never for a table verifyAsset accepted).

@@ -136,7 +136,7 @@ std::shared_ptr<const CatalogueEntry> withPublicError(std::shared_ptr<const Cata
   return copy;
 }
 
-// {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P[,"form":"matrix"],"domain":D][,"band":l]};
+// {"offset":O,"size":S,"url":"/parts/<hash>","kind":K[,"section":i][,"pass":P[,"form":"matrix"|"visibility"],"domain":D][,"band":l]};
 // the atlas sections' parts carry "domain":"texel" without a pass.
 std::string partJson(const ServedPart& p) {
   const AssetPart& r = p.range;
@@ -145,6 +145,7 @@ std::string partJson(const ServedPart& p) {
   if (r.section >= 0) j += ",\"section\":" + std::to_string(r.section);
   if (r.hasPass) j += ",\"pass\":" + jsonString(transferKindName(r.pass));
   if (r.matrix) j += ",\"form\":\"matrix\"";
+  if (r.visibility) j += ",\"form\":\"visibility\"";
   // The client needs the domain to leave texel data alone until it renders transfer textures.
   if (r.hasPass || r.domain == TransferDomain::kTexel) j += ",\"domain\":" + jsonString(transferDomainName(r.domain));
   if (r.band >= 0) j += ",\"band\":" + std::to_string(r.band);
@@ -165,7 +166,9 @@ std::string entryJson(const CatalogueEntry& e) {
     // Glossy matrix passes say so; vector passes keep the listing they always had. Every pass
     // says where its transfer lives: per vertex, or per texel of the atlases.
     j += std::string(i ? "," : "") + "{\"kind\":" + jsonString(transferKindName(p.kind)) +
-         (p.form == TransferForm::kMatrix ? ",\"form\":\"matrix\"" : "") + ",\"domain\":" + jsonString(transferDomainName(p.domain)) +
+         (p.form != TransferForm::kVector ? ",\"form\":" + jsonString(transferFormName(p.form)) : "") +
+         (p.form == TransferForm::kVisibility ? ",\"order\":" + std::to_string(p.order) : "") +
+         ",\"domain\":" + jsonString(transferDomainName(p.domain)) +
          ",\"channels\":" + std::to_string(p.channels) + ",\"bounces\":" + std::to_string(p.bounces) + "}";
   }
   j += "],\"texels\":" + std::to_string(s.texelCount) + ",\"samples\":" + std::to_string(s.samples) + ",\"sampling\":" + jsonString(s.sampling);

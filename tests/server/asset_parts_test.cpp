@@ -260,6 +260,34 @@ TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
   }
 }
 
+// A TPFL visibility pass (format 1.5) is cut at its own bands (order 2n - 1, not the asset's
+// n) and its parts are marked visibility and texel, so a client without a TPFL shader can
+// leave them alone; the texel vector pass beside it keeps its plain listing.
+TEST(AssetParts, EncodedVisibilityPassIsCutAtItsOwnBandsAndMarked) {
+  const TexelTransferAsset texel = makeTexelTransferAsset(60, 3, 5, true);
+  const AssetSummary summary = verified(texel.bytes);
+  const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
+  expectTiling(parts, texel.bytes.size());
+  int visibilitySection = -1, texelSection = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    const auto type = static_cast<AssetSectionType>(summary.sections[i].type);
+    if (type == AssetSectionType::kEncodedTexelVisibility) visibilitySection = static_cast<int>(i);
+    if (type == AssetSectionType::kEncodedTexelTransfer) texelSection = static_cast<int>(i);
+  }
+  ASSERT_GE(visibilitySection, 0);
+  ASSERT_GE(texelSection, 0);
+  const int m = 2 * texel.order - 1;
+  const auto mine = partsOfSection(parts, visibilitySection);
+  ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + m));  // blob head, then bands 0..m-1 (q8: no clusters)
+  for (int l = 0; l < m; ++l) EXPECT_EQ(mine[1 + static_cast<std::size_t>(l)]->band, l);
+  for (const AssetPart* p : mine) {
+    EXPECT_TRUE(p->hasPass && p->visibility && !p->matrix);
+    EXPECT_EQ(p->domain, TransferDomain::kTexel);
+    EXPECT_EQ(p->pass, TransferKind::kShadowed);
+  }
+  for (const AssetPart* p : partsOfSection(parts, texelSection)) EXPECT_FALSE(p->visibility);
+}
+
 TEST(AssetParts, UnreadableBlobsAndEmptySectionsStayWhole) {
   const std::vector<std::uint8_t> plain = makeAssetBytes(40, 2, 4, "odd sections");
   ExtraSection garbage;  // a type-8 payload that is no blob

@@ -117,7 +117,7 @@ EncodedTransferAsset makeEncodedTransferAsset(int vertices, int order, std::uint
   return out;
 }
 
-TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed) {
+TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed, bool withVisibility) {
   BakedAsset asset;
   if (Status s = decodeAsset(makeAssetBytes(vertices, order, seed, "texel transfer"), &asset); !s.isOk()) {
     throw std::runtime_error("decodeAsset: " + s.toString());
@@ -140,6 +140,15 @@ TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t
   TransferPass texel{TransferKind::kShadowed, 1, 0, {}, out.blob};
   texel.domain = TransferDomain::kTexel;
   asset.passes.push_back(std::move(texel));
+  if (withVisibility) {
+    const int m = 2 * order - 1;
+    std::vector<float> v;
+    for (std::uint64_t i = 0; i < texels * static_cast<std::uint64_t>(m * m); ++i) v.push_back(0.5f / static_cast<float>(i % 7 + 1));
+    out.visibilityBlob = encode(v, m, 1, "q8");
+    TransferPass visibility{TransferKind::kShadowed, 1, 0, {}, out.visibilityBlob, TransferForm::kVisibility, TransferDomain::kTexel, m};
+    asset.passes.push_back(std::move(visibility));
+    asset.specular.assign(asset.positions.size(), SpecularMaterial{{0.04f, 0.04f, 0.04f}, 20.0f, 1.0f});
+  }
   if (Status s = encodeAsset(asset, &out.bytes); !s.isOk()) throw std::runtime_error("encodeAsset: " + s.toString());
   return out;
 }

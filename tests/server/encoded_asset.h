@@ -39,14 +39,16 @@ EncodedTransferAsset makeEncodedTransferAsset(int vertices, int order, std::uint
 struct TexelTransferAsset {
   std::vector<std::uint8_t> bytes;   // the asset file (format 1.4, written by encodeAsset)
   std::vector<std::uint8_t> blob;    // its texel shadowed pass: q8, one codec "vertex" per texel
+  std::vector<std::uint8_t> visibilityBlob;  // withVisibility: the visibility pass, q8
   std::vector<TextureAtlas> atlases;
   int order = 0;
 };
 
 // makeAssetBytes' strip of `vertices` vertices with its vertex passes, plus transfer
 // textures: two atlases (the first half of the triangles in a 16 x 8 atlas, the rest in
-// 8 x 8), atlas uv and coverage, and a texel shadowed pass encoded q8. Throws
-// std::runtime_error on an encoder failure.
-TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed);
+// 8 x 8), atlas uv and coverage, and a texel shadowed pass encoded q8; withVisibility adds a
+// TPFL visibility pass of order 2 order - 1, encoded q8, and the specular materials it needs
+// (format 1.5). Throws std::runtime_error on an encoder failure.
+TexelTransferAsset makeTexelTransferAsset(int vertices, int order, std::uint32_t seed, bool withVisibility = false);
 
 }  // namespace prt::serve::test

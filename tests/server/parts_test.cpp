@@ -22,12 +22,12 @@ constexpr const char* kImmutable = "public, max-age=31536000, immutable";
 std::string asString(const std::vector<std::uint8_t>& v) { return std::string(v.begin(), v.end()); }
 
 // A tree with the usual assets plus an asset holding encoded transfers (encoded.prt), one
-// with transfer textures (texel.prt), a twin of room.prt that differs only in its name
-// (twin.prt), and a server on it.
+// with transfer textures (texel.prt), the same with a TPFL visibility pass (visibility.prt), a
+// twin of room.prt that differs only in its name (twin.prt), and a server on it.
 struct PartsServer {
   TestTree tree;
   EncodedTransferAsset encoded;
-  TexelTransferAsset texel;
+  TexelTransferAsset texel, visibility;
   std::vector<std::uint8_t> twin;
   std::unique_ptr<ServerProcess> server;
   int port = 0;
@@ -41,6 +41,8 @@ PartsServer& partsServer() {
     writeFile(s.tree.root + "/encoded.prt", s.encoded.bytes);
     s.texel = makeTexelTransferAsset(400, 3, 9);
     writeFile(s.tree.root + "/texel.prt", s.texel.bytes);
+    s.visibility = makeTexelTransferAsset(400, 3, 11, true);
+    writeFile(s.tree.root + "/visibility.prt", s.visibility.bytes);
     s.twin = makeAssetBytes(6000, 4, 1, "twin of the room");
     writeFile(s.tree.root + "/twin.prt", s.twin);
     s.server = startServer(s.tree, {"--threads", "2"}, "parts.log");
@@ -319,6 +321,32 @@ TEST(Parts, TexelPassesAndAtlasSectionsAreMarkedInTheCatalogue) {
   }
   EXPECT_EQ(texelBands, s.texel.order);
   EXPECT_EQ(texelParts, 3 + 1 + s.texel.order);  // uv, atlases, coverage; blob head and bands
+}
+
+// The visibility pass says what it is, so a client without a TPFL shader can skip it and not
+// mistake it for the texel shadowed vector pass of the same kind and domain.
+TEST(Parts, VisibilityPassIsMarkedInTheCatalogueAndItsParts) {
+  PartsServer& s = partsServer();
+  const Json cat = catalogue(s.port);
+  const Json* e = entry(cat, "visibility.prt");
+  ASSERT_NE(e, nullptr);
+  int listed = 0;
+  for (const Json& p : asArray(e->at("passes"))) {
+    if (p.value("form", "vector") != "visibility") continue;
+    ++listed;
+    EXPECT_EQ(p.at("kind").get<std::string>(), "shadowed");
+    EXPECT_EQ(p.at("domain").get<std::string>(), "texel");
+    EXPECT_EQ(p.at("order").get<double>(), 2.0 * s.visibility.order - 1.0);
+  }
+  EXPECT_EQ(listed, 1);
+  int bands = 0, vectorTexelBands = 0;
+  for (const Json& p : asArray(e->at("parts"))) {
+    if (p.value("kind", "") != "transfer-band" || p.value("domain", "") != "texel") continue;
+    if (p.value("form", "vector") == "visibility") ++bands;
+    else ++vectorTexelBands;
+  }
+  EXPECT_EQ(bands, 2 * s.visibility.order - 1);
+  EXPECT_EQ(vectorTexelBands, s.visibility.order);
 }
 
 TEST(Parts, IdenticalPartsShareOneUrl) {

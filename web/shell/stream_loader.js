@@ -28,7 +28,7 @@ export function checkParts(parts, bytes) {
     end = p.offset + p.size;
     if (p.kind === 'transfer-band' && !(Number.isInteger(p.band) && p.band >= 0)) throw new Error(`part ${i} has no valid band`);
     if (p.pass !== undefined && !PASS_NAMES.includes(p.pass)) throw new Error(`part ${i} names an unknown pass '${p.pass}'`);
-    if (p.form !== undefined && p.form !== 'vector' && p.form !== 'matrix') throw new Error(`part ${i} names an unknown pass form '${p.form}'`);
+    if (p.form !== undefined && !['vector', 'matrix', 'visibility'].includes(p.form)) throw new Error(`part ${i} names an unknown pass form '${p.form}'`);
     if (p.domain !== undefined && p.domain !== 'vertex' && p.domain !== 'texel') throw new Error(`part ${i} names an unknown domain '${p.domain}'`);
   });
   if (end !== bytes) throw new Error(`the parts cover ${end} bytes, the file has ${bytes}`);
@@ -54,7 +54,8 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
   } catch (e) {
     throw fail(`the catalogue's part list is unusable: ${e.message}`);
   }
-  const wanted = entry.parts;
+  // TPFL visibility passes (asset format 1.5) wait for the client's TPFL shader: not fetched.
+  const wanted = entry.parts.filter((p) => p.form !== 'visibility');
   const transferParts = wanted.filter((p) => p.pass !== undefined);
   Object.assign(progress, {
     bytesReceived: 0,

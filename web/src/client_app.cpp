@@ -70,6 +70,7 @@ std::string ClientApp::loadAsset() {
   const int glossyBands = std::min(decoded.shOrder, kMaxGlossyOrder);
   for (TransferPass& p : decoded.passes) {
     if (p.domain == TransferDomain::kTexel) {
+      if (p.form != TransferForm::kVector) continue;  // TPFL visibility: no client shader for it yet
       p.encoded = {};
       texel.push_back(std::move(p));
       continue;
