@@ -85,8 +85,12 @@ const cases = {
     const server = await startServer(prtServe, root, webDist);
     try {
       const entry = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes.find((e) => e.name === 'room-texel');
-      const texelBandParts = (entry?.parts ?? []).filter((p) => p.domain === 'texel' && p.kind === 'transfer-band').length;
+      const texelBands = (entry?.parts ?? []).filter((p) => p.domain === 'texel' && p.kind === 'transfer-band');
+      const texelBandParts = texelBands.filter((p) => p.form !== 'visibility').length;
+      const visibilityBandParts = texelBands.filter((p) => p.form === 'visibility').length;
       check(texelBandParts === 6, `the catalogue lists ${texelBandParts} texel band parts, not 2 passes x 3 bands: the texel passes would not stream band by band`);
+      check(visibilityBandParts === 5, `the catalogue lists ${visibilityBandParts} visibility band parts, not 2 x 3 - 1`);
+      const visibilityBytes = (entry?.parts ?? []).filter((p) => p.form === 'visibility').reduce((s, p) => s + p.size, 0);
       const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&source=texel`, { waitReady: false });
       await waitAll(page);
       const state = await page.evaluate(() => ({ error: window.prtApp.error, source: window.prtApp.source, texelBands: window.prtApp.texelBands,
@@ -95,6 +99,10 @@ const cases = {
       check(state.source === 'texel', `source is ${state.source}, not texel`);
       check(JSON.stringify(state.texelBands) === '[0,3,3]', `texel bands ${JSON.stringify(state.texelBands)} (want [0, 3, 3]: no unshadowed pass, order 3)`);
       check(state.environment === 'white furnace' && state.lights === 0, `lighting: ${state.environment}, ${state.lights} lights`);
+      // The visibility pass waits for a TPFL shader: its parts are not fetched.
+      const total = await page.evaluate(() => window.prtApp.bytesTotal);
+      check(visibilityBytes > 0 && total === entry.bytes - visibilityBytes,
+        `the page fetches ${total} of ${entry.bytes} bytes; the visibility pass's ${visibilityBytes} should be left out`);
       // Constant light reads coefficient 0 alone; the forest map (unrotated, the page's and the
       // baker's projection of the same file) weighs all 9, so every layer and lane is checked.
       for (const [pass, light] of [['interreflected', 'constant'], ['shadowed', 'constant'], ['interreflected', 'forest']]) {

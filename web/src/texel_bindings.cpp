@@ -4,6 +4,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -89,7 +90,10 @@ val texelOnlyAsset(const val& bytes, const std::string& name) {
   if (!name.empty()) asset.name = name;
   std::erase_if(asset.passes, [](const prt::TransferPass& p) { return p.domain != prt::TransferDomain::kTexel; });
   if (asset.passes.empty()) return val(std::string("the asset has no texel pass"));
-  asset.specular.clear();
+  // Specular materials stay only for a pass that shades with them (a TPFL visibility pass).
+  const bool glossy = std::any_of(asset.passes.begin(), asset.passes.end(),
+                                  [](const prt::TransferPass& p) { return p.form != prt::TransferForm::kVector; });
+  if (!glossy) asset.specular.clear();
   std::vector<std::uint8_t> out;
   if (prt::Status s = prt::encodeAsset(asset, &out); !s.isOk()) return val(s.toString());
   return copyOut(out);
