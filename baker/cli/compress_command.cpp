@@ -363,7 +363,15 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   }
   const std::size_t vertices = o.texels ? static_cast<std::size_t>(assetTexelCount(asset)) : asset.positions.size();
   const std::size_t rowFloats = static_cast<std::size_t>(pass->channels) * static_cast<std::size_t>(order * order);
-  std::vector<float> sampledTransfer;
+  // Texel mode measures the sampled texels' rows only: gathered once per transfer, not per lighting.
+  const auto measuredRows = [&](std::span<const float> transfer, std::vector<float>* rows) -> std::span<const float> {
+    if (!o.texels) return transfer;
+    rows->resize(samples.size() * rowFloats);
+    for (std::size_t r = 0; r < samples.size(); ++r) {
+      std::copy_n(&transfer[samples[r].index * rowFloats], rowFloats, &(*rows)[r * rowFloats]);
+    }
+    return *rows;
+  };
   const MatrixPacking packing = matrixPackingFor(pass->kind, asset.lighting.model);
 
   std::vector<TestLighting> lightings;
@@ -374,13 +382,7 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   const std::vector<Vec3> views = o.glossy ? testViews(asset.positions, o.views) : std::vector<Vec3>{Vec3{}};
   const auto evaluate = [&](std::span<const float> transfer, std::size_t lighting, std::size_t view,
                             std::vector<double>* radiance) -> Status {
-    if (o.texels) {
-      sampledTransfer.resize(samples.size() * rowFloats);
-      for (std::size_t r = 0; r < samples.size(); ++r) {
-        std::copy_n(&transfer[samples[r].index * rowFloats], rowFloats, &sampledTransfer[r * rowFloats]);
-      }
-      return passExitRadiance(*pass, sampledTransfer, sampleAlbedo, order, lightings[lighting].coeffs, radiance);
-    }
+    if (o.texels) return passExitRadiance(*pass, transfer, sampleAlbedo, order, lightings[lighting].coeffs, radiance);
     if (!o.glossy) return passExitRadiance(*pass, transfer, asset.albedo, order, lightings[lighting].coeffs, radiance);
     radiance->assign(vertices * 3, 0.0);
     return glossyExitRadianceDouble(transfer, order, packing, pass->channels, asset.positions, asset.normals, asset.specular,
@@ -388,11 +390,13 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   };
   std::vector<std::string> names;
   std::vector<std::vector<double>> reference;
+  std::vector<float> referenceGathered, decodedGathered;
+  const std::span<const float> referenceRows = measuredRows(pass->coeffs, &referenceGathered);
   for (std::size_t i = 0; i < lightings.size(); ++i) {
     for (std::size_t v = 0; v < views.size(); ++v) {
       names.push_back(o.glossy ? lightings[i].name + " view " + std::to_string(v) : lightings[i].name);
       reference.emplace_back();
-      if (Status s = evaluate(pass->coeffs, i, v, &reference.back()); !s.isOk()) return reportFailure(err, "compress-report", s);
+      if (Status s = evaluate(referenceRows, i, v, &reference.back()); !s.isOk()) return reportFailure(err, "compress-report", s);
     }
   }
 
@@ -439,8 +443,9 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     r.psnrWorst = std::numeric_limits<double>::infinity();
     double psnrSum = 0.0;
     std::size_t finite = 0;
+    const std::span<const float> decodedRows = measuredRows(decoded, &decodedGathered);
     for (std::size_t i = 0; i < reference.size(); ++i) {
-      if (Status s = evaluate(decoded, i / views.size(), i % views.size(), &radiance); !s.isOk()) {
+      if (Status s = evaluate(decodedRows, i / views.size(), i % views.size(), &radiance); !s.isOk()) {
         return reportFailure(err, "compress-report", s);
       }
       const LightingError e = compareRadiance(reference[i], radiance);
