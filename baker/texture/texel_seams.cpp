@@ -55,9 +55,21 @@ bool clampedBarycentrics(Vec3 a, Vec3 b, Vec3 c, Vec3 q, double out[3]) {
   return total > 0.0;
 }
 
+// Whether the vertex normals of triangles a and b (3 indices each) at their corner at `p`
+// agree within kSeamCreaseTolerance: the interpolated shading normal is continuous there.
+bool smoothAcross(std::span<const Vec3> positions, std::span<const Vec3> normals, const std::uint32_t* a,
+                  const std::uint32_t* b, Vec3 p) {
+  Vec3 na{0, 0, 0}, nb{0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    if (samePosition(positions[a[k]], p)) na = normals[a[k]];
+    if (samePosition(positions[b[k]], p)) nb = normals[b[k]];
+  }
+  return 1.0 - dot(na, nb) <= kSeamCreaseTolerance;
+}
+
 }  // namespace
 
-Status findSeamTexels(std::span<const Vec3> positions, std::span<const std::uint32_t> indices,
+Status findSeamTexels(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const std::uint32_t> indices,
                       std::span<const Uv> uvs, std::span<const TextureAtlas> atlases, const AtlasSamples& samples,
                       std::vector<SeamTexel>* out) {
   out->clear();
@@ -122,6 +134,7 @@ Status findSeamTexels(std::span<const Vec3> positions, std::span<const std::uint
               if (samePosition(positions[c[k]], p1)) sameUv = sameUv && u.u == uv1.u && u.v == uv1.v;
             }
             if (sameUv) continue;
+            if (!smoothAcross(positions, normals, tc, c, p0) || !smoothAcross(positions, normals, tc, c, p1)) continue;
             nc = c;
             neighbour = it->triangle;
             break;

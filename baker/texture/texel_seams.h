@@ -18,6 +18,12 @@
 
 namespace prt::bake {
 
+// 1 - cos of the largest angle between the two sides' vertex normals at a shared endpoint for
+// which the cut still counts as smooth: 1e-4 is 0.8 degrees, wide enough for normals stored
+// quantised (KHR_mesh_quantization's 8-bit normals round to about 0.45 degrees) and far below
+// any modelled crease.
+inline constexpr double kSeamCreaseTolerance = 1e-4;
+
 struct SeamTexel {
   std::uint64_t texel = 0;  // an unsampled texel beside a chart edge that continues in another chart
   std::uint32_t atlas = 0;  // the atlas holding the triangle across the cut
@@ -28,9 +34,13 @@ struct SeamTexel {
 // texel with a sampled 4-neighbour whose centre, carried across the owner triangle's edge (the
 // edge's 3D endpoints shared by a triangle with other UVs there), lands on the neighbour: the
 // distance past the edge is kept and turned about the edge into the neighbour's plane.
-// Texels past a corner or a boundary edge (no neighbour) are not seam texels. Deterministic.
+// Texels past a corner or a boundary edge (no neighbour) are not seam texels, nor are texels
+// beside a crease: where the vertex normals (one per position, unit) of the two sides differ
+// at either shared endpoint by more than kSeamCreaseTolerance (1 - cos), the shading is
+// discontinuous across the edge by construction (a cube's edge), and carrying the other
+// side's transfer over would bleed it into this side. Deterministic.
 // Errors: kResourceExhausted (out of memory).
-Status findSeamTexels(std::span<const Vec3> positions, std::span<const std::uint32_t> indices,
+Status findSeamTexels(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const std::uint32_t> indices,
                       std::span<const Uv> uvs, std::span<const TextureAtlas> atlases, const AtlasSamples& samples,
                       std::vector<SeamTexel>* out);
 

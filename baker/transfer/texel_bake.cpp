@@ -93,7 +93,7 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
   }
   std::vector<SeamTexel> seams;
   if (options.stitchSeams) {
-    PRT_RETURN_IF_ERROR(findSeamTexels(scene.positions, scene.indices, atlasUv, atlases, samples, &seams));
+    PRT_RETURN_IF_ERROR(findSeamTexels(scene.positions, scene.normals, scene.indices, atlasUv, atlases, samples, &seams));
   }
   const std::size_t receivers = samples.texels.size();
   std::vector<Vec3> positions(receivers), normals(receivers);

@@ -258,6 +258,43 @@ TEST(TexelBake, ChartSeamsShowNoLineUnderBilinearFiltering) {
               bare.seamError / stitched.interiorStep);
 }
 
+// A cube's six charts meet at creases, not seams: the radiance is discontinuous across a
+// cube's edge, so each face's gutter must repeat the face (dilation), not carry the
+// neighbouring face's transfer over the edge, which would blend the two faces in the last
+// texel of each. Measured on the l = 1 coefficients (the transfer's direction, which differs
+// from face to face; a lone convex box sees the whole sky from every face, so each face's
+// transfer is one vector up to Monte Carlo noise).
+TEST(TexelBake, ChartEdgesOfACubeAreCreasesNotSeams) {
+  AtlasScene s;
+  addBox(&s, {-0.5f, 0.5f, -0.5f}, {0.5f, 1.5f, 0.5f}, 0.0f, 1.0f, 0.0f, 1.0f, Rgb{0.5f, 0.5f, 0.5f});
+  const std::vector<TextureAtlas> atlases = {{64, 64, 0, triangleCount(s.scene)}};
+  TexelBakeOptions o = quickOptions();
+  o.transfer.order = 2;
+  o.transfer.samples = 1024;
+  o.transfer.interreflection = false;
+  TexelBakeResult r;
+  ASSERT_TRUE(bakeTexelTransfer(s.scene, s.uv, atlases, o, &r).isOk());
+  EXPECT_EQ(r.seamTexels, 0u);
+  const int n2 = shCoeffCount(o.transfer.order);
+  double worst = 0.0, magnitude = 0.0;
+  for (int cell = 0; cell < 6; ++cell) {
+    const float cw = 1.0f / 3.0f, ch = 0.5f;
+    const float cu = cw * static_cast<float>(cell % 3), cv = ch * static_cast<float>(cell / 3);
+    const Uv centre{cu + 0.5f * cw, cv + 0.5f * ch};
+    const Uv edges[4] = {{cu + 0.1f * cw, centre.v}, {cu + 0.9f * cw, centre.v}, {centre.u, cv + 0.1f * ch}, {centre.u, cv + 0.9f * ch}};
+    for (int i = 1; i < n2; ++i) {
+      std::vector<float> coefficient(r.shadowed.size() / n2);
+      for (std::size_t t = 0; t < coefficient.size(); ++t) coefficient[t] = r.shadowed[t * n2 + i];
+      const float inside = bilinearDc(coefficient, 1, atlases[0], 0, centre);
+      magnitude = std::max(magnitude, static_cast<double>(std::abs(inside)));
+      for (const Uv& e : edges) worst = std::max(worst, static_cast<double>(std::abs(bilinearDc(coefficient, 1, atlases[0], 0, e) - inside)));
+    }
+  }
+  ASSERT_GT(magnitude, 0.25);  // albedo 0.5 x the clamped cosine's l = 1 part, 0.65: half a face's blend would show
+  EXPECT_LE(worst, 0.02 * magnitude);
+  std::printf("cube chart edges: largest l=1 difference edge - centre %.4f of %.3f\n", worst, magnitude);
+}
+
 TEST(TexelBake, CoverageMarksSamplesAndTheDilatedGutter) {
   AtlasScene s;
   // One chart in the middle of a 32 x 32 atlas: texels 8..23 in both directions.
