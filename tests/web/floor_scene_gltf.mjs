@@ -1,6 +1,8 @@
 // A tiny glTF test scene for the light tests: a grey floor grid on y = 0 over
 // [-half, half]^2 and a white box standing on it, written as one .gltf with its buffer in a
-// data URI, so prt-bake can bake it in well under a second.
+// data URI, so prt-bake can bake it in well under a second. gltfText writes any such parts,
+// with texture coordinates and normal maps for the transfer-texture tests.
+import zlib from 'node:zlib';
 
 // Returns the .gltf text. The floor has cells x cells quads; the box
 // {centre: [x, z], half: [hx, hy, hz]} sits on the floor (its bottom at y = 0).
@@ -47,9 +49,35 @@ export function floorSceneGltf({ half = 1.5, cells = 48, box = { centre: [0, 0],
   return gltfText([floor, solid]);
 }
 
-// One node and mesh per part, all in one base64 buffer.
-function gltfText(parts) {
-  const chunks = [], bufferViews = [], accessors = [], meshes = [], materials = [];
+// An 8-bit RGB PNG (width x height, rgb row-major from the top row) as a data URI.
+export function rgbPngDataUri(width, height, rgb) {
+  const chunk = (type, data) => {
+    const length = Buffer.alloc(4), crc = Buffer.alloc(4);
+    length.writeUInt32BE(data.length);
+    const body = Buffer.concat([Buffer.from(type, 'ascii'), data]);
+    crc.writeUInt32BE(zlib.crc32(body));
+    return Buffer.concat([length, body, crc]);
+  };
+  const header = Buffer.alloc(13);
+  header.writeUInt32BE(width, 0);
+  header.writeUInt32BE(height, 4);
+  header.set([8, 2, 0, 0, 0], 8);  // 8 bits, RGB, deflate, no filter method, no interlace
+  const rows = Buffer.alloc(height * (1 + 3 * width));
+  for (let y = 0; y < height; y++) {
+    rows[y * (1 + 3 * width)] = 0;  // filter type None
+    for (let i = 0; i < 3 * width; i++) rows[y * (1 + 3 * width) + 1 + i] = rgb[y * 3 * width + i];
+  }
+  const png = Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', header),
+    chunk('IDAT', zlib.deflateSync(rows)), chunk('IEND', Buffer.alloc(0))]);
+  return `data:image/png;base64,${png.toString('base64')}`;
+}
+
+// One node and mesh per part, all in one base64 buffer. A part is {positions, normals,
+// indices, color} (flat arrays, counter-clockwise front faces, linear RGBA base colour) with
+// optional `uvs` (flat u, v per vertex: TEXCOORD_0, glTF's v down the image) and `normalMap`
+// (a PNG data URI used as the material's normalTexture over TEXCOORD_0).
+export function gltfText(parts) {
+  const chunks = [], bufferViews = [], accessors = [], meshes = [], materials = [], images = [], textures = [];
   let offset = 0;
   const view = (typed, target) => {
     chunks.push(Buffer.from(typed.buffer));
@@ -62,11 +90,23 @@ function gltfText(parts) {
     const count = pos.length / 3;
     const min = [0, 1, 2].map((a) => Math.min(...part.positions.filter((_, i) => i % 3 === a)));
     const max = [0, 1, 2].map((a) => Math.max(...part.positions.filter((_, i) => i % 3 === a)));
+    const attributes = { POSITION: accessors.length, NORMAL: accessors.length + 1 };
     accessors.push({ bufferView: view(pos, 34962), componentType: 5126, count, type: 'VEC3', min, max });
     accessors.push({ bufferView: view(nrm, 34962), componentType: 5126, count, type: 'VEC3' });
+    const indices = accessors.length;
     accessors.push({ bufferView: view(idx, 34963), componentType: 5125, count: idx.length, type: 'SCALAR' });
-    meshes.push({ primitives: [{ attributes: { POSITION: 3 * m, NORMAL: 3 * m + 1 }, indices: 3 * m + 2, material: m }] });
-    materials.push({ pbrMetallicRoughness: { baseColorFactor: part.color } });
+    if (part.uvs) {
+      attributes.TEXCOORD_0 = accessors.length;
+      accessors.push({ bufferView: view(new Float32Array(part.uvs), 34962), componentType: 5126, count, type: 'VEC2' });
+    }
+    meshes.push({ primitives: [{ attributes, indices, material: m }] });
+    const material = { pbrMetallicRoughness: { baseColorFactor: part.color } };
+    if (part.normalMap) {
+      images.push({ uri: part.normalMap });
+      textures.push({ source: images.length - 1 });
+      material.normalTexture = { index: textures.length - 1 };
+    }
+    materials.push(material);
   });
   const bytes = Buffer.concat(chunks);
   return JSON.stringify({
@@ -76,6 +116,7 @@ function gltfText(parts) {
     nodes: parts.map((_, i) => ({ mesh: i })),
     meshes,
     materials,
+    ...(images.length ? { images, textures } : {}),
     buffers: [{ byteLength: bytes.length, uri: `data:application/octet-stream;base64,${bytes.toString('base64')}` }],
     bufferViews,
     accessors,
