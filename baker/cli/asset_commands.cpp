@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -70,6 +73,40 @@ std::string infoAtlasesLine(const std::vector<TextureAtlas>& atlases, std::uint6
   }
   if (atlases.size() > kListed) s += ", ... " + std::to_string(atlases.size() - kListed) + " more";
   return s + "\n";
+}
+
+// Per atlas, its texels' coverage counts: sampled (1) and filled by dilation (2).
+struct AtlasUsage {
+  std::uint64_t sampled = 0, dilated = 0;
+};
+std::vector<AtlasUsage> atlasUsage(const BakedAsset& a) {
+  std::vector<AtlasUsage> out(a.atlases.size());
+  std::uint64_t first = 0;
+  for (std::size_t i = 0; i < a.atlases.size(); ++i) {
+    const std::uint64_t n = std::uint64_t{a.atlases[i].width} * a.atlases[i].height;
+    for (std::uint64_t t = first; t < first + n && t < a.texelCoverage.size(); ++t) {
+      out[i].sampled += a.texelCoverage[t] == 1;
+      out[i].dilated += a.texelCoverage[t] == 2;
+    }
+    first += n;
+  }
+  return out;
+}
+
+// One line per atlas: "atlas 1: 64x64, triangles 12-23 (12), 812 texels sampled (19.8%), 301 dilated".
+std::string infoAtlasLines(const std::vector<TextureAtlas>& atlases, const std::vector<AtlasUsage>& usage) {
+  std::string s;
+  for (std::size_t i = 0; i < atlases.size(); ++i) {
+    const TextureAtlas& a = atlases[i];
+    const double texels = static_cast<double>(a.width) * a.height;
+    char pct[32];
+    std::snprintf(pct, sizeof pct, "%.1f%%", 100.0 * static_cast<double>(usage[i].sampled) / texels);
+    s += "atlas " + std::to_string(i) + ": " + std::to_string(a.width) + "x" + std::to_string(a.height) + ", triangles " +
+         std::to_string(a.firstTriangle) + "-" + std::to_string(std::uint64_t{a.firstTriangle} + a.triangleCount - 1) + " (" +
+         std::to_string(a.triangleCount) + "), " + std::to_string(usage[i].sampled) + " texels sampled (" + pct + "), " +
+         std::to_string(usage[i].dilated) + " dilated\n";
+  }
+  return s;
 }
 
 constexpr const char* kShadeHelp =
@@ -168,6 +205,7 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   }
   const std::uint64_t texels = assetTexelCount(atlases);
+  const std::vector<AtlasUsage> usage = atlasUsage(atlases);
   if (p.has("--json")) {
     std::string s = "{\n  \"file\": " + jsonString(path) + ",\n  \"bytes\": " + std::to_string(bytes.size()) + ",\n";
     s += "  \"version\": \"" + std::to_string(sum.versionMajor) + "." + std::to_string(sum.versionMinor) + "\",\n";
@@ -194,7 +232,13 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
            ", \"bounces\": " + std::to_string(ps.bounces) + ", \"encoded\": " + (ps.encoded ? "true" : "false") +
            ", \"bytes\": " + std::to_string(ps.bytes) + "}";
     }
-    s += "],\n  \"texels\": " + std::to_string(texels) + ",\n  \"atlases\": " + infoAtlasesJson(atlases.atlases) + "\n}\n";
+    s += "],\n  \"texels\": " + std::to_string(texels) + ",\n  \"atlases\": " + infoAtlasesJson(atlases.atlases) +
+         ",\n  \"atlas_usage\": [";
+    for (std::size_t i = 0; i < usage.size(); ++i) {
+      s += std::string(i ? ", " : "") + "{\"sampled\": " + std::to_string(usage[i].sampled) +
+           ", \"dilated\": " + std::to_string(usage[i].dilated) + "}";
+    }
+    s += "]\n}\n";
     std::fputs(s.c_str(), out);
   } else {
     std::fprintf(out, "%s: PRT asset v%u.%u, %zu bytes, checksums ok\n", path.c_str(), sum.versionMajor,
@@ -230,7 +274,10 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       if (ps.kind == TransferKind::kInterreflected) std::fprintf(out, ", %d bounces", ps.bounces);
       std::fprintf(out, ", %s, %llu bytes\n", ps.encoded ? "encoded" : "float32", static_cast<unsigned long long>(ps.bytes));
     }
-    if (!atlases.atlases.empty()) std::fputs(infoAtlasesLine(atlases.atlases, texels).c_str(), out);
+    if (!atlases.atlases.empty()) {
+      std::fputs(infoAtlasesLine(atlases.atlases, texels).c_str(), out);
+      std::fputs(infoAtlasLines(atlases.atlases, usage).c_str(), out);
+    }
   }
   return kExitOk;
 }

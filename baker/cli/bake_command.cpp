@@ -35,7 +35,7 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--specular-exponent", true}, {"--max-specular-exponent", true},
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
     {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
-    {"--texel-glossy", false}, {"--visibility-order", true},
+    {"--texel-glossy", false}, {"--visibility-order", true}, {"--texture-sets", true},
 };
 
 constexpr const char* kHelp =
@@ -85,8 +85,16 @@ constexpr const char* kHelp =
     "                            docs/transfer-textures.md) over the glTF's lightmap atlas:\n"
     "                            TEXCOORD_1 when it is a valid atlas, else TEXCOORD_0, else one\n"
     "                            generated with Blender's Smart UV Project (--unwrap)\n"
-    "  --texture-size N          atlas side in texels, 1..16384 (default 512)\n"
-    "  --texels-per-unit D       instead: the side that gives about D texels per metre of surface\n"
+    "  --texture-size N          atlas side in texels, 1..16384 (default 512); with several atlases\n"
+    "                            a budget of N x N texels shared so every object gets the same\n"
+    "                            texels per metre\n"
+    "  --texels-per-unit D       instead: each atlas's side gives about D texels per metre of surface\n"
+    "  --texture-sets auto|scene|object\n"
+    "                            atlases (PRTT texture sets): scene, one for the whole scene; object,\n"
+    "                            one per object (glTF node instance), each from its own UVs or\n"
+    "                            generated; auto (default): one, unless the scene's UV sets are\n"
+    "                            invalid only because objects overlap each other (instances), or\n"
+    "                            objects' texel densities differ by more than 2x: then one per object\n"
     "  --atlas-padding P         gutter texels the atlas must keep between charts (default 2)\n"
     "  --dilation N              gutter texels filled from the charts for filtering (default 3)\n"
     "  --unwrap auto|never       auto (default): generate an atlas when neither UV set is valid;\n"
@@ -190,7 +198,7 @@ Status parseUnwrapArgs(const ParsedArgs& p, bake::TexelBakeSettings* t) {
 
 Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
   for (const char* flag : {"--texture-size", "--texels-per-unit", "--atlas-padding", "--dilation", "--unwrap",
-                           "--blender", "--unwrap-timeout", "--texel-glossy"}) {
+                           "--blender", "--unwrap-timeout", "--texel-glossy", "--texture-sets"}) {
     if (p.has(flag) && !p.has("--texels")) return usage(std::string(flag) + " needs --texels");
   }
   if (p.has("--visibility-order") && !p.has("--texel-glossy")) return usage("--visibility-order needs --texel-glossy");
@@ -218,6 +226,12 @@ Status parseTexelArgs(const ParsedArgs& p, BakeCli* c) {
   if (const std::string* s = p.value("--dilation")) {
     if (Status st = parseIntArg("--dilation", *s, 0, 64, &v); !st.isOk()) return st;
     t.dilation = v;
+  }
+  if (const std::string* s = p.value("--texture-sets")) {
+    if (*s == "auto") t.sets = bake::TextureSets::kAuto;
+    else if (*s == "scene") t.sets = bake::TextureSets::kScene;
+    else if (*s == "object") t.sets = bake::TextureSets::kObject;
+    else return usage("unknown --texture-sets '" + *s + "' (expected auto, scene or object)");
   }
   if (Status st = parseUnwrapArgs(p, &t); !st.isOk()) return st;
   if (p.has("--texel-glossy")) {
@@ -406,7 +420,7 @@ std::string describeCompression(const std::vector<bake::CompressedPass>& passes)
 }
 
 // "TEXCOORD_1", or "generated atlas (Blender Smart UV Project, 2 attempts, margin 0.0156, 9.1 s)".
-std::string describeAtlas(const bake::TexelBakeReport& t) {
+std::string describeAtlas(const bake::TexelAtlasReport& t) {
   if (!t.generated) return "TEXCOORD_" + std::to_string(t.texcoord);
   const bake::UvUnwrapReport& g = *t.generated;
   char text[160];
@@ -466,6 +480,10 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     std::fprintf(err, "prt-bake: %s: %zu vertices, %zu triangles; order %d, %zu samples; lighting %s\n",
                  c.scene.empty() ? "default scene" : c.scene.c_str(), r.vertices, r.triangles, c.bake.transfer.order,
                  c.bake.transfer.samples, describeLighting(r.lighting).c_str());
+    if (r.texels) {
+      const std::size_t n = r.texels->atlases.size();
+      std::fprintf(err, "prt-bake: texture sets: %zu atlas%s: %s\n", n, n == 1 ? "" : "es", r.texels->sets.c_str());
+    }
   };
   bake::AssetBakeReport report;
   std::vector<std::uint8_t> bytes;
@@ -476,9 +494,21 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!baked.isOk()) return reportFailure(err, "", baked);
     if (report.texels && !c.quiet) {
       const bake::TexelBakeReport& t = *report.texels;
-      std::fprintf(err, "prt-bake: transfer textures: %s, %dx%d atlas, %llu of %llu texels sampled, %zu charts\n",
-                   describeAtlas(t).c_str(), t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
-                   static_cast<unsigned long long>(t.texels), t.charts);
+      if (t.atlases.size() == 1) {
+        std::fprintf(err, "prt-bake: transfer textures: %s, %dx%d atlas, %llu of %llu texels sampled, %zu charts\n",
+                     describeAtlas(t.atlases[0]).c_str(), t.size, t.size, static_cast<unsigned long long>(t.sampledTexels),
+                     static_cast<unsigned long long>(t.texels), t.charts);
+      } else {
+        std::fprintf(err, "prt-bake: transfer textures: %zu atlases (%s), %llu of %llu texels sampled, %zu charts\n",
+                     t.atlases.size(), t.sets.c_str(), static_cast<unsigned long long>(t.sampledTexels),
+                     static_cast<unsigned long long>(t.texels), t.charts);
+        for (std::size_t a = 0; a < t.atlases.size(); ++a) {
+          const bake::TexelAtlasReport& x = t.atlases[a];
+          std::fprintf(err, "prt-bake: atlas %zu: %s: %s, %dx%d, %zu triangles, %llu texels sampled, %.3g texels/m\n", a,
+                       x.object.c_str(), describeAtlas(x).c_str(), x.size, x.size, x.triangles,
+                       static_cast<unsigned long long>(x.sampledTexels), x.texelsPerMetre);
+        }
+      }
       for (const std::string& line : t.rejected) std::fprintf(err, "prt-bake: not used: %s\n", line.c_str());
       if (t.normalMappedTexels > 0) {
         std::fprintf(err, "prt-bake: transfer textures: %zu texels shaded with normal maps\n", t.normalMappedTexels);
@@ -530,8 +560,19 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "},\n";
     if (report.texels) {
       const bake::TexelBakeReport& t = *report.texels;
+      const bool generated = t.atlases.size() == 1 && t.atlases[0].generated;
       s += "  \"texels\": {\"texcoord\": " + std::to_string(t.texcoord) +
-           ", \"atlas\": " + jsonString(t.generated ? "generated" : "TEXCOORD_" + std::to_string(t.texcoord));
+           ", \"atlas\": " + jsonString(generated ? "generated" : t.texcoord < 0 ? "mixed" : "TEXCOORD_" + std::to_string(t.texcoord)) +
+           ", \"sets\": " + jsonString(t.sets) + ", \"atlases\": [";
+      for (std::size_t a = 0; a < t.atlases.size(); ++a) {
+        const bake::TexelAtlasReport& x = t.atlases[a];
+        s += std::string(a ? ", " : "") + "{\"object\": " + jsonString(x.object) +
+             ", \"uv\": " + jsonString(x.generated ? "generated" : "TEXCOORD_" + std::to_string(x.texcoord)) +
+             ", \"size\": " + std::to_string(x.size) + ", \"triangles\": " + std::to_string(x.triangles) +
+             ", \"charts\": " + std::to_string(x.charts) + ", \"sampled\": " + std::to_string(x.sampledTexels) +
+             ", \"texels_per_metre\": " + jsonNumber(x.texelsPerMetre) + "}";
+      }
+      s += "]";
       if (t.generated) {
         const bake::UvUnwrapReport& g = *t.generated;
         s += ", \"unwrap\": {\"attempts\": " + std::to_string(g.attempts.size()) +

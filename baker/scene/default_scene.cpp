@@ -179,6 +179,12 @@ bool packCharts(const std::vector<Chart>& charts, const std::vector<std::size_t>
 // exporter would write one, so `prt-bake --default --texels` needs no unwrapper.
 constexpr double kAtlasGap = 1.0 / 128.0;
 
+// The triangles added since the previous object become the object `name` (scene.h).
+void markObject(Scene* s, const char* name) {
+  s->triangleObject.resize(s->indices.size() / 3, static_cast<std::uint32_t>(s->objectNames.size()));
+  s->objectNames.emplace_back(name);
+}
+
 void addLightmapUvs(Scene* s, const std::vector<Chart>& charts) {
   std::vector<std::size_t> order(charts.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -218,14 +224,19 @@ Scene makeDefaultScene() {
   addRectangle(&s, &charts, {-r, 0, -r}, {w, 0, 0}, {0, kRoomHeight, 0}, {0, 0, 1}, {kBackWall}, room);
   addRectangle(&s, &charts, {-r, 0, -r}, {0, kRoomHeight, 0}, {0, 0, w}, {1, 0, 0}, {kRedWall}, room);
   addRectangle(&s, &charts, {r, 0, -r}, {0, 0, w}, {0, kRoomHeight, 0}, {-1, 0, 0}, {kGreenWall}, room);
+  markObject(&s, "room");
 
   // The objects, spaced so none touches another or a wall: the sphere (touching the floor
   // in one point) near the red wall, the cube near the green one, the tall box casting a
   // long shadow on the back wall, the torus lying flat (self-shadowing in its hole).
   addSphere(&s, &charts, 0.5f, 64, 32, {kSphere, kPolishedDielectric}, place(0, {-0.9f, 0.5f, 0.5f}));
+  markObject(&s, "sphere");
   addBox(&s, &charts, {1.0f, 1.0f, 1.0f}, {kCube}, place(25, {0.9f, 0.0f, 0.6f}));
+  markObject(&s, "cube");
   addBox(&s, &charts, {0.6f, 1.8f, 0.6f}, {kTallBox}, place(-20, {-0.6f, 0.0f, -1.2f}));
+  markObject(&s, "tall box");
   addTorus(&s, &charts, 0.4f, 0.14f, 64, 24, {kTorus, kBrushedMetal}, place(0, {0.7f, 0.14f, -0.9f}));
+  markObject(&s, "torus");
   addLightmapUvs(&s, charts);
   // The sphere's pole rows have one vertex per column, and the seam column's pole vertex
   // ends up in no triangle (its triangles collapse); drop such vertices.

@@ -261,6 +261,8 @@ class SceneBuilder {
   std::vector<PbrVertex> pbr_;
   std::vector<std::uint8_t> needsNormal_;
   std::vector<std::uint32_t> indices_;
+  std::vector<std::uint32_t> triangleObject_;  // per triangle, into objectNames_ (scene.h)
+  std::vector<std::string> objectNames_;
   // TEXCOORD_0/1 of every vertex so far; a set is dropped (cleared, with the reason) at the
   // first triangle primitive that lacks it or stores it in a type glTF does not allow.
   std::vector<Uv> texcoord_[2];
@@ -347,6 +349,10 @@ Status SceneBuilder::addDefaultScene() {
         return fail("node " + std::to_string(item.node) + " refers to mesh " + std::to_string(node.mesh) +
                     ", which does not exist");
       }
+      // Each node's instance of a mesh is an object of its own (scene.h): instances share UVs.
+      std::string object = "node " + std::to_string(item.node);
+      if (!node.name.empty()) object += " ('" + node.name + "')";
+      objectNames_.push_back(object + ", " + meshLabel(node.mesh));
       if (Status s = addMesh(node.mesh, world); !s.isOk()) return s;
     }
     for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, item.node, world});
@@ -768,6 +774,7 @@ Status SceneBuilder::addPrimitive(int meshIndex, int primitiveIndex, const glm::
     indices_.push_back(base0 + tri[t]);
     indices_.push_back(base0 + (mirrored ? tri[t + 2] : tri[t + 1]));
     indices_.push_back(base0 + (mirrored ? tri[t + 1] : tri[t + 2]));
+    triangleObject_.push_back(static_cast<std::uint32_t>(objectNames_.size() - 1));
   }
 
   const bool textured = base.texture != nullptr;
@@ -836,7 +843,7 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
                 plural(model_.meshes.size(), "mesh", "meshes") + ")");
   }
   const std::size_t triangleCount = indices_.size() / 3;
-  const TriangleCleanupStats dropped = removeBadTriangles(positions_, &indices_);
+  const TriangleCleanupStats dropped = removeBadTriangles(positions_, &indices_, &triangleObject_);
   if (indices_.empty()) {
     return fail(triangleCount == 1
                     ? std::string("no triangles to bake: the only triangle has zero area or non-finite positions")
@@ -909,6 +916,8 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   scene.albedo = std::move(albedo_);
   scene.pbr = std::move(pbr_);
   scene.indices = std::move(indices_);
+  scene.triangleObject = std::move(triangleObject_);
+  scene.objectNames = std::move(objectNames_);
   for (int set = 0; set < 2; ++set) {
     scene.texcoordAbsent[set] = std::move(texcoordAbsent_[set]);
     if (scene.texcoordAbsent[set].empty()) scene.texcoord[set] = std::move(texcoord_[set]);

@@ -24,10 +24,12 @@ bool isZeroArea(Vec3 a, Vec3 b, Vec3 c) {
 
 }  // namespace
 
-TriangleCleanupStats removeBadTriangles(std::span<const Vec3> positions, std::vector<std::uint32_t>* indices) {
+TriangleCleanupStats removeBadTriangles(std::span<const Vec3> positions, std::vector<std::uint32_t>* indices,
+                                        std::vector<std::uint32_t>* triangleTags) {
   TriangleCleanupStats stats;
   std::vector<std::uint32_t>& idx = *indices;
   const std::size_t triangles = idx.size() / 3;
+  const bool tagged = triangleTags != nullptr && triangleTags->size() == triangles;
   std::size_t kept = 0;
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t a = idx[3 * t], b = idx[3 * t + 1], c = idx[3 * t + 2];
@@ -46,8 +48,10 @@ TriangleCleanupStats removeBadTriangles(std::span<const Vec3> positions, std::ve
     idx[3 * kept] = a;
     idx[3 * kept + 1] = b;
     idx[3 * kept + 2] = c;
+    if (tagged) (*triangleTags)[kept] = (*triangleTags)[t];
     ++kept;
   }
+  if (tagged) triangleTags->resize(kept);
   idx.resize(3 * kept);
   return stats;
 }

@@ -25,8 +25,10 @@ struct TriangleCleanupStats {
 
 // Removes from `indices` (3 per triangle; a trailing partial triangle is removed too) every
 // triangle with an out-of-range index, a non-finite corner or zero area, keeping the order
-// of the rest; returns how many of each kind went.
-TriangleCleanupStats removeBadTriangles(std::span<const Vec3> positions, std::vector<std::uint32_t>* indices);
+// of the rest; returns how many of each kind went. `triangleTags` (one per triangle, e.g.
+// Scene::triangleObject), when given and of that length, loses the same triangles.
+TriangleCleanupStats removeBadTriangles(std::span<const Vec3> positions, std::vector<std::uint32_t>* indices,
+                                        std::vector<std::uint32_t>* triangleTags = nullptr);
 
 // Removes vertices that no triangle references from positions, normals and albedo (which
 // must have equal lengths, or the call does nothing and returns 0), keeping their order and

@@ -5,13 +5,23 @@
 // fetches them coherently.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "baker/scene/scene.h"
 
 namespace prt::bake {
 
 // Reorders `scene`'s triangles and vertices in place (every per-vertex array follows the
-// same permutation; the mesh, seen as a set of triangles, is unchanged). Deterministic.
-// Vertices no triangle references are dropped (the mesh clean-up already removes them).
+// same permutation, scene->triangleObject follows the triangles; the mesh, seen as a set of
+// triangles, is unchanged). Deterministic. Vertices no triangle references are dropped (the
+// mesh clean-up already removes them).
 void optimizeMeshOrder(Scene* scene);
+
+// As above, with the triangles grouped: `triangleGroup` (one per triangle, e.g. its atlas)
+// stably sorted into ascending runs, each run in its own cache order, and permuted with the
+// triangles. Empty, or all one group: exactly optimizeMeshOrder(scene). A group vector of
+// another length is ignored (treated as empty).
+void optimizeMeshOrder(Scene* scene, std::vector<std::uint32_t>* triangleGroup);
 
 }  // namespace prt::bake

@@ -76,6 +76,12 @@ struct Scene {
   std::vector<Uv> normalMapUv;
   std::vector<Tangent> tangents;
   std::vector<std::uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
+  // The objects the triangles belong to (a glTF node's instance of its mesh, or a part of the
+  // built-in scene): triangleObject is per triangle, an index into objectNames, or empty (the
+  // whole scene is one object). Texture sets (PRTT §4.3) give each object its own atlas, so
+  // instances of one mesh, which share UVs, do not overlap (docs/transfer-textures.md).
+  std::vector<std::uint32_t> triangleObject;
+  std::vector<std::string> objectNames;
   std::string name;                  // for catalogues and logs
 };
 

@@ -9,6 +9,7 @@
 #include "baker/scene/uv_atlas_choice.h"
 #include "baker/transfer/local_sphere.h"
 #include "baker/transfer/texel_bake.h"
+#include "baker/transfer/texture_sets.h"
 
 namespace prt::bake {
 namespace {
@@ -91,108 +92,36 @@ struct TexelBake {
   std::vector<TransferPass> passes;
 };
 
-// The glTF set to bake texels over, at the side it is baked at; choice->texcoord -1 when
-// neither is a valid atlas, with each set's reason in *rejected.
-Status chooseTexelAtlas(const Scene& scene, const TexelBakeSettings& t, UvAtlasChoice* choice, int* side,
-                        std::vector<std::string>* rejected) {
-  // The atlas must be valid at the size it will be baked at, and the size from
-  // --texels-per-unit depends on the set: try each set at its own size, TEXCOORD_1 first.
-  *choice = UvAtlasChoice();
-  for (int set : {1, 0}) {
-    if (scene.texcoord[set].empty()) {
-      rejected->push_back("TEXCOORD_" + std::to_string(set) + ": absent" +
-                          (scene.texcoordAbsent[set].empty() ? "" : " (" + scene.texcoordAbsent[set] + ")"));
-      continue;
-    }
-    int size = 0;
-    if (Status s = texelAtlasSize(scene, set, t, &size); !s.isOk()) {
-      rejected->push_back("TEXCOORD_" + std::to_string(set) + ": " + s.message());
-      continue;
-    }
-    UvAtlasTarget target;
-    target.width = target.height = size;
-    target.padding = t.padding;
-    UvAtlasChoice c;
-    PRT_RETURN_IF_ERROR(chooseUvAtlas(scene, target, &c));
-    if (c.texcoord == set) {
-      *choice = std::move(c);
-      *side = size;
-      return Status::ok();
-    }
-    for (const std::string& line : c.rejected) {
-      if (line.rfind("TEXCOORD_" + std::to_string(set), 0) == 0) rejected->push_back(line);
-    }
-  }
-  return Status::ok();
-}
-
-// The atlas the texels are baked over, picked before the vertex order changes (a generated
-// atlas splits vertices; a valid one stays valid under reordering).
-struct TexelAtlasPick {
-  int texcoord = -1;  // the scene's set (1 when generated)
-  int side = 0;
-  std::size_t charts = 0;
-  std::vector<std::string> rejected;
-  std::optional<UvUnwrapReport> generated;
-};
-
-// Picks the glTF set, or, when neither is valid and t.unwrap is set, replaces *scene by one
-// with a generated atlas as TEXCOORD_1 (vertices split at its seams). Without either, the
-// error gives each set's reason.
-Status pickTexelAtlas(const TexelBakeSettings& t, Scene* scene, TexelAtlasPick* pick) {
-  UvAtlasChoice choice;
-  PRT_RETURN_IF_ERROR(chooseTexelAtlas(*scene, t, &choice, &pick->side, &pick->rejected));
-  if (choice.texcoord >= 0) {
-    pick->texcoord = choice.texcoord;
-    pick->charts = choice.report.charts;
-    return Status::ok();
-  }
-  if (!t.unwrap) {
-    std::string message = "no UV set is a valid lightmap atlas for transfer textures";
-    for (const std::string& line : pick->rejected) message += "; " + line;
-    return Status::error(StatusCode::kInvalidArgument,
-                         message + " (docs/transfer-textures.md: give the glTF a TEXCOORD_1 lightmap atlas)");
-  }
-  UvUnwrapOptions o = *t.unwrap;
-  o.padding = t.padding;
-  if (t.textureSize != 0 || !(t.texelsPerUnit > 0.0) || !std::isfinite(t.texelsPerUnit)) {
-    PRT_RETURN_IF_ERROR(texelAtlasSize(*scene, -1, t, &o.size));
-  } else {
-    // The side follows the layout's UV area; the first guess assumes it fills half the square.
-    double surface = 0.0;
-    for (std::size_t i = 0; i + 2 < scene->indices.size(); i += 3) {
-      const Vec3 a = scene->positions[scene->indices[i]], b = scene->positions[scene->indices[i + 1]],
-                 c = scene->positions[scene->indices[i + 2]];
-      surface += 0.5 * length(cross(b - a, c - a));
-    }
-    o.size = static_cast<int>(std::clamp(std::ceil(t.texelsPerUnit * std::sqrt(2.0 * surface)), 1.0,
-                                         static_cast<double>(kMaxAtlasSize)));
-    o.sideFromLayout = [&t](const Scene& unwrapped, int* side) { return texelAtlasSize(unwrapped, 1, t, side); };
-  }
-  Scene unwrapped;
-  UvUnwrapReport report;
-  PRT_RETURN_IF_ERROR(unwrapUvAtlas(*scene, o, &unwrapped, &report));
-  *scene = std::move(unwrapped);
-  pick->texcoord = 1;
-  pick->side = report.side;
-  pick->charts = report.atlas.charts;
-  pick->generated = std::move(report);
-  return Status::ok();
-}
-
-Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TexelAtlasPick&& pick,
+// The texel passes over the planned atlases; `triangleAtlas` per triangle of the (reordered)
+// scene, grouped in ascending runs (empty: one atlas).
+Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TextureSetPlan&& plan,
                   TexelBake* out, TexelBakeReport* report) {
   const TexelBakeSettings& t = *o.texels;
-  const int side = pick.side;
-  const std::vector<Uv>& uv = scene.texcoord[pick.texcoord];
-  report->texcoord = pick.generated ? -1 : pick.texcoord;
-  report->size = side;
-  report->charts = pick.charts;
-  report->rejected = std::move(pick.rejected);
-  report->generated = std::move(pick.generated);
-
-  out->atlases = {TextureAtlas{static_cast<std::uint32_t>(side), static_cast<std::uint32_t>(side), 0,
-                               static_cast<std::uint32_t>(scene.indices.size() / 3)}};
+  const std::vector<Uv>& uv = scene.texcoord[plan.texcoord];
+  const std::size_t triangles = scene.indices.size() / 3;
+  out->atlases.clear();
+  for (std::size_t a = 0, first = 0; a < plan.atlases.size(); ++a) {
+    std::size_t end = first;
+    if (plan.triangleAtlas.empty()) {
+      end = triangles;
+    } else {
+      while (end < triangles && plan.triangleAtlas[end] == a) ++end;
+    }
+    const auto side = static_cast<std::uint32_t>(plan.atlases[a].size);
+    out->atlases.push_back(TextureAtlas{side, side, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end - first)});
+    plan.atlases[a].triangles = end - first;
+    first = end;
+  }
+  report->texcoord = plan.atlases.front().texcoord;
+  for (const TexelAtlasReport& a : plan.atlases) {
+    if (a.texcoord != report->texcoord) report->texcoord = -1;
+  }
+  report->size = plan.atlases.front().size;
+  report->charts = 0;
+  for (const TexelAtlasReport& a : plan.atlases) report->charts += a.charts;
+  report->rejected = std::move(plan.rejected);
+  report->sets = std::move(plan.reason);
+  if (plan.atlases.size() == 1) report->generated = plan.atlases.front().generated;
   TexelBakeOptions options;
   options.transfer = transfer;
   options.transfer.glossy = false;  // glossy stays per vertex (matrices)
@@ -213,6 +142,25 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   report->bounces = r.bounces;
   report->visibilityOrder = r.visibilityOrder;
   report->passes = r.passes;
+  // Per atlas: its sampled texels, and the texel density its triangles get.
+  for (std::size_t a = 0, firstTexel = 0; a < out->atlases.size(); ++a) {
+    const TextureAtlas& atlas = out->atlases[a];
+    const std::size_t texels = std::size_t{atlas.width} * atlas.height;
+    TexelAtlasReport& ar = plan.atlases[a];
+    ar.sampledTexels = static_cast<std::uint64_t>(std::count(r.coverage.begin() + static_cast<std::ptrdiff_t>(firstTexel),
+                                                             r.coverage.begin() + static_cast<std::ptrdiff_t>(firstTexel + texels),
+                                                             std::uint8_t{1}));
+    double surface = 0.0, area = 0.0;
+    for (std::size_t tri = atlas.firstTriangle; tri < atlas.firstTriangle + atlas.triangleCount; ++tri) {
+      const std::uint32_t i0 = scene.indices[3 * tri], i1 = scene.indices[3 * tri + 1], i2 = scene.indices[3 * tri + 2];
+      surface += 0.5 * length(cross(scene.positions[i1] - scene.positions[i0], scene.positions[i2] - scene.positions[i0]));
+      const double du1 = uv[i1].u - uv[i0].u, dv1 = uv[i1].v - uv[i0].v, du2 = uv[i2].u - uv[i0].u, dv2 = uv[i2].v - uv[i0].v;
+      area += 0.5 * std::abs(du1 * dv2 - dv1 * du2) * atlas.width * atlas.height;
+    }
+    ar.texelsPerMetre = surface > 0.0 ? std::sqrt(area / surface) : 0.0;
+    firstTexel += texels;
+  }
+  report->atlases = std::move(plan.atlases);
 
   out->atlasUv.resize(2 * uv.size());
   for (std::size_t v = 0; v < uv.size(); ++v) {
@@ -295,16 +243,24 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   if (options.transfer.glossy || wantsVisibility(options)) {
     PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
   }
-  // Before the vertex order and the report: a generated atlas splits vertices at its seams.
-  TexelAtlasPick atlas;
-  if (options.texels) PRT_RETURN_IF_ERROR(pickTexelAtlas(*options.texels, &scene, &atlas));
-  optimizeMeshOrder(&scene);
+  // Before the vertex order and the report: a generated atlas splits vertices at its seams,
+  // and texture sets split them between objects. The order keeps each atlas's triangles
+  // contiguous (the asset's atlases are runs of triangles).
+  TextureSetPlan atlas;
+  if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, &scene, &atlas));
+  optimizeMeshOrder(&scene, &atlas.triangleAtlas);
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
   BakeOptions transfer = options.transfer;
   transfer.lighting = resolveLighting(scene, options);
   transfer.interreflection = options.storeInterreflected;
   report->lighting = transfer.lighting;
+  if (options.texels) {
+    // What `started` can already say about the texture set; bakeTexels fills in the rest.
+    report->texels = TexelBakeReport{};
+    report->texels->sets = atlas.reason;
+    report->texels->atlases = atlas.atlases;
+  }
   if (started) started(*report);
 
   TexelBake texel;

@@ -25,7 +25,16 @@ namespace prt::bake {
 
 // Transfer textures (docs/transfer-textures.md): the vector passes baked per texel over the
 // scene's lightmap atlas (TEXCOORD_1, else TEXCOORD_0: chooseUvAtlas, else a generated one),
-// one atlas for the scene.
+// one atlas for the scene, or one per object (texture sets: `sets`, texture_sets.h).
+//
+// How many atlases (docs/transfer-textures.md, "Texture sets"): kScene one for the whole scene
+// (the glTF set, else a generated one); kObject one per object, each from its own UVs fitted
+// to a square, else generated; kAuto the scene's one unless its sets are invalid only because
+// objects overlap each other, or objects' texel densities differ by more than
+// kMaxTexelDensityRatio, and then one per object.
+enum class TextureSets { kAuto, kScene, kObject };
+inline constexpr double kMaxTexelDensityRatio = 2.0;
+
 struct TexelBakeSettings {
   int textureSize = 0;         // atlas side in texels (square), 1..kMaxAtlasSize; 0: from texelsPerUnit
   double texelsPerUnit = 0.0;  // texels per metre of surface when textureSize is 0; 0 too: 512 texels
@@ -40,6 +49,7 @@ struct TexelBakeSettings {
   // "Glossy by the triple product"). Distant lighting only; the scene gets the glossy material
   // split (options.glossyMaterials) as with transfer.glossy, and the asset its specular materials.
   int visibilityOrder = 0;
+  TextureSets sets = TextureSets::kAuto;
 };
 
 // The atlas side for `settings` on `scene`'s set `texcoord`: textureSize when given, else
@@ -67,10 +77,24 @@ struct AssetBakeOptions {
   std::optional<TexelBakeSettings> texels;         // default: vertex passes only
 };
 
+// One atlas of the texture set, in the asset's atlas order.
+struct TexelAtlasReport {
+  std::string object;        // what it covers: an object's name, or "the whole scene"
+  int texcoord = -1;         // the glTF set its UVs come from (0 or 1), -1 when generated
+  int size = 0;              // side, texels (square)
+  std::size_t triangles = 0, charts = 0;
+  std::uint64_t sampledTexels = 0;
+  double texelsPerMetre = 0.0;  // sqrt(texels its triangles cover in UV / their surface area)
+  std::optional<UvUnwrapReport> generated;
+};
+
 struct TexelBakeReport {
-  int texcoord = -1;                 // the glTF set used as the atlas (0 or 1), -1 when generated
+  // The glTF set used as the atlas (0 or 1), -1 when generated or when the atlases differ.
+  int texcoord = -1;
   std::optional<UvUnwrapReport> generated;  // how the atlas was generated, when it was
-  int size = 0;                      // atlas side, texels
+  int size = 0;                      // the first atlas's side, texels
+  std::vector<TexelAtlasReport> atlases;  // one per atlas
+  std::string sets;                  // why one atlas or one per object, one line
   std::uint64_t texels = 0, sampledTexels = 0;
   std::size_t charts = 0;
   std::size_t normalMappedTexels = 0;  // sampled texels shaded with a normal map's normal

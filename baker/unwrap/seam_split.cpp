@@ -67,6 +67,8 @@ Status splitSeams(const Scene& scene, std::span<const Uv> cornerUvs, Scene* out)
   s.texcoordAbsent[0] = scene.texcoordAbsent[0];
   s.texcoord[1] = std::move(uvs);
   s.indices = std::move(indices);
+  s.triangleObject = scene.triangleObject;  // the triangles keep their order
+  s.objectNames = scene.objectNames;
   s.name = scene.name;
   *out = std::move(s);
   return Status::ok();

@@ -9,6 +9,8 @@
 #include "baker/scene/gltf_texture.h"
 #include "baker/scene/mesh_cleanup.h"
 #include "baker/scene/mesh_normals.h"
+#include "baker/scene/mesh_order.h"
+#include "baker/scene/uv_atlas_sets.h"
 
 namespace prt::bake {
 namespace {
@@ -96,6 +98,76 @@ TEST(MeshCleanup, RemovesUnreferencedVerticesAndRenumbers) {
   EXPECT_EQ(s.indices, (std::vector<std::uint32_t>{2, 1, 0}));
   EXPECT_EQ(s.positions[2].x, 4.0f);
   EXPECT_FLOAT_EQ(s.albedo[1].r, 0.2f);
+}
+
+// A strip of 2 x 8 quads whose triangles alternate between objects 0 and 1 (a hostile order
+// for grouping), each triangle's object recoverable from its centroid's x.
+Scene interleavedStrip() {
+  Scene s;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 1; ++j) {
+      s.positions.push_back({static_cast<float>(i), 0.0f, static_cast<float>(j)});
+      s.normals.push_back({0, 1, 0});
+      s.albedo.push_back({0.5f, 0.5f, 0.5f});
+    }
+  }
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    const std::uint32_t a = 2 * i, b = a + 1, c = a + 2, d = a + 3;
+    s.indices.insert(s.indices.end(), {a, b, d, a, d, c});
+    s.triangleObject.insert(s.triangleObject.end(), {i % 2, i % 2});  // quad i: object i mod 2
+  }
+  s.objectNames = {"even", "odd"};
+  return s;
+}
+
+std::uint32_t objectOfCentroid(const Scene& s, std::size_t t) {
+  const double x = (s.positions[s.indices[3 * t]].x + s.positions[s.indices[3 * t + 1]].x + s.positions[s.indices[3 * t + 2]].x) / 3;
+  return static_cast<std::uint32_t>(static_cast<int>(std::floor(x)) % 2);
+}
+
+TEST(MeshOrder, ObjectIdsFollowTheTrianglesAndGroupsBecomeRuns) {
+  Scene plain = interleavedStrip();
+  optimizeMeshOrder(&plain);
+  ASSERT_EQ(plain.triangleObject.size(), 16u);
+  for (std::size_t t = 0; t < 16; ++t) EXPECT_EQ(plain.triangleObject[t], objectOfCentroid(plain, t)) << t;
+
+  Scene grouped = interleavedStrip();
+  std::vector<std::uint32_t> group = grouped.triangleObject;
+  optimizeMeshOrder(&grouped, &group);
+  for (std::size_t t = 0; t < 16; ++t) {
+    EXPECT_EQ(group[t], t < 8 ? 0u : 1u) << t;  // one run per group, in ascending order
+    EXPECT_EQ(grouped.triangleObject[t], objectOfCentroid(grouped, t)) << t;
+    EXPECT_EQ(grouped.triangleObject[t], group[t]) << t;
+  }
+  // One group is exactly the ungrouped order.
+  Scene a = interleavedStrip(), b = interleavedStrip();
+  std::vector<std::uint32_t> one(16, 7u);
+  optimizeMeshOrder(&a);
+  optimizeMeshOrder(&b, &one);
+  EXPECT_EQ(a.indices, b.indices);
+  EXPECT_EQ(a.positions.size(), b.positions.size());
+}
+
+TEST(MeshCleanup, RemovedTrianglesTakeTheirObjectIds) {
+  std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}};
+  std::vector<std::uint32_t> idx = {0, 1, 2, 0, 1, 3, 1, 2, 0};  // the middle one is collinear
+  std::vector<std::uint32_t> objects = {4, 5, 6};
+  removeBadTriangles(p, &idx, &objects);
+  EXPECT_EQ(objects, (std::vector<std::uint32_t>{4, 6}));
+}
+
+TEST(SceneParts, CutAndReassembledObjectsKeepEveryTriangle) {
+  const Scene s = interleavedStrip();
+  const SceneObjects objects = sceneObjects(s);
+  ASSERT_EQ(objects.triangles.size(), 2u);
+  EXPECT_EQ(objects.names[1], "odd");
+  Scene joined;
+  for (const std::vector<std::uint32_t>& tris : objects.triangles) appendScenePart(&joined, scenePart(s, tris));
+  ASSERT_EQ(joined.indices.size(), s.indices.size());
+  // Vertices on the border between quads of two objects are copied into each object.
+  EXPECT_GT(joined.positions.size(), s.positions.size());
+  EXPECT_NEAR(surfaceArea(joined), surfaceArea(s), 1e-9);
+  for (std::size_t t = 0; t < 16; ++t) EXPECT_EQ(joined.triangleObject[t], t < 8 ? 0u : 1u);
 }
 
 TEST(Texture, SrgbDecoding) {

@@ -7,6 +7,7 @@ import path from 'node:path';
 
 import { bowlGltf } from './bowl_gltf.mjs';
 import { planeGltf } from './plane_gltf.mjs';
+import { box, quad, texturedSceneGltf } from './texture_sets_gltf.mjs';
 
 const [caseName, bake, workDir, texelTool] = process.argv.slice(2);
 if (!workDir) {
@@ -664,6 +665,103 @@ const cases = {
       check(left.length === 0, `${signal}: temporaries left: ${left.join(', ')}`);
       check(fs.readFileSync(out, 'utf8') === 'old', `${signal}: the old output was changed`);
     }
+  },
+
+  texture_sets() {
+    // One floor patch instanced twice (the same TEXCOORD_1), one instance in the open, one
+    // under a low roof: as one atlas the instances overlap (rejected), as texture sets each
+    // object gets its own atlas and the roofed instance is in shadow.
+    const patch = quad([-0.5, 0, -0.5], [0, 0, 1], [1, 0, 0], [0.1, 0.1, 0.9, 0.9]);   // faces +y
+    const roof = quad([-1.5, 0.25, -1.5], [3, 0, 0], [0, 0, 3], [0.1, 0.1, 0.9, 0.9]);  // faces -y
+    const scene = work('instanced.gltf');
+    fs.writeFileSync(scene, texturedSceneGltf([patch, roof], [
+      { mesh: 0, translation: [-3, 0, 0], name: 'open' },
+      { mesh: 0, translation: [3, 0, 0], name: 'roofed' },
+      { mesh: 1, translation: [3, 0, 0], name: 'roof' },
+    ]));
+    const common = ['--samples', '64', '--order', '3', '--texels', '--texels-per-unit', '32', '--unwrap', 'never'];
+    expectExit([scene, '-o', work('scene.prt'), ...common, '--texture-sets', 'scene'], EXIT_INVALID_INPUT,
+               /no UV set is a valid lightmap atlas.*TEXCOORD_1: \d+ overlapping triangle pairs/);
+    check(!fs.existsSync(work('scene.prt')), 'a failed bake wrote an asset');
+    const out = work('sets.prt');
+    const r = expectExit([scene, '-o', out, ...common, '--json'], 0,
+                         /texture sets: 3 atlases: one atlas per object: no UV set is valid for the whole scene, but 3 of 3 objects/);
+    check(/transfer textures: 3 atlases \(/.test(r.stderr) && /atlas 1: node 1 \('roofed'\), mesh 0: TEXCOORD_1, 32x32, 2 triangles/.test(r.stderr),
+          `atlas lines: ${r.stderr}`);
+    const stats = json(r);
+    const atlases = stats?.texels?.atlases ?? [];
+    check(atlases.length === 3 && atlases.every((a) => a.uv === 'TEXCOORD_1'), `atlases: ${JSON.stringify(atlases)}`);
+    check(atlases.map((a) => a.size).join() === '32,32,96', `atlas sizes: ${JSON.stringify(atlases)}`);
+    const info = json(expectExit(['info', out, '--json'], 0));
+    check(info?.atlases?.length === 3 && info.atlases.map((a) => a.triangleCount).join() === '2,2,2', `info atlases: ${JSON.stringify(info?.atlases)}`);
+    const used = (info?.atlas_usage ?? []).map((u) => u.sampled);
+    check(used.length === 3 && used.every((n, i) => n === atlases[i]?.sampled && n > 0), `atlas usage ${JSON.stringify(info?.atlas_usage)} vs ${JSON.stringify(atlases)}`);
+    const text = expectExit(['info', out], 0).stdout;
+    check(/^atlas 0: 32x32, triangles 0-1 \(2\), \d+ texels sampled/m.test(text) && /^atlas 2: 96x96, triangles 4-5 \(2\)/m.test(text), `info text: ${text}`);
+    const s = json(expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'shadowed', '--json'], 0));
+    if (!s) return;
+    check(s.texels.length === stats?.texels?.sampled, `shade printed ${s.texels.length} of ${stats?.texels?.sampled} texels`);
+    for (const a of [0, 1, 2]) check(s.texels.filter((x) => x.atlas === a).length === atlases[a]?.sampled, `shade texels of atlas ${a}`);
+    const mean = (atlas) => {
+      const xs = s.texels.filter((x) => x.atlas === atlas).map((x) => x.radiance[0]);
+      return xs.reduce((p, q) => p + q, 0) / xs.length;
+    };
+    const open = mean(0), roofed = mean(1);
+    check(s.texels.filter((x) => x.atlas === 0).every((x) => x.position[0] < -2) &&
+          s.texels.filter((x) => x.atlas === 1).every((x) => x.position[0] > 2 && Math.abs(x.position[1]) < 1e-5),
+          'atlas 0 should hold the open instance, atlas 1 the roofed one');
+    check(open > 0.6 && roofed < 0.2 * open, `shadowed radiance: open ${open}, roofed ${roofed}`);
+    console.log(`texture_sets: open instance ${open.toFixed(4)}, roofed ${roofed.toFixed(4)}; sizes ${atlases.map((a) => a.size).join(', ')}`);
+  },
+
+  texture_sets_density() {
+    // A 4 m floor and a 10 cm box in one valid TEXCOORD_1: the box gets 5x the floor's texels
+    // per metre there, so auto splits them, and each atlas then gets the asked-for density.
+    const floor = quad([-2, 0, -2], [0, 0, 4], [4, 0, 0], [0.02, 0.02, 0.62, 0.62]);
+    const cube = box([-0.05, 0, -0.05], [0.05, 0.1, 0.05], [0.66, 0.02, 0.98, 0.34]);
+    const scene = work('floor-box.gltf');
+    fs.writeFileSync(scene, texturedSceneGltf([floor, cube], [{ mesh: 0, name: 'floor' }, { mesh: 1, name: 'box' }]));
+    const common = ['--samples', '16', '--order', '2', '--passes', 'shadowed', '--texels', '--unwrap', 'never', '--json'];
+    const tolerance = 0.05;  // a side is rounded up to whole texels: a 38-texel atlas is 2.6% over
+    const byDensity = json(expectExit([scene, '-o', work('tpu.prt'), ...common, '--texels-per-unit', '64'], 0,
+                                      /texture sets: 2 atlases: one atlas per object \(2 objects\): in TEXCOORD_1 node 1 \('box'\), mesh 1 has [0-9.]+x the texels per metre of node 0/));
+    const a = byDensity?.texels?.atlases ?? [];
+    check(a.length === 2 && a.every((x) => Math.abs(x.texels_per_metre / 64 - 1) < tolerance), `densities at 64 texels/m: ${JSON.stringify(a)}`);
+    const byBudget = json(expectExit([scene, '-o', work('budget.prt'), ...common, '--texture-size', '256'], 0));
+    const b = byBudget?.texels?.atlases ?? [];
+    const total = b.reduce((p, x) => p + x.size * x.size, 0);
+    check(b.length === 2 && Math.abs(b[1].texels_per_metre / b[0].texels_per_metre - 1) < tolerance, `budget densities: ${JSON.stringify(b)}`);
+    check(Math.abs(total / (256 * 256) - 1) < tolerance, `budget: ${total} texels for 256 x 256`);
+    const one = json(expectExit([scene, '-o', work('one.prt'), ...common, '--texels-per-unit', '64', '--texture-sets', 'scene'], 0));
+    check(one?.texels?.atlases?.length === 1, `--texture-sets scene: ${JSON.stringify(one?.texels?.atlases)}`);
+    console.log(`texture_sets_density: per object ${a.map((x) => `${x.size}^2 at ${x.texels_per_metre.toFixed(2)}/m`).join(', ')}; ` +
+                `budget ${b.map((x) => `${x.size}^2 at ${x.texels_per_metre.toFixed(2)}/m`).join(', ')}`);
+  },
+
+  texture_sets_default() {
+    // The default room has a valid scene-wide TEXCOORD_1 of one density: auto keeps one atlas,
+    // and the asset is byte for byte the one --texture-sets scene (the old path) writes.
+    const auto = bakeDefault('auto.prt', ['--texels', '--texture-size', '512']).out;
+    const r = expectExit(['--default', '-o', work('scene.prt'), '--samples', '64', '--order', '3', '--texels', '--texture-size', '512',
+                          '--texture-sets', 'scene'], 0, /texture sets: 1 atlas: one atlas: TEXCOORD_1 is valid for the whole scene/);
+    check(/transfer textures: TEXCOORD_1, 512x512 atlas/.test(r.stderr), `summary: ${r.stderr}`);
+    check(Buffer.compare(fs.readFileSync(auto), fs.readFileSync(work('scene.prt'))) === 0, 'auto and --texture-sets scene differ');
+    const info = json(expectExit(['info', auto, '--json'], 0));
+    check(info?.atlases?.length === 1 && info.atlases[0].width === 512, `atlases: ${JSON.stringify(info?.atlases)}`);
+  },
+
+  texture_sets_limit() {
+    // 1025 instances of one small quad: one atlas each would pass the format's 1024.
+    const tile = quad([0, 0, 0], [0, 0, 0.1], [0.1, 0, 0], [0.1, 0.1, 0.9, 0.9]);
+    const nodes = [];
+    for (let i = 0; i < 1025; i++) nodes.push({ mesh: 0, translation: [0.2 * (i % 40), 0, 0.2 * Math.floor(i / 40)] });
+    const scene = work('tiles.gltf');
+    fs.writeFileSync(scene, texturedSceneGltf([tile], nodes));
+    expectExit([scene, '-o', work('tiles.prt'), '--samples', '16', '--texels', '--texture-sets', 'object', '--unwrap', 'never'],
+               EXIT_INVALID_INPUT, /the scene has 1025 objects, but an asset holds at most 1024 atlases; the first past the limit is node 1024, mesh 0/);
+    check(!fs.existsSync(work('tiles.prt')), 'a failed bake wrote an asset');
+    expectExit([scene, '-o', work('x.prt'), '--texture-sets', 'object'], 2, /--texture-sets needs --texels/);
+    expectExit([scene, '-o', work('x.prt'), '--texels', '--texture-sets', 'atlas'], 2, /unknown --texture-sets 'atlas' \(expected auto, scene or object\)/);
   },
 
   texel_unwrap() {
