@@ -10,12 +10,16 @@
 //     either side: the texels whose mapped normals lean towards the light are the bright ones,
 //     and the pattern reverses when the light moves across; the same quad without the map is
 //     uniform.
+//   texel_sets_render: an asset with texture sets (one mesh instanced twice, one copy under a
+//     roof: three atlases) is drawn per texel, every atlas read back in UV space equal to the
+//     baker's texels of that atlas, the roofed copy dark and the open one lit.
 // Usage: node browser_texel_quality_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { makeChecks, startServer, openPage, capture, windowLuminance, runCase } from './browser_harness.mjs';
 import { gltfText, rgbPngDataUri } from './floor_scene_gltf.mjs';
+import { quad as lightmapQuad, texturedSceneGltf } from '../cli/texture_sets_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir] = process.argv.slice(2);
 const checks = makeChecks();
@@ -253,6 +257,58 @@ const cases = {
         check(contrast > 0.1, `light at ${side}: the stripes change the radiance by only ${(100 * contrast).toFixed(1)} %`);
         check(flatContrast < 0.01, `light at ${side}: the quad without a normal map varies by ${(100 * flatContrast).toFixed(2)} %`);
       }
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  async texel_sets_render(browser) {
+    // The scene of bake_cli_test's texture_sets case: a 1 m patch instanced at x = -3 (open) and
+    // x = 3 (under a roof 0.25 m up), each object its own atlas at 32 texels a metre.
+    const patch = lightmapQuad([-0.5, 0, -0.5], [0, 0, 1], [1, 0, 0], [0.1, 0.1, 0.9, 0.9]);
+    const roof = lightmapQuad([-1.5, 0.25, -1.5], [3, 0, 0], [0, 0, 3], [0.1, 0.1, 0.9, 0.9]);
+    const scene = path.join(workDir, 'sets.gltf'), asset = path.join(root, 'sets.prt');
+    fs.writeFileSync(scene, texturedSceneGltf([patch, roof], [
+      { mesh: 0, translation: [-3, 0, 0], name: 'open' }, { mesh: 0, translation: [3, 0, 0], name: 'roofed' }, { mesh: 1, translation: [3, 0, 0], name: 'roof' },
+    ]));
+    execFileSync(prtBake, [scene, '-o', asset, '--samples', '256', '--order', '3', '--texels', '--texels-per-unit', '32', '--unwrap', 'never',
+      '--passes', 'shadowed', '--name', 'sets', '--quiet']);
+    const reference = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', 'constant', '--pass', 'shadowed', '--json'],
+      { encoding: 'utf8', maxBuffer: 1 << 28 }));
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&scene=sets&source=texel`);
+      const state = await page.evaluate(() => ({ error: window.prtApp.error, source: window.prtApp.source, atlases: window.prtApp.atlases }));
+      check(state.error === null && state.source === 'texel', `error ${state.error}, source ${state.source}`);
+      const sizes = (state.atlases ?? []).map((a) => `${a.width}x${a.height}`).join(', ');
+      check(sizes === reference.atlases.map((a) => `${a.width}x${a.height}`).join(', ') && reference.atlases.length === 3,
+        `the page has atlases ${sizes}; the asset ${JSON.stringify(reference.atlases)}`);
+      const means = [];
+      for (let a = 0; a < reference.atlases.length; a++) {
+        const gpu = await page.evaluate((atlas) => {
+          const { width, data } = window.prtApp.texelAtlasRadiance('shadowed', atlas);
+          return { width, data: Array.from(data) };
+        }, a);
+        const texels = reference.texels.filter((t) => t.atlas === a);
+        let compared = 0, bad = 0, sum = 0, firstBad = '';
+        for (const t of texels) {
+          const i = 4 * (t.y * gpu.width + t.x);
+          if (gpu.data[i + 3] !== 1) continue;  // centre outside every triangle
+          compared++;
+          sum += t.radiance[0];
+          const error = Math.abs(gpu.data[i] - t.radiance[0]);
+          if (!(error <= 1e-3 * Math.abs(t.radiance[0]) + 1e-4)) {
+            if (!bad) firstBad = `texel (${t.x}, ${t.y}): GPU ${gpu.data[i]}, baker ${t.radiance[0]}`;
+            bad++;
+          }
+        }
+        means.push(sum / compared);
+        console.log(`atlas ${a} (${reference.atlases[a].width}x${reference.atlases[a].height}): ${compared} of ${texels.length} texels compared, mean radiance ${(sum / compared).toFixed(4)}`);
+        check(compared > 0.5 * texels.length, `atlas ${a}: only ${compared} of ${texels.length} texels drawn in UV space`);
+        check(bad === 0, `atlas ${a}: ${bad} texels beyond 1e-3 relative + 1e-4 (${firstBad})`);
+      }
+      check(means[0] > 0.6 && means[1] < 0.2 * means[0], `the open copy's mean radiance ${means[0]}, the roofed copy's ${means[1]}`);
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
     } finally {
       server.child.kill('SIGTERM');
     }
