@@ -456,7 +456,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   const auto t0 = std::chrono::steady_clock::now();
   bake::Scene scene;
   if (c.scene.empty()) {
-    scene = bake::makeDefaultScene();
+    // The built-in atlas's gutters follow the side it is baked at (texels per unit: the default).
+    const auto& t = c.bake.texels;
+    scene = t && t->textureSize > 0 ? bake::makeDefaultScene(t->textureSize, t->padding) : bake::makeDefaultScene();
   } else {
     std::vector<std::string> warnings;
     if (Status s = bake::loadGltf(c.scene, &scene, &warnings); !s.isOk()) return reportFailure(err, "", s);

@@ -174,10 +174,14 @@ bool packCharts(const std::vector<Chart>& charts, const std::vector<std::size_t>
 }
 
 // TEXCOORD_1: every grid its own chart, area-proportional, shelf-packed with a gutter of
-// kAtlasGap (8 texels at 1024², 4 at 512²: padding 2 holds from 512² up, since conservative
-// rasterisation reaches a texel past each chart edge), as large as fits: a lightmap atlas as an
-// exporter would write one, so `prt-bake --default --texels` needs no unwrapper.
-constexpr double kAtlasGap = 1.0 / 128.0;
+// max(kMinAtlasGap, (padding + 2) / side) UV units: the atlas check wants `padding` texels
+// between the texels two charts reach, and conservative rasterisation reaches a texel past each
+// chart edge, so a gap of padding + 2 texels at the side baked at keeps the atlas valid there
+// (and from that side up). kMinAtlasGap, 8 texels at 1024², 4 at 512², is the gap for every
+// side from 512 up with the default padding: those bakes do not depend on the side asked for.
+// As large as fits: a lightmap atlas as an exporter would write one, so `prt-bake --default
+// --texels` needs no unwrapper.
+constexpr double kMinAtlasGap = 1.0 / 128.0;
 
 // The triangles added since the previous object become the object `name` (scene.h).
 void markObject(Scene* s, const char* name) {
@@ -185,7 +189,7 @@ void markObject(Scene* s, const char* name) {
   s->objectNames.emplace_back(name);
 }
 
-void addLightmapUvs(Scene* s, const std::vector<Chart>& charts) {
+void addLightmapUvs(Scene* s, const std::vector<Chart>& charts, double gap) {
   std::vector<std::size_t> order(charts.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(),
@@ -194,9 +198,9 @@ void addLightmapUvs(Scene* s, const std::vector<Chart>& charts) {
   double lo = 0.0, hi = 1.0;  // UV units per metre: lo fits, hi does not (1 m per atlas is far too big)
   for (int step = 0; step < 40; ++step) {
     const double mid = 0.5 * (lo + hi);
-    (packCharts(charts, order, mid, kAtlasGap, &corner) ? lo : hi) = mid;
+    (packCharts(charts, order, mid, gap, &corner) ? lo : hi) = mid;
   }
-  packCharts(charts, order, lo, kAtlasGap, &corner);
+  packCharts(charts, order, lo, gap, &corner);
   s->texcoord[1].assign(s->positions.size(), Uv{});
   for (std::size_t k = 0; k < charts.size(); ++k) {
     const Chart& c = charts[k];
@@ -213,7 +217,7 @@ void addLightmapUvs(Scene* s, const std::vector<Chart>& charts) {
 
 }  // namespace
 
-Scene makeDefaultScene() {
+Scene makeDefaultScene(int lightmapSide, int lightmapPadding) {
   Scene s;
   std::vector<Chart> charts;
   s.name = "default-room";
@@ -237,7 +241,8 @@ Scene makeDefaultScene() {
   markObject(&s, "tall box");
   addTorus(&s, &charts, 0.4f, 0.14f, 64, 24, {kTorus, kBrushedMetal}, place(0, {0.7f, 0.14f, -0.9f}));
   markObject(&s, "torus");
-  addLightmapUvs(&s, charts);
+  const double side = std::max(1, lightmapSide), padding = std::max(0, lightmapPadding);
+  addLightmapUvs(&s, charts, std::max(kMinAtlasGap, (padding + 2.0) / side));
   // The sphere's pole rows have one vertex per column, and the seam column's pole vertex
   // ends up in no triangle (its triangles collapse); drop such vertices.
   removeUnreferencedVertices(&s);

@@ -20,8 +20,9 @@ namespace prt::bake {
 // out of the objects; counter-clockwise front faces; albedo below 1 on every channel.
 // Vertices on sharp edges are duplicated per face, so each keeps its face's normal.
 // TEXCOORD_1 is a lightmap atlas (every surface grid its own chart, texels in proportion to
-// area, a gutter of 1/128 between charts: valid with padding 2 from 512² up) so transfer textures need no unwrapper;
-// TEXCOORD_0 is absent.
-Scene makeDefaultScene();
+// area, gutters wide enough for `lightmapPadding` texels at a `lightmapSide`² atlas and every
+// larger one; the same UVs for every side from 512 up at padding 2) so transfer textures need
+// no unwrapper; TEXCOORD_0 is absent.
+Scene makeDefaultScene(int lightmapSide = 512, int lightmapPadding = 2);
 
 }  // namespace prt::bake

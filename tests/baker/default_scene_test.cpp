@@ -171,6 +171,30 @@ TEST(DefaultScene, Texcoord1IsAValidLightmapAtlas) {
     EXPECT_EQ(r.charts, 16u) << size;
     EXPECT_GT(r.usedTexelFraction, 0.6) << size;
   }
+  // Asked for a smaller side (the CLI passes --texture-size and --atlas-padding), the gutters
+  // widen so the atlas is valid there too; from 512 up the UVs are the same as the default's.
+  for (int size : {64, 128, 256}) {
+    const Scene small = makeDefaultScene(size, 2);
+    UvAtlasTarget target;
+    target.width = target.height = size;
+    target.padding = 2;
+    UvAtlasReport r;
+    ASSERT_TRUE(checkUvAtlas(small.positions, small.indices, small.texcoord[1], target, "TEXCOORD_1", &r).isOk());
+    EXPECT_TRUE(r.valid()) << size << ": " << (r.problems.empty() ? "" : r.problems[0]);
+    EXPECT_EQ(r.charts, 16u) << size;
+    EXPECT_GT(r.usedTexelFraction, 0.3) << size;
+    const Scene wider = makeDefaultScene(size, 4);
+    target.padding = 4;
+    ASSERT_TRUE(checkUvAtlas(wider.positions, wider.indices, wider.texcoord[1], target, "TEXCOORD_1", &r).isOk());
+    EXPECT_TRUE(r.valid()) << size << " at padding 4: " << (r.problems.empty() ? "" : r.problems[0]);
+  }
+  for (int size : {512, 1024, 4096}) {
+    const Scene same = makeDefaultScene(size, 2);
+    for (std::size_t v = 0; v < s.positions.size(); ++v) {
+      ASSERT_EQ(same.texcoord[1][v].u, s.texcoord[1][v].u) << size;
+      ASSERT_EQ(same.texcoord[1][v].v, s.texcoord[1][v].v) << size;
+    }
+  }
   // Texel density is uniform across charts: UV area over surface area is the same for the
   // floor (first chart) and the cube's top, within the rounding of the grids.
   auto density = [&](std::size_t firstTriangle, std::size_t count) {

@@ -303,7 +303,7 @@ const cases = {
       check(diff < 1e-3, `q16 visibility shades ${diff} away from float32`);
     }
 
-    // 2. The default room (its atlas needs 512 texels a side): the pass in `info`, the matte
+    // 2. The default room at 512 texels a side: the pass in `info`, the matte
     //    room's glossy term exactly 0, the polished sphere's and the metal torus's following
     //    the eye, every value finite, and diffuse + glossy the sum of the two terms.
     const { out, r: room } = bakeDefault('room-glossy.prt', ['--bounces', '0', '--texels', '--texture-size', '512', '--texel-glossy', '--json']);

@@ -75,8 +75,7 @@ const same = (a, b) => (Number.isNaN(a) && Number.isNaN(b)) || a === b;
 }
 
 // ---- packing a baked texel pass ----
-// The default room's atlas keeps its gutters from 512 texels a side (smaller atlases fail the
-// baker's atlas check); order 3 (9 coefficients: 3 layers per channel, 3 padding lanes); q16 so
+// The default room at 512 texels a side; order 3 (9 coefficients: 3 layers per channel, 3 padding lanes); q16 so
 // that the passes are encoded and decode band by band like a streamed one.
 const asset = path.join(workDir, 'room-texel.prt');
 execFileSync(prtBake, ['--default', '--texels', '--texture-size', '512', '--samples', '16', '--bounces', '1', '--order', '3',
