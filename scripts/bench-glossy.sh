@@ -37,7 +37,9 @@ build/native/bench/prt-bench-glossy "$data/dragon-res2.glb" --order 5 --samples 
 # 2. Matrix codec settings, measured by glossy exit radiance (16 views x the first 8 lightings).
 # CPCA only: compress-report also measures zstd -19 and brotli 11 of every blob, which for
 # a float16 matrix pass (375 MB here) takes longer than the rest of the benchmark.
-settings=${PRT_BENCH_GLOSSY_SETTINGS:-cpca8@0.04,cpca8@0.05,cpca8@0.06,cpca16@0.04}
+# Matrix CPCA fits in the lobe metric (compress-report --matrix-metric lobe, the default), so
+# its targets are weighted errors: 0.04-0.05 brackets 40 dB on the dragon.
+settings=${PRT_BENCH_GLOSSY_SETTINGS:-cpca16@0.04,cpca16@0.045,cpca16@0.05,cpca16@0.06,cpca8@0.07}
 $bake compress-report "$work/dragon-glossy.prt" --pass glossy-interreflected --views 16 --lightings 8 \
   --settings "$settings" --json > "$work/codec.json"
 

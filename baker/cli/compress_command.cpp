@@ -17,6 +17,7 @@
 #include "native/json_text.h"
 #include "prt/asset.h"
 #include "prt/exit_radiance.h"
+#include "prt/glossy_codec_weights.h"
 #include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
@@ -35,7 +36,7 @@ constexpr double kRelativeErrorFloor = 0.01;
 constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
                                {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
                                {"--per-lighting", false}, {"--save-blobs", true}, {"--views", true},
-                               {"--lightings", true}, {"--texels", false}};
+                               {"--lightings", true}, {"--texels", false}, {"--matrix-metric", true}};
 
 struct Options {
   std::string asset;
@@ -44,6 +45,9 @@ struct Options {
   bool glossy = false;    // a matrix pass: exit radiance over lightings x views
   bool texels = false;    // the texel pass (transfer textures): error over its sampled texels
   int views = 16;         // eye positions for matrix passes
+  // Matrix CPCA's error metric: rows weighted by the asset's sharpest glossy lobe (the
+  // exit-radiance metric, prt/glossy_codec_weights.h), or plain (unweighted).
+  bool lobeMetric = true;
   int maxLightings = 0;   // 0: every test lighting
   std::string envDir = kDefaultEnvDir;
   bool json = false;
@@ -104,6 +108,11 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
   if (const std::string* v = p.value("--views")) {
     if (!o->glossy) return usage("--views needs a glossy --pass");
     if (Status s = parseIntArg("--views", *v, 1, 1024, &o->views); !s.isOk()) return s;
+  }
+  if (const std::string* m = p.value("--matrix-metric")) {
+    if (!o->glossy) return usage("--matrix-metric needs a glossy --pass");
+    if (*m != "lobe" && *m != "plain") return usage("unknown --matrix-metric '" + *m + "' (expected lobe or plain)");
+    o->lobeMetric = *m == "lobe";
   }
   if (const std::string* v = p.value("--lightings")) {
     if (Status s = parseIntArg("--lightings", *v, 1, 1 << 20, &o->maxLightings); !s.isOk()) return s;
@@ -200,6 +209,7 @@ std::string formatJson(const Options& o, const TransferPass& pass, int order, st
                   (o.texels ? ",\n  \"texels\": " + std::to_string(vertices) + ",\n  \"sampled_texels\": " + std::to_string(sampled)
                             : ",\n  \"vertices\": " + std::to_string(vertices)) +
                   ",\n  \"lightings\": " + std::to_string(lightings) +
+                  (o.glossy ? std::string(",\n  \"matrix_metric\": \"") + (o.lobeMetric ? "lobe" : "plain") + "\"" : std::string()) +
                   ",\n  \"zstd_level\": " + std::to_string(kReportZstdLevel) + ",\n  \"brotli_quality\": " +
                   std::to_string(kReportBrotliQuality) + ",\n  \"rows\": [\n";
   const Row* f16 = nullptr;
@@ -299,6 +309,9 @@ const char* compressReportHelpText() {
          "                      lighting seen from each of --views eyes\n"
          "  --views N           eyes for a glossy pass, spread over a sphere twice the scene's size\n"
          "                      (default 16)\n"
+         "  --matrix-metric M   a glossy pass's CPCA error metric: lobe (rows weighted by the\n"
+         "                      asset's sharpest glossy lobe, the exit-radiance metric; default)\n"
+         "                      or plain (unweighted)\n"
          "  --lightings N       use only the first N test lightings (default: all)\n"
          "  --texels            measure the asset's texel pass (transfer textures) instead: bytes per\n"
          "                      texel of all its atlases, error over the sampled texels\n"
@@ -373,6 +386,11 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
     return *rows;
   };
   const MatrixPacking packing = matrixPackingFor(pass->kind, asset.lighting.model);
+  // Matrix CPCA fits in the exit-radiance metric of the asset's lobes (empty: unweighted).
+  std::vector<double> rowWeights;
+  if (o.glossy && o.lobeMetric) {
+    if (Status s = glossyMatrixRowWeights(order, asset.specular, &rowWeights); !s.isOk()) return reportFailure(err, "compress-report", s);
+  }
 
   std::vector<TestLighting> lightings;
   if (Status s = makeTestLightings(o.envDir, order, &lightings); !s.isOk()) return reportFailure(err, "compress-report", s);
@@ -404,7 +422,8 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   Status lastError = Status::ok();  // of the last setting that could not be encoded
   std::vector<float> decoded(pass->coeffs.size());
   std::vector<double> radiance;
-  for (const TransferCodecSettings& setting : o.settings) {
+  for (TransferCodecSettings setting : o.settings) {
+    if (o.glossy && setting.encoding == TransferEncoding::kCpca) setting.cpcaMatrixRowWeights = rowWeights;
     Row r;
     r.setting = transferSettingName(setting);
     std::fprintf(err, "prt-bake: note: encoding %s...\n", r.setting.c_str());

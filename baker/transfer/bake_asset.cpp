@@ -10,6 +10,7 @@
 #include "baker/transfer/local_sphere.h"
 #include "baker/transfer/texel_bake.h"
 #include "baker/transfer/texture_sets.h"
+#include "prt/glossy_codec_weights.h"
 
 namespace prt::bake {
 namespace {
@@ -54,6 +55,12 @@ BakedAsset makeAsset(Scene&& scene, BakeResult&& r, const AssetBakeOptions& o, c
 
 // Encodes every pass with the codec; the floats are dropped once encoded.
 Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std::vector<CompressedPass>* out) {
+  // Matrix CPCA fits in glossy exit radiance's metric: rows weighted by the asset's sharpest
+  // lobe (prt/glossy_codec_weights.h; docs/glossy.md "Compressing in the exit-radiance metric").
+  TransferCodecSettings matrixSettings = settings;
+  if (settings.encoding == TransferEncoding::kCpca) {
+    if (Status s = glossyMatrixRowWeights(a->shOrder, a->specular, &matrixSettings.cpcaMatrixRowWeights); !s.isOk()) return s;
+  }
   for (TransferPass& pass : a->passes) {
     CompressedPass c;
     c.kind = pass.kind;
@@ -64,7 +71,7 @@ Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std:
     const int order = pass.form == TransferForm::kVisibility ? pass.order : a->shOrder;
     const Status s = pass.form == TransferForm::kMatrix
                          ? encodeTransferMatrix(pass.coeffs, a->shOrder, matrixPackingFor(pass.kind, a->lighting.model),
-                                                pass.channels, settings, &pass.encoded, &c.codec)
+                                                pass.channels, matrixSettings, &pass.encoded, &c.codec)
                          : encodeTransfer(pass.coeffs, order, pass.channels, settings, &pass.encoded, &c.codec);
     if (!s.isOk()) {
       return Status::error(s.code(), std::string("cannot compress: ") + transferKindName(pass.kind) + " " +

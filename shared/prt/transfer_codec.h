@@ -53,6 +53,12 @@ struct TransferCodecSettings {
   int cpcaMaxClusters = 256;
   // kCpca only. Seed of k-means++ (the encoding is deterministic for a given seed).
   std::uint64_t seed = 1;
+  // Matrix kCpca only (encodeTransferMatrix). The weight w_i > 0 of each matrix row i (the
+  // transferred-radiance coefficient l(l+1)+m, order^2 values): the encoder fits and
+  // verifies the error of diag(w) M instead of M, i.e. the target and the reported error are
+  // sqrt(sum w_i^2 (M' - M)_ij^2 / sum w_i^2 M_ij^2) (docs/transfer-codec.md "Row weights").
+  // Empty: unweighted. The blob's format does not change; decoders need not know.
+  std::vector<double> cpcaMatrixRowWeights;
 };
 
 // Parses a setting name: "f32", "f16", "q16", "q8", "cpca8", "cpca16", the CPCA ones

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "prt/glossy_codec_weights.h"
 #include "prt/glossy_lobe.h"
 #include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
@@ -103,6 +104,40 @@ TEST(PhongLobe, SchlickEndpoints) {
   const Rgb none = schlickFresnel({0, 0, 0}, 0.0f, 0.0f);
   EXPECT_EQ(none.r + none.g + none.b, 0.0f);
   EXPECT_FLOAT_EQ(schlickFresnel(f0, 0.5f, 0.0f).r, 0.5f);
+}
+
+// The codec's row weights (docs/glossy.md "Compressing in the exit-radiance metric"): the
+// band scales of the scene's most demanding lobe, per row of each band; non-specular
+// materials ignored; a band no lobe sees floored.
+TEST(GlossyCodecWeights, RowsTakeTheSharpestLobesBandScales) {
+  const Rgb f0{0.04f, 0.04f, 0.04f};
+  std::vector<double> w;
+  // One exponent 8: g_l(8) = 1, 9/10, 8/11, 0.525, 0.336 (the recurrence), per row.
+  ASSERT_TRUE(glossyMatrixRowWeights(5, std::vector<SpecularMaterial>(3, {f0, 8.0f, 1.0f}), &w).isOk());
+  ASSERT_EQ(w.size(), 25u);
+  std::vector<double> g(5);
+  ASSERT_TRUE(phongLobeBandScales(5, 8.0, g).isOk());
+  for (int l = 0; l < 5; ++l)
+    for (int m = -l; m <= l; ++m) EXPECT_EQ(w[static_cast<std::size_t>(l * (l + 1) + m)], g[static_cast<std::size_t>(l)]);
+  EXPECT_NEAR(w[1], 0.9, 1e-12);
+  EXPECT_NEAR(w[4], 8.0 / 11.0, 1e-12);
+  // A rougher material and a sharper one that reflects nothing: the exponent-8 lobe rules.
+  std::vector<SpecularMaterial> mixed = {{f0, 8.0f, 1.0f}, {f0, 2.0f, 1.0f}, {Rgb{}, 500.0f, 0.0f}};
+  std::vector<double> w2;
+  ASSERT_TRUE(glossyMatrixRowWeights(5, mixed, &w2).isOk());
+  EXPECT_EQ(w2, w);
+  // Exponent 1 alone: g_3 = 0 (no lobe sees band 3) is floored; with exponent 0 as well,
+  // band 3 takes |g_3(0)| = 1/8 (the larger |g_l| of the two, not the sharper lobe's).
+  ASSERT_TRUE(glossyMatrixRowWeights(4, std::vector<SpecularMaterial>(1, {f0, 1.0f, 1.0f}), &w2).isOk());
+  EXPECT_EQ(w2[9], kMinGlossyRowWeight);
+  EXPECT_NEAR(w2[4], 0.25, 1e-12);
+  ASSERT_TRUE(glossyMatrixRowWeights(4, std::vector<SpecularMaterial>{{f0, 1.0f, 1.0f}, {f0, 0.0f, 1.0f}}, &w2).isOk());
+  EXPECT_NEAR(w2[9], 0.125, 1e-12);
+  // No specular material: no weights (the codec's unweighted metric).
+  ASSERT_TRUE(glossyMatrixRowWeights(5, std::vector<SpecularMaterial>(2, {Rgb{}, 8.0f, 0.0f}), &w2).isOk());
+  EXPECT_TRUE(w2.empty());
+  EXPECT_EQ(glossyMatrixRowWeights(5, std::vector<SpecularMaterial>{{f0, -1.0f, 1.0f}}, &w2).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(glossyMatrixRowWeights(17, std::vector<SpecularMaterial>{{f0, 1.0f, 1.0f}}, &w2).code(), StatusCode::kInvalidArgument);
 }
 
 TEST(TransferMatrix, PackingsArePrefixClosedBijections) {

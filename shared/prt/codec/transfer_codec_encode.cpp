@@ -55,6 +55,8 @@ Status checkInput(std::span<const float> transfer, int order, int channels, cons
       break;
     default: return invalid("unknown encoding " + std::to_string(static_cast<int>(s.encoding)));
   }
+  // Row weights describe a matrix's rows; a vector transfer has none to weight.
+  if (!s.cpcaMatrixRowWeights.empty()) return invalid("row weights apply to matrix CPCA only, not to vector transfer");
   for (std::size_t i = 0; i < transfer.size(); ++i) {
     const float x = transfer[i];
     if (!std::isfinite(x)) return Status::error(StatusCode::kNotFinite, "transfer value at " + where(i, channels, n2) + " is not finite");

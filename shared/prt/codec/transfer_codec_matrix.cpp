@@ -40,6 +40,23 @@ float quantStep(double maxAbs, int levels) {
   return step;
 }
 
+// Row weights (TransferCodecSettings::cpcaMatrixRowWeights): none, or order^2 weights in
+// (0, 1] for CPCA. The per-entry encodings bound each entry's error, so a weight has nothing
+// to change there; the upper bound keeps scaled entries within the transfer range.
+Status checkRowWeights(const TransferCodecSettings& s, int order) {
+  const std::vector<double>& w = s.cpcaMatrixRowWeights;
+  if (w.empty()) return Status::ok();
+  if (s.encoding != TransferEncoding::kCpca) return invalid("row weights apply to matrix CPCA only");
+  const std::size_t rows = static_cast<std::size_t>(order) * static_cast<std::size_t>(order);
+  if (w.size() != rows) {
+    return invalid("row weights: " + std::to_string(w.size()) + " given for " + std::to_string(rows) + " rows (order^2)");
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (!(w[i] > 0.0 && w[i] <= 1.0)) return invalid("row weight " + std::to_string(i) + " is " + std::to_string(w[i]) + ", outside (0, 1]");
+  }
+  return Status::ok();
+}
+
 Status checkMatrixInput(std::span<const float> packed, int order, MatrixPacking packing, int channels,
                         const TransferCodecSettings& s) {
   if (order < 1 || order > kMaxMatrixOrder) {
@@ -78,6 +95,7 @@ Status checkMatrixInput(std::span<const float> packed, int order, MatrixPacking 
       break;
     default: return invalid("unknown encoding " + std::to_string(static_cast<int>(s.encoding)));
   }
+  if (Status st = checkRowWeights(s, order); !st.isOk()) return st;
   for (std::size_t i = 0; i < packed.size(); ++i) {
     const float x = packed[i];
     if (std::fabs(x) <= kMaxTransferMagnitude) continue;  // the common case; NaN falls through

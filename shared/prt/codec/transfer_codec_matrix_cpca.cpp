@@ -320,6 +320,29 @@ Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order
   return best;
 }
 
+// The weight of each packed entry (D = channels x entries, every channel alike) from the
+// matrix rows' weights: w_i for a full-packed (i, j); a symmetric entry stands for both
+// (i, j) and (j, i), whose squared errors weigh w_i^2 and w_j^2, so it takes
+// sqrt((w_i^2 + w_j^2) / 2) (all ones stays all ones: the unweighted metric, each stored
+// entry counted once). Empty rows: empty (unweighted).
+std::vector<float> matrixEntryWeights(std::span<const double> rows, int order, MatrixPacking packing, int channels) {
+  if (rows.empty()) return {};
+  const std::size_t n2 = static_cast<std::size_t>(order) * static_cast<std::size_t>(order);
+  const std::size_t E = matrixEntryCount(order, packing);
+  std::vector<float> w(E * static_cast<std::size_t>(channels));
+  for (std::size_t i = 0; i < n2; ++i) {
+    for (std::size_t j = 0; j < n2; ++j) {
+      if (packing == MatrixPacking::kSymmetric && j > i) continue;
+      const double value = packing == MatrixPacking::kSymmetric && i != j
+                               ? std::sqrt(0.5 * (rows[i] * rows[i] + rows[j] * rows[j]))
+                               : rows[i];
+      w[matrixEntryIndex(i, j, packing)] = static_cast<float>(value);
+    }
+  }
+  for (std::size_t c = 1; c < static_cast<std::size_t>(channels); ++c) std::copy_n(w.data(), E, w.data() + c * E);
+  return w;
+}
+
 std::vector<PartPayload> matrixCpcaParts(const MatrixFit& fit, std::size_t V, int order, MatrixPacking packing, int channels,
                                          int bits, int vectors, const Quantised& q) {
   const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels), D = C * E;
@@ -363,29 +386,40 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   const int bits = settings.cpcaWeightBits;
   const double target = settings.cpcaTargetError;
   const int maxClusters = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(settings.cpcaMaxClusters), V));
+  // x: the matrices in the space the fit and the target live in, each entry times its rows'
+  // weight (settings.cpcaMatrixRowWeights); without weights, the input itself.
+  const std::vector<float> entryWeight = matrixEntryWeights(settings.cpcaMatrixRowWeights, order, packing, channels);
+  std::vector<float> weighted;
+  if (!entryWeight.empty()) {
+    weighted.resize(packed.size());
+    for (std::size_t v = 0; v < V; ++v)
+      for (std::size_t d = 0; d < D; ++d) weighted[v * D + d] = packed[v * D + d] * entryWeight[d];
+  }
+  const std::span<const float> x = entryWeight.empty() ? packed : std::span<const float>(weighted);
+  const std::string metric = entryWeight.empty() ? "" : "row-weighted ";
   double energy = 0.0;
-  for (float x : packed) energy += static_cast<double>(x) * x;
+  for (float e : x) energy += static_cast<double>(e) * e;
 
   // The search sample: every vertex, or an evenly strided subset (kSearchVertices).
   const bool sampled = V > kSearchVertices;
   const std::size_t S = sampled ? kSearchVertices : V;
   std::vector<float> sampleCopy;
-  std::span<const float> sample = packed;
+  std::span<const float> sample = x;
   if (sampled) {
     sampleCopy.resize(S * D);
     for (std::size_t i = 0; i < S; ++i) {
       const std::size_t v = i * V / S;
-      std::copy_n(packed.data() + v * D, D, sampleCopy.data() + i * D);
+      std::copy_n(x.data() + v * D, D, sampleCopy.data() + i * D);
     }
     sample = sampleCopy;
   }
   double sampleEnergy = 0.0;
-  for (float x : sample) sampleEnergy += static_cast<double>(x) * x;
+  for (float e : sample) sampleEnergy += static_cast<double>(e) * e;
 
   // k-means points: the data itself when it is small, else its coordinates in the global
   // sketch (a subspace fitted on the sample, every vertex projected once).
   std::vector<float> projected, sampleProjected;
-  std::span<const float> points = packed, samplePoints = sample;
+  std::span<const float> points = x, samplePoints = sample;
   int pointDims = static_cast<int>(D);
   if (D > static_cast<std::size_t>(kSketch)) {
     std::vector<double> mean(D, 0.0);
@@ -403,7 +437,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
         projected.resize(V * L);
         std::vector<float> row(D);
         for (std::size_t v = 0; v < V; ++v) {
-          for (std::size_t d = 0; d < D; ++d) row[d] = packed[v * D + d] - meanF[d];
+          for (std::size_t d = 0; d < D; ++d) row[d] = x[v * D + d] - meanF[d];
           rowTimes(row.data(), sub.q.data(), D, L, &projected[v * L]);
         }
         sampleProjected = std::move(sub.coords);
@@ -445,14 +479,14 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     // The winner on every vertex; where the sample misled (the full fit misses the goal),
     // twice the clusters, up to the limit.
     for (int k = std::max(bestK, 1);; k = std::min(2 * k, maxClusters)) {
-      best = fitMatrixCpca(packed, V, D, k, settings.seed, points, pointDims, energy);
+      best = fitMatrixCpca(x, V, D, k, settings.seed, points, pointDims, energy);
       bestChoice = chooseForFit(best, V, channels, order, packing, bits, goal, &tried);
       if (bestChoice.bytes < INFINITY || k >= maxClusters || best.clusters < k) break;
     }
   }
   if (!(bestChoice.bytes < INFINITY)) {
     return Status::error(StatusCode::kInvalidArgument,
-                         "matrix CPCA cannot reach the target relative error " + std::to_string(target) + " with " +
+                         "matrix CPCA cannot reach the target " + metric + "relative error " + std::to_string(target) + " with " +
                              std::to_string(bits) + "-bit weights and at most " + std::to_string(kMaxVectors) +
                              " basis matrices per cluster; use " + (bits < 16 ? "16-bit weights, " : "") +
                              "more clusters (the limit was " + std::to_string(maxClusters) + ") or a larger target");
@@ -468,7 +502,16 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   header.vertexCount = static_cast<std::uint32_t>(V);
   header.clusterCount = static_cast<std::uint32_t>(best.clusters);
   header.vectors = bestChoice.vectors;
-  std::vector<float> decoded(packed.size());
+  // Back from the weighted space: the stored means and basis matrices are of the input's
+  // matrices, so decoders and renderers never see the weights.
+  if (!entryWeight.empty()) {
+    for (ClusterFit& cf : best.fits) {
+      for (std::size_t d = 0; d < D; ++d) cf.mean[d] /= entryWeight[d];
+      for (std::size_t j = 0; j < static_cast<std::size_t>(cf.vectors); ++j)
+        for (std::size_t d = 0; d < D; ++d) cf.basis[j * D + d] /= entryWeight[d];
+    }
+  }
+  std::vector<float> decoded(x.size());
   double delta = bestChoice.delta;
   for (int attempt = 0; attempt <= kVerifyRetries; ++attempt) {
     const Quantised q = quantiseWeights(best, V, delta, quantLevels(bits));
@@ -478,8 +521,14 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
       return Status::error(StatusCode::kInvalidArgument,
                            "the matrix transfer cannot be stored as CPCA within the transfer range: " + s.message());
     }
-    double maxAbs = 0.0;
-    const double rel = matrixRelativeError(packed, decoded, energy, &maxAbs);
+    double maxAbs = 0.0;  // of the input's entries, unweighted
+    double rel = matrixRelativeError(packed, decoded, energy, &maxAbs);
+    if (!entryWeight.empty()) {
+      for (std::size_t v = 0; v < V; ++v)
+        for (std::size_t d = 0; d < D; ++d) decoded[v * D + d] *= entryWeight[d];
+      double weightedMaxAbs = 0.0;
+      rel = matrixRelativeError(x, decoded, energy, &weightedMaxAbs);
+    }
     if (rel <= target) {
       if (report) {
         *report = TransferEncodeReport{};
@@ -497,7 +546,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     delta = attempt + 1 == kVerifyRetries ? 0.0 : delta * 0.7;
   }
   return Status::error(StatusCode::kInvalidArgument,
-                       "matrix CPCA could not verify the target relative error " + std::to_string(target) + " with " +
+                       "matrix CPCA could not verify the target " + metric + "relative error " + std::to_string(target) + " with " +
                            std::to_string(bits) + "-bit weights; use 16-bit weights or a larger target");
 }
 
