@@ -40,12 +40,12 @@ const FLOOR_U = 0.75, PLATE_UV = [0.8125, 1, 0, 0.1875];
 // The floor as a grid of cells x cells quads (two triangles each, split along the b-c
 // diagonal), facing +y, its chart u = FLOOR_U (x + 2) / 4, v = (z + 2) / 4.
 function floorPart(cells) {
-  const part = { positions: [], normals: [], uvs: [], indices: [], color: [ALBEDO, ALBEDO, ALBEDO, 1] };
+  const part = { positions: [], normals: [], uv: [], indices: [], color: [ALBEDO, ALBEDO, ALBEDO, 1] };
   for (let j = 0; j <= cells; j++)
     for (let i = 0; i <= cells; i++) {
       part.positions.push(-HALF + (2 * HALF * i) / cells, 0, -HALF + (2 * HALF * j) / cells);
       part.normals.push(0, 1, 0);
-      part.uvs.push((FLOOR_U * i) / cells, j / cells);
+      part.uv.push((FLOOR_U * i) / cells, j / cells);
     }
   for (let j = 0; j < cells; j++)
     for (let i = 0; i < cells; i++) {
@@ -60,7 +60,7 @@ function platePart() {
   const h = PLATE.half, y = PLATE.height, [u0, u1, v0, v1] = PLATE_UV;
   return {
     positions: [-h, y, -h, h, y, -h, h, y, h, -h, y, h], normals: [0, -1, 0, 0, -1, 0, 0, -1, 0, 0, -1, 0],
-    uvs: [u0, v0, u1, v0, u1, v1, u0, v1], indices: [0, 1, 2, 0, 2, 3], color: [ALBEDO, ALBEDO, ALBEDO, 1],
+    uv: [u0, v0, u1, v0, u1, v1, u0, v1], indices: [0, 1, 2, 0, 2, 3], color: [ALBEDO, ALBEDO, ALBEDO, 1],
   };
 }
 
@@ -120,8 +120,8 @@ const passBytes = (info, domain) => info.passes.find((p) => p.kind === 'shadowed
 const rows = [];
 for (const setting of settings) {
   for (const size of sizes) {
-    const { asset, info, seconds } = bakeAsset(`texel-${size}-${setting}`, 1, // --unwrap never: the chart layout above must be the atlas (it is valid from 32 a side).
-      ['--texels', '--texture-size', String(size), '--unwrap', 'never', ...compressArgs(setting)]);
+    const { asset, info, seconds } = bakeAsset(`texel-${size}-${setting}`, 1, // The chart layout above must be the one atlas (it is valid from 32 a side).
+      ['--texels', '--texture-size', String(size), '--unwrap', 'never', '--texture-sets', 'scene', ...compressArgs(setting)]);
     const out = shade(asset, true);
     const grid = new Float64Array(size * size).fill(NaN);
     for (const t of out.texels) if (t.atlas === 0) grid[t.y * size + t.x] = t.radiance[0];

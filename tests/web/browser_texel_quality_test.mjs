@@ -19,7 +19,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { makeChecks, startServer, openPage, capture, windowLuminance, runCase } from './browser_harness.mjs';
 import { gltfText, rgbPngDataUri } from './floor_scene_gltf.mjs';
-import { quad as lightmapQuad, texturedSceneGltf } from '../cli/texture_sets_gltf.mjs';
+import { merge, quad as lightmapQuad, texturedSceneGltf } from '../cli/texture_sets_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir] = process.argv.slice(2);
 const checks = makeChecks();
@@ -40,27 +40,14 @@ const ATLAS = 64;  // texels a side; every chart below is laid out on this grid
 // its chart: the texel rectangle [u0, u1] x [v0, v1] of the atlas, u along b and v along a.
 function quad(c, a, b, ha, hb, [u0, u1, v0, v1]) {
   const n = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-  const part = { positions: [], normals: [], uvs: [], indices: [] };
+  const part = { positions: [], normals: [], uv: [], indices: [] };
   for (const [sa, sb] of [[-1, -1], [1, -1], [1, 1], [-1, 1]]) {  // counter-clockwise about n
     part.positions.push(...[0, 1, 2].map((k) => c[k] + sa * ha * a[k] + sb * hb * b[k]));
     part.normals.push(...n);
-    part.uvs.push((u0 + (u1 - u0) * (sb + 1) / 2) / ATLAS, (v0 + (v1 - v0) * (sa + 1) / 2) / ATLAS);
+    part.uv.push((u0 + (u1 - u0) * (sb + 1) / 2) / ATLAS, (v0 + (v1 - v0) * (sa + 1) / 2) / ATLAS);
   }
   part.indices.push(0, 1, 2, 0, 2, 3);
   return part;
-}
-
-// Concatenates parts into one (one glTF mesh, one material of linear base colour `color`).
-function merge(parts, color) {
-  const out = { positions: [], normals: [], uvs: [], indices: [], color };
-  for (const p of parts) {
-    const base = out.positions.length / 3;
-    out.positions.push(...p.positions);
-    out.normals.push(...p.normals);
-    out.uvs.push(...p.uvs);
-    out.indices.push(...p.indices.map((i) => i + base));
-  }
-  return out;
 }
 
 // The seam scene: the floor [-1.5, 1.5]^2 cut along x = 0 into two charts 8 texels apart
@@ -75,10 +62,10 @@ const CUBE_FACES = [  // normal, then axes a, b with a x b = normal
 ];
 function seamSceneGltf() {
   const z = [0, 0, 1], x = [1, 0, 0];
-  const floor = merge([quad([-0.75, 0, 0], z, x, 1.5, 0.75, [4, 28, 4, 52]), quad([0.75, 0, 0], z, x, 1.5, 0.75, [36, 60, 4, 52])],
-    [0.7, 0.7, 0.7, 1]);
-  const cube = merge(CUBE_FACES.map(({ n, a, b }, k) => quad(CUBE.centre.map((c, i) => c + CUBE.half * n[i]), a, b, CUBE.half, CUBE.half,
-    [3 + 10 * k, 10 + 10 * k, 55, 62])), [0.8, 0.8, 0.8, 1]);
+  const floor = { ...merge([quad([-0.75, 0, 0], z, x, 1.5, 0.75, [4, 28, 4, 52]), quad([0.75, 0, 0], z, x, 1.5, 0.75, [36, 60, 4, 52])]),
+    color: [0.7, 0.7, 0.7, 1] };
+  const cube = { ...merge(CUBE_FACES.map(({ n, a, b }, k) => quad(CUBE.centre.map((c, i) => c + CUBE.half * n[i]), a, b, CUBE.half, CUBE.half,
+    [3 + 10 * k, 10 + 10 * k, 55, 62]))), color: [0.8, 0.8, 0.8, 1] };
   return gltfText([floor, cube]);
 }
 
@@ -103,7 +90,10 @@ function bake(name, gltf, extra = []) {
   fs.writeFileSync(scene, gltf);
   const t0 = Date.now();
   execFileSync(prtBake, [scene, '-o', path.join(root, `${name}.prt`), '--texels', '--texture-size', String(ATLAS), '--samples', '256',
-    '--order', '4', '--bounces', '1', '--passes', 'shadowed,interreflected', '--name', name, '--quiet', ...extra]);
+    '--order', '4', '--bounces', '1', '--passes', 'shadowed,interreflected', '--name', name, '--quiet',
+    // One atlas, the layout above (auto would give the cube, half the floor's texel density,
+    // an atlas of its own).
+    '--texture-sets', 'scene', '--unwrap', 'never', ...extra]);
   console.log(`bake ${name}: ${((Date.now() - t0) / 1000).toFixed(1)} s`);
 }
 

@@ -74,7 +74,7 @@ export function rgbPngDataUri(width, height, rgb) {
 
 // One node and mesh per part, all in one base64 buffer. A part is {positions, normals,
 // indices, color} (flat arrays, counter-clockwise front faces, linear RGBA base colour) with
-// optional `uvs` (flat u, v per vertex: TEXCOORD_0, glTF's v down the image) and `normalMap`
+// optional `uv` (flat u, v per vertex: TEXCOORD_0, glTF's v down the image) and `normalMap`
 // (a PNG data URI used as the material's normalTexture over TEXCOORD_0).
 export function gltfText(parts) {
   const chunks = [], bufferViews = [], accessors = [], meshes = [], materials = [], images = [], textures = [];
@@ -95,9 +95,9 @@ export function gltfText(parts) {
     accessors.push({ bufferView: view(nrm, 34962), componentType: 5126, count, type: 'VEC3' });
     const indices = accessors.length;
     accessors.push({ bufferView: view(idx, 34963), componentType: 5125, count: idx.length, type: 'SCALAR' });
-    if (part.uvs) {
+    if (part.uv) {
       attributes.TEXCOORD_0 = accessors.length;
-      accessors.push({ bufferView: view(new Float32Array(part.uvs), 34962), componentType: 5126, count, type: 'VEC2' });
+      accessors.push({ bufferView: view(new Float32Array(part.uv), 34962), componentType: 5126, count, type: 'VEC2' });
     }
     meshes.push({ primitives: [{ attributes, indices, material: m }] });
     const material = { pbrMetallicRoughness: { baseColorFactor: part.color } };
