@@ -37,6 +37,7 @@ uniform int uActiveLayers;      // ceil(order'^2 / 4) at the displayed order (<=
 uniform float uExposure;        // linear scale, 2^EV
 uniform bool uAtlasSpace;
 uniform vec2 uAtlasSize;        // texels, for uAtlasSpace
+uniform bool uWritePosition;    // with uAtlasSpace (tests): the fragment's world position, not radiance
 uniform bool uDiffuse;          // the diffuse texel term (the panel's diffuse / glossy switch)
 uniform bool uGlossy;           // the TPFL glossy term
 uniform sampler2DArray uVisibility;  // RGBA16F, ceil(m^2 / 4) layers of the visibility vector
@@ -174,6 +175,10 @@ void main() {
     }
   }
   if (uGlossy) radiance += glossyTerm(uv);
+  if (uAtlasSpace && uWritePosition) {
+    fragColor = vec4(vPosition, 1.0);
+    return;
+  }
   if (uAtlasSpace) {
     fragColor = vec4(radiance, 1.0);
     return;

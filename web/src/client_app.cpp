@@ -237,7 +237,7 @@ std::vector<int> ClientApp::atlasSizes() const {
   return out;
 }
 
-std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out) {
+std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out, bool positions) {
   if (!ok()) return error_;
   makeCurrent();
   prepareLighting();
@@ -246,6 +246,7 @@ std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vect
   const GlossyMix mix = glossyMix(kind);
   shading.diffuse = mix != GlossyMix::kGlossy;
   shading.glossy = mix != GlossyMix::kDiffuse;
+  shading.positions = positions;
   if (Status s = renderer_.readTexelAtlas(kind, atlas, shading, out); !s.isOk()) return s.message();
   return "";
 }

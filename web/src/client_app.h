@@ -100,7 +100,7 @@ class ClientApp {
   // Tests: atlas `atlas` of texel pass `kind` rendered in UV space by the shading fragment
   // shader with this frame's lighting (updated first) at the display order, read back into
   // *out as linear RGBA (TexelRenderer::readAtlas). "" or the error.
-  std::string texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out);
+  std::string texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out, bool positions = false);
 
   // ---- glossy rendering (docs/web-client.md, "Glossy rendering") ----
   // Which terms pass `kind` draws: its diffuse vector pass, its glossy matrix pass, or both

@@ -33,6 +33,7 @@ Status TexelRenderer::link(const char* fs, Program* out) {
   out->bands = glGetUniformLocation(p, "uBands");
   out->fresnel = glGetUniformLocation(p, "uFresnel");
   out->eye = glGetUniformLocation(p, "uEye");
+  out->writePosition = glGetUniformLocation(p, "uWritePosition");
   out->shY00 = glGetUniformLocation(p, "uShY00");
   out->shK1 = glGetUniformLocation(p, "uShK1");
   out->shA = glGetUniformLocation(p, "uShA");
@@ -241,6 +242,7 @@ void TexelRenderer::useShading(const Pass& p, const TexelShading& shading, int a
   glUniform1i(shading_.activeLayers, texelsForOrder(std::clamp(std::min(shading.displayOrder, p.order), 1, p.order)));
   glUniform1f(shading_.exposure, shading.exposure);
   glUniform1i(shading_.diffuse, shading.diffuse ? 1 : 0);
+  glUniform1i(shading_.writePosition, atlas >= 0 && shading.positions ? 1 : 0);
   const bool glossy = shading.glossy && glossyReady();
   glUniform1i(shading_.glossy, glossy ? 1 : 0);
   glUniform1i(shading_.visibility, 1);

@@ -29,6 +29,7 @@ struct TexelShading {
   bool glossy = false;       // the TPFL glossy term (drawn only with a visibility pass and a product)
   glm::vec3 eye{0.0f};       // world space
   bool fresnel = true;
+  bool positions = false;    // tests, atlas read-back only: write the fragment's world position instead
 };
 
 class TexelRenderer {
@@ -85,6 +86,7 @@ class TexelRenderer {
     GLint viewProjection = -1, atlasSpace = -1, transfer = -1, layersPerChannel = -1, channels = -1, activeLayers = -1;
     GLint exposure = -1, atlasSize = -1;
     GLint diffuse = -1, glossy = -1, visibility = -1, product = -1, visibilityLayers = -1, bands = -1, fresnel = -1, eye = -1;
+    GLint writePosition = -1;
     GLint shY00 = -1, shK1 = -1, shA = -1, shB = -1;
   };
   struct Pass {
