@@ -199,10 +199,7 @@ std::string ClientApp::streamVisibilityPass(int bands) {
 bool ClientApp::hasTexelGlossy() const { return ok() && (renderer_.texelVisibilityOrder() > 0 || stream_.hasVisibility()); }
 
 std::string ClientApp::updateTexelProduct() {
-  if (source_ != TransferDomain::kTexel || renderer_.texelVisibilityOrder() == 0 || !isPassKind(mode_) ||
-      glossyMix(mode_) == GlossyMix::kDiffuse) {
-    return "";
-  }
+  if (renderer_.texelVisibilityOrder() == 0) return "";
   // The product's bands: the displayed lighting's, at most the lobe's kMaxGlossyOrder.
   const int bands = std::clamp(std::min(displayOrder_, kMaxGlossyOrder), 1, kMaxGlossyOrder);
   const std::uint64_t version = (static_cast<std::uint64_t>(lights_.lightingVersion()) << 8) | static_cast<std::uint64_t>(bands);
@@ -501,7 +498,10 @@ void ClientApp::render(int width, int height) {
   }
   nearZ = std::max(nearZ, farZ * 1e-4f);
   camera_.update(nearZ, farZ);
-  if (std::string e = updateTexelProduct(); !e.empty()) productError_ = e;  // the frame draws without the glossy term
+  // Only a texel frame that shows the glossy term needs P(L) (and the lighting's read-back).
+  if (source_ == TransferDomain::kTexel && isPassKind(mode_) && glossyMix(mode_) != GlossyMix::kDiffuse) {
+    productError_ = updateTexelProduct();  // on failure the frame draws without the glossy term
+  }
   FrameParams p;
   p.viewProjection = camera_.viewProjection();
   p.mode = mode_;

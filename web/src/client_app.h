@@ -243,8 +243,8 @@ class ClientApp {
   // source_ from wantedSource_ and what the scene has; then, if the displayed pass kind is not
   // offered in that domain, the richest that is (interreflected, shadowed, unshadowed).
   void resolveSource();
-  // Remakes the texel glossy term's product matrix P(L) when the lighting or the bands changed
-  // since (texel source, a visibility pass, a glossy term shown). "" or the error.
+  // Remakes the texel glossy term's product matrix P(L) when the scene has a visibility pass and
+  // the lighting or the bands changed since. "" or the error.
   std::string updateTexelProduct();
   TexelShading texelShading() const;  // the frame's terms, order, eye for the texel draw
 

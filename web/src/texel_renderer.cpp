@@ -63,6 +63,7 @@ void TexelRenderer::releaseGeometry() {
   atlasUv_ = 0;
   vao_ = 0;
   indexCount_ = 0;
+  vertexCount_ = 0;
   atlases_.clear();
 }
 
@@ -71,6 +72,7 @@ void TexelRenderer::setGeometry(GLuint positions, GLuint albedo, GLuint normals,
   releaseGeometry();
   if (atlases.empty()) return;
   atlases_.assign(atlases.begin(), atlases.end());
+  vertexCount_ = atlasUv.size() / 2;
   const TextureAtlas& last = atlases_.back();
   indexCount_ = static_cast<GLsizei>(3 * (last.firstTriangle + last.triangleCount));
   glGenVertexArrays(1, &vao_);
@@ -158,14 +160,9 @@ Status TexelRenderer::uploadVisibility(const TransferPass& pass, int order, std:
     return Status::error(StatusCode::kInvalidArgument, "the visibility pass holds " + std::to_string(order) +
                                                            " bands; the client reads at most " + std::to_string(kMaxTripleTransferOrder));
   }
-  GLint vertices = 0;
-  glBindBuffer(GL_ARRAY_BUFFER, atlasUv_);
-  glGetBufferParameteriv(GL_ARRAY_BUFFER, GL_BUFFER_SIZE, &vertices);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  vertices /= static_cast<GLint>(2 * sizeof(float));
-  if (specular.size() != static_cast<std::size_t>(vertices)) {
+  if (specular.size() != vertexCount_) {
     return Status::error(StatusCode::kInvalidArgument, "the asset has a visibility pass but " + std::to_string(specular.size()) +
-                                                           " specular materials for " + std::to_string(vertices) + " vertices");
+                                                           " specular materials for " + std::to_string(vertexCount_) + " vertices");
   }
   Pass next;
   TexelTextures shape;

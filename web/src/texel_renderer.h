@@ -74,7 +74,8 @@ class TexelRenderer {
   bool draw(int kind, const glm::mat4& viewProjection, const TexelShading& shading);
 
   // Renders atlas `atlas` of pass `kind` in UV space (one fragment per texel whose centre a
-  // triangle covers) with the same fragment shader writing linear radiance into an RGBA32F
+  // triangle covers) with the same fragment shader and `shading`'s terms and eye (exposure
+  // ignored; shading.positions: the world positions instead) writing linear radiance into an RGBA32F
   // target, sampling at the exact texel centres (texel_prt.frag), and reads it back: width x height x 4 floats, row y = texel row y, alpha 1 where
   // a triangle covered the texel centre, 0 elsewhere. Errors: absent pass, atlas out of range,
   // no float render targets (EXT_color_buffer_float).
@@ -95,7 +96,7 @@ class TexelRenderer {
   };
   static Status link(const char* fs, Program* out);
   static void releasePass(Pass* p);
-  // texel_prt in use over pass `p` at `displayOrder` bands (clamped to what it holds); with
+  // texel_prt in use over pass `p` at shading.displayOrder bands (clamped to what it holds); with
   // `atlas` >= 0 in UV space over that atlas (the read-back), else in the view.
   void useShading(const Pass& p, const TexelShading& shading, int atlas);
   bool glossyReady() const { return visibility_.order > 0 && product_.bands > 0; }
@@ -106,6 +107,7 @@ class TexelRenderer {
   Program shading_, depth_;
   GLuint vao_ = 0, atlasUv_ = 0;
   GLsizei indexCount_ = 0;
+  std::size_t vertexCount_ = 0;
   std::vector<TextureAtlas> atlases_;
   std::array<Pass, 3> passes_{};
   Pass visibility_;              // the TPFL visibility vectors, 1 channel
