@@ -74,14 +74,16 @@ md += `.\n\n`;
 
 if (frame) {
   md += `## Frame time at ${frame.width}x${frame.height}\n\n${frame.renderer}; ${frame.vertices} vertices; `;
-  md += `${frame.atlases.map((a) => `${a.width}x${a.height}`).join(', ')} atlas; order ${frame.order}, interreflected. ${frame.method}.\n\n`;
-  md += `| setting | ms | / vertex PRT |\n|---|---:|---:|\n`;
-  for (const r of frame.rows) md += `| ${r.setting} | ${f(r.ms)} | ${f(r.vs_vertex)}x |\n`;
+  md += `${frame.atlases.map((a) => `${a.width}x${a.height}`).join(', ')} atlas; order ${frame.order}, interreflected`;
+  md += frame.visibility_order ? `; TPFL visibility order ${frame.visibility_order}` : '; no TPFL visibility pass';
+  md += `. ${frame.method}.\n\n`;
+  md += `| setting | ms | / vertex PRT | / texel diffuse |\n|---|---:|---:|---:|\n`;
+  for (const r of frame.rows) md += `| ${r.setting} | ${f(r.ms)} | ${f(r.vs_vertex)}x | ${r.vs_texel ? `${f(r.vs_texel)}x` : ''} |\n`;
   md += `\n`;
 } else {
   md += `## Frame time\n\nNot measured in this run (the page benchmark did not complete).\n\n`;
 }
-md += `## Not measured yet\n\n- Glossy by TPFL in the page (the client has no TPFL shader yet).\n`;
+md += `## Not measured yet\n\n`;
 md += `- Quality at equal bytes against a brute-force reference on a low-poly scene.\n`;
 
 fs.writeFileSync(outMd, md);

@@ -6,7 +6,8 @@
 #   - texture bytes and exit-radiance PSNR per codec setting (prt-bake compress-report
 #     --texels), and the vertex pass's for comparison;
 #   - frame time at 1280x720 in headless Chromium (SwiftShader unless a GPU is there): vertex
-#     PRT and texel PRT of one asset, with still and with moving lights.
+#     PRT and texel PRT of one asset, with still and with moving lights, and texel diffuse +
+#     TPFL glossy (the frame bake adds --texel-glossy: visibility order 2n - 1).
 # Writes docs/bench/transfer-textures.{md,json}. Takes about 25 minutes on the 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,7 +35,7 @@ $bake compress-report "$work/room.prt" --settings "$settings" --lightings 8 --js
 
 # 3. Frame times: the same bake, q16, served to the page (no stale result if it fails).
 rm -f "$work/frame.json"
-$bake "${bake_args[@]}" -o "$root/room-texels.prt" --compress q16 --name room-texels
+$bake "${bake_args[@]}" --texel-glossy -o "$root/room-texels.prt" --compress q16 --name room-texels
 cp -f /usr/share/blender/datafiles/studiolights/world/forest.exr "$root/"
 port=$(node -e 'const s=require("net").createServer().listen(0,"127.0.0.1",()=>{console.log(s.address().port);s.close()})')
 build/native/server/prt-serve --root "$root" --web build/wasm/web/dist --port "$port" --quiet &

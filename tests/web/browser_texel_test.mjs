@@ -3,7 +3,10 @@
 // radiance read back in UV space must equal the baker's per-texel radiance (prt-bake shade
 // --texels) at the sampled texel centres; the picture in texel mode must be lit, differ from
 // vertex mode at the contact shadows and switch back to the same vertex picture; an asset with
-// texel passes only must render (and equal the full asset's texel picture).
+// texel passes only must render (and equal the full asset's texel picture). TPFL glossy: the
+// visibility pass streams in bands, the GPU's per-fragment glossy term equals prt-bake shade
+// --texels --pass glossy at the sampled texels, and an orbit changes the glossy objects' texels
+// and pixels while the matte floor's stay.
 // Usage: node browser_texel_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR PRT_CORE_NODE_JS ENV_EXR
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -21,16 +24,14 @@ for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web d
   }
 }
 
-// ---- fixture: the default room with texel passes (the built-in atlas keeps its gutters from
-// 512 texels a side), order 3, one bounce, q16 so the texel passes stream band by band. About
+// ---- fixture: the default room with texel passes at 512 texels a side, order 3, one bounce, q16 so the texel passes stream band by band. About
 // 10 s on the 2-core machine.
 const root = path.join(workDir, 'root');
 fs.rmSync(workDir, { recursive: true, force: true });
 fs.mkdirSync(root, { recursive: true });
 const asset = path.join(root, 'room-texel.prt');
 const bakeStart = Date.now();
-// With a TPFL visibility pass (asset format 1.5), which the page has no shader for yet: it must
-// load and draw the rest as if the pass were not there (its parts are not even fetched).
+// With a TPFL visibility pass (asset format 1.5, order 2n - 1 = 5), the texel passes' glossy term.
 execFileSync(prtBake, ['--default', '--texels', '--texture-size', '512', '--samples', '64', '--bounces', '1', '--order', '3',
   '--passes', 'shadowed,interreflected', '--texel-glossy', '--compress', 'q16', '--name', 'room-texel', '-o', asset, '--quiet']);
 console.log(`bake: ${((Date.now() - bakeStart) / 1000).toFixed(1)} s, ${(fs.statSync(asset).size / 1e6).toFixed(1)} MB`);
@@ -43,14 +44,15 @@ const waitAll = (page) => page.waitForFunction(() => window.prtApp.error || (win
 
 // Atlas `atlas` of texel pass `pass` read back in UV space, as {width, height, rgba: Float32Array}
 // (sent base64: a million floats as JSON would be slow).
-async function readAtlas(page, pass, atlas = 0) {
-  const r = await page.evaluate(([p, a]) => {
-    const { width, height, data } = window.prtApp.texelAtlasRadiance(p, a);
+// positions = true: the fragments' world positions instead.
+async function readAtlas(page, pass, atlas = 0, positions = false) {
+  const r = await page.evaluate(([p, a, w]) => {
+    const { width, height, data } = window.prtApp.texelAtlasRadiance(p, a, w);
     const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
     let s = '';
     for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
     return { width, height, b64: btoa(s) };
-  }, [pass, atlas]);
+  }, [pass, atlas, positions]);
   const buf = Buffer.from(r.b64, 'base64');
   return { width: r.width, height: r.height, rgba: new Float32Array(buf.buffer.slice(buf.byteOffset, buf.byteOffset + buf.length)) };
 }
@@ -99,10 +101,12 @@ const cases = {
       check(state.source === 'texel', `source is ${state.source}, not texel`);
       check(JSON.stringify(state.texelBands) === '[0,3,3]', `texel bands ${JSON.stringify(state.texelBands)} (want [0, 3, 3]: no unshadowed pass, order 3)`);
       check(state.environment === 'white furnace' && state.lights === 0, `lighting: ${state.environment}, ${state.lights} lights`);
-      // The visibility pass waits for a TPFL shader: its parts are not fetched.
+      // The visibility pass streams with the rest (its 5 bands), for the glossy term.
       const total = await page.evaluate(() => window.prtApp.bytesTotal);
-      check(visibilityBytes > 0 && total === entry.bytes - visibilityBytes,
-        `the page fetches ${total} of ${entry.bytes} bytes; the visibility pass's ${visibilityBytes} should be left out`);
+      check(visibilityBytes > 0 && total === entry.bytes, `the page fetches ${total} of ${entry.bytes} bytes (the visibility pass: ${visibilityBytes})`);
+      check(await page.evaluate(() => window.prtApp.texelGlossyBands) === 5, 'the visibility pass is not on the GPU at its 5 bands');
+      // The diffuse passes alone here (the baker's diffuse shade); the glossy term: texel_glossy_matches_baker.
+      await page.evaluate(() => window.prtApp.set({ glossy: { shadowed: 'diffuse', interreflected: 'diffuse' } }));
       // Constant light reads coefficient 0 alone; the forest map (unrotated, the page's and the
       // baker's projection of the same file) weighs all 9, so every layer and lane is checked.
       for (const [pass, light] of [['interreflected', 'constant'], ['shadowed', 'constant'], ['interreflected', 'forest']]) {
@@ -155,7 +159,8 @@ const cases = {
       await waitAll(page);
       check(await page.evaluate(() => window.prtApp.source) === 'vertex', 'the page does not start per vertex');
       const vertex = await capture(page, { source: 'vertex', background: false });
-      const texel = await capture(page, { source: 'texel' });
+      // Diffuse against diffuse: the vertex bake has no glossy pass.
+      const texel = await capture(page, { source: 'texel', glossy: { shadowed: 'diffuse', interreflected: 'diffuse' } });
       check(await page.evaluate(() => window.prtApp.source) === 'texel', 'set({source: texel}) did not switch');
       const back = await capture(page, { source: 'vertex' });
       const lit = litStats(texel), litVertex = litStats(vertex);
@@ -190,6 +195,136 @@ const cases = {
       }
       check(/source must be one of vertex, texel/.test(refused), `set({source: 'pixel'}) was not refused: ${refused}`);
       await page.screenshot({ path: path.join(workDir, 'texel.png') });
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // (d) The TPFL glossy term per fragment against the CPU reference: the shadowed pass's glossy
+  // term alone (panel switch 'glossy') read back in UV space under the forest map (all 9
+  // lighting coefficients, so every entry of P(L) counts) from the page's own eye, against
+  // prt-bake shade --texels --pass glossy --glossy-only --view EYE at the sampled texels.
+  // The fragment shades its interpolated position and normal, which the rasteriser's sub-pixel
+  // snapping (1/16 pixel in SwiftShader) moves by up to ~1/32 texel (0.6 mm here) from the
+  // baker's sample; on the torus's thin tube (radius 0.14) that turns the normal by ~4 mrad, and
+  // the glossy term, a difference of large terms where it is dim, moves by up to 7e-3 of the
+  // peak. So the tolerance is 3e-3 of the peak plus 3e-3 of the value (the RGBA16F visibility:
+  // 3e-4 of the peak in the Node test; float32 sums) plus 2 g dp, with dp the distance between
+  // the fragment's shading point (read back) and the sample, and g the reference's own largest
+  // slope |dL| / |dp| to its four neighbouring texels. Matte texels (k_s = 0) must be exactly 0.
+  async texel_glossy_matches_baker(browser) {
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&source=texel`, { waitReady: false });
+      await waitAll(page);
+      await page.evaluate(() => window.prtApp.set({ environment: 'forest', envRotation: [0, 0], intensity: 1, mode: 'shadowed', glossy: { shadowed: 'glossy' } }));
+      await capture(page, {});
+      const state = await page.evaluate(() => ({ error: window.prtApp.error, glossyError: window.prtApp.texelGlossyError, eye: window.prtApp.eye,
+        bands: window.prtApp.texelGlossyBands, lights: window.prtApp.lights.length, stats: document.getElementById('stats').textContent }));
+      check(state.error === null && state.glossyError === '', `page error: ${state.error} / ${state.glossyError}`);
+      check(state.bands === 5 && state.lights === 0, `visibility bands ${state.bands} (want 5), ${state.lights} lights (want none: the baker's forest alone)`);
+      check(/TPFL glossy, visibility order 5/.test(state.stats), `stats line: ${state.stats}`);
+      const t0 = Date.now();
+      const reference = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', envExr, '--pass', 'glossy', '--glossy-only',
+        '--view', state.eye.join(','), '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
+      const gpu = await readAtlas(page, 'shadowed');
+      const at = await readAtlas(page, 'shadowed', 0, true);
+      let peak = 0;
+      for (const t of reference.texels) peak = Math.max(peak, ...t.radiance);
+      let compared = 0, glossy = 0, sloped = 0, worstDp = 0, worstRelative = 0, worstAbsolute = 0, bad = 0, firstBad = '';
+      const byTexel = new Map(reference.texels.map((t) => [t.y * gpu.width + t.x, t]));
+      for (const t of reference.texels) {
+        const i = 4 * (t.y * gpu.width + t.x);
+        if (gpu.rgba[i + 3] !== 1) continue;
+        const dp = Math.hypot(at.rgba[i] - t.position[0], at.rgba[i + 1] - t.position[1], at.rgba[i + 2] - t.position[2]);
+        worstDp = Math.max(worstDp, dp);
+        compared++;
+        if (t.radiance.some((r) => r !== 0)) glossy++;
+        for (let c = 0; c < 3; c++) {
+          const want = t.radiance[c], got = gpu.rgba[i + c], error = Math.abs(got - want);
+          worstAbsolute = Math.max(worstAbsolute, error / peak);
+          if (Math.abs(want) > 0.01 * peak) worstRelative = Math.max(worstRelative, error / Math.abs(want));
+          const base = 3e-3 * Math.abs(want) + 3e-3 * peak;
+          let slope = 0;
+          for (const [dx, dy] of [[1, 0], [-1, 0], [0, 1], [0, -1]]) {
+            const n = byTexel.get((t.y + dy) * gpu.width + t.x + dx);
+            const d = n && Math.hypot(n.position[0] - t.position[0], n.position[1] - t.position[1], n.position[2] - t.position[2]);
+            if (d > 0) slope = Math.max(slope, Math.abs(n.radiance[c] - want) / d);
+          }
+          if (error > base) sloped++;
+          // k_s = 0 (the matte room and boxes): exactly 0, whatever the visibility holds.
+          if (!(want === 0 ? got === 0 : error <= base + 2 * slope * dp)) {
+            if (!bad) firstBad = `texel (${t.x}, ${t.y}) channel ${c}: GPU ${got}, baker ${want}, shading point ${dp.toExponential(2)} from the sample, slope ${slope.toFixed(3)}`;
+            bad++;
+          }
+        }
+      }
+      console.log(`TPFL glossy: ${compared} of ${reference.texels.length} texels compared (${glossy} glossy; ${sloped} channel values needed the slope term, shading point up to ${(1e3 * worstDp).toFixed(2)} mm from the sample), worst relative ${worstRelative.toExponential(2)}, ` +
+        `worst absolute ${worstAbsolute.toExponential(2)} of the peak ${peak.toFixed(3)} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
+      check(glossy > 1000, `only ${glossy} glossy texels compared`);
+      check(sloped < 0.01 * 3 * glossy, `${sloped} of ${3 * glossy} glossy channel values beyond 3e-3 relative + 3e-3 of the peak: more than the texels where the shading point matters`);
+      check(worstDp < 2e-3, `a fragment shaded ${worstDp} m from its texel's sample (more than a tenth of a texel)`);
+      check(bad === 0, `TPFL glossy: ${bad} channel values beyond the tolerance (${firstBad})`);
+      check(peak > 0.05, `the glossy reference is dark (peak ${peak})`);
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // (e) The glossy term follows the eye: after an orbit of 0.5 rad the sphere's and the
+  // torus's texels (diffuse + glossy, read back in UV space) change and the matte floor's are
+  // bit-identical; on screen, points of the torus change and points of the floor keep their
+  // luminance (within 1/255: antialiasing at the new pixel positions); the 'diffuse' switch
+  // removes the change.
+  async texel_glossy_orbit(browser) {
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&source=texel`, { waitReady: false });
+      await waitAll(page);
+      await page.evaluate(() => window.prtApp.set({ environment: 'forest', envRotation: [0, 0], intensity: 1, background: false }));
+      // Points on the torus (centre (0.7, 0.14, -0.9), ring 0.4, tube 0.14; a purple metal, so its
+      // glossy term is bright, where the white sphere's dielectric f0 = 0.04 keeps it faint).
+      const sphere = [[0.7, 0.14, -0.36], [0.7, 0.28, -0.5], [0.7 + 0.283, 0.28, -0.9 + 0.283], [0.7 - 0.283, 0.28, -0.9 + 0.283]];
+      const floor = [[0, 0.002, 1.6], [0.2, 0.002, 1.2], [-0.3, 0.002, 1.9]];
+      const shoot = async () => {
+        const img = await capture(page, {});
+        const pixels = await page.evaluate((pts) => pts.map((p) => window.prtApp.project(p)), [...sphere, ...floor]);
+        return { img, lum: pixels.map((p) => windowLuminance(img, p, 1)), atlas: await readAtlas(page, 'interreflected') };
+      };
+      const before = await shoot();
+      await page.evaluate(() => { window.prtApp.orbit(0.5, 0); });
+      const after = await shoot();
+      // Texels: which ones are glossy comes from the baker (non-zero glossy term from either eye).
+      const reference = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', envExr, '--pass', 'glossy', '--glossy-only',
+        '--view', '0,1.5,4', '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
+      let glossyChanged = 0, glossyCount = 0, matteChanged = 0, matteCount = 0;
+      for (const t of reference.texels) {
+        const i = 4 * (t.y * before.atlas.width + t.x);
+        if (before.atlas.rgba[i + 3] !== 1) continue;
+        let d = 0;
+        for (let c = 0; c < 3; c++) d = Math.max(d, Math.abs(after.atlas.rgba[i + c] - before.atlas.rgba[i + c]));
+        const matte = t.radiance.every((r) => r === 0) && t.position[1] < 0.01;  // the floor
+        if (matte) { matteCount++; if (d !== 0) matteChanged++; } else if (t.radiance.some((r) => r > 0)) { glossyCount++; if (d > 1e-3) glossyChanged++; }
+      }
+      const sphereChange = sphere.map((_, k) => Math.abs(after.lum[k] - before.lum[k]));
+      const floorChange = floor.map((_, k) => Math.abs(after.lum[sphere.length + k] - before.lum[sphere.length + k]));
+      console.log(`orbit 0.5 rad: ${glossyChanged} of ${glossyCount} glossy texels changed, ${matteChanged} of ${matteCount} floor texels; ` +
+        `torus pixels by ${sphereChange.map((x) => x.toFixed(1)).join(', ')}, floor pixels by ${floorChange.map((x) => x.toFixed(2)).join(', ')} (of 255)`);
+      check(glossyCount > 1000 && glossyChanged > 0.5 * glossyCount, `only ${glossyChanged} of ${glossyCount} glossy texels changed with the eye`);
+      check(matteCount > 1000 && matteChanged === 0, `${matteChanged} of ${matteCount} floor texels changed with the eye`);
+      check(Math.max(...sphereChange) > 3, `the torus's pixels changed by at most ${Math.max(...sphereChange).toFixed(2)}/255`);
+      check(Math.max(...floorChange) <= 1, `the floor's pixels changed by up to ${Math.max(...floorChange).toFixed(2)}/255`);
+      // Diffuse only: the same texels stay (the diffuse texel term does not depend on the eye).
+      await page.evaluate(() => window.prtApp.set({ glossy: { interreflected: 'diffuse' } }));
+      const d1 = await readAtlas(page, 'interreflected');
+      await page.evaluate(() => { window.prtApp.orbit(-0.5, 0); });
+      await capture(page, {});
+      const d0 = await readAtlas(page, 'interreflected');
+      let diffuseChanged = 0;
+      for (let i = 0; i < d0.rgba.length; i++) if (d0.rgba[i] !== d1.rgba[i]) diffuseChanged++;
+      check(diffuseChanged === 0, `with the switch on 'diffuse' ${diffuseChanged} atlas values changed with the eye`);
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
     } finally {
       server.child.kill('SIGTERM');

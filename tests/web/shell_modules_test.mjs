@@ -257,6 +257,8 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
     mode: () => kinds.shadowed,
     source: () => source,
     hasGlossy: () => false,
+    hasTexelGlossy: () => false,
+    streamVisibilityPass: (bands) => { streamed.push(['visibility', bands]); return ''; },
     hasAnyPass: () => true,
     streamPass: (k, bands) => { streamed.push(['vertex', k, bands]); return ''; },
     streamTexelPass: (k, bands) => { streamed.push(['texel', k, bands]); return ''; },
@@ -291,6 +293,24 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   await streamAsset(app, { name: 'texel-only', bytes: offset, parts: only }, { kinds, domains });
   await settle();
   check(JSON.stringify(streamed) === JSON.stringify([['texel', kinds.shadowed, 1], ['texel', kinds.shadowed, 2]]), `texel-only: ${JSON.stringify(streamed)}`);
+  // A TPFL visibility pass (form 'visibility') streams band by band after the displayed pass,
+  // through streamVisibilityPass; it never counts as the displayed pass.
+  const withVisibility = [...only];
+  for (const [kind, band] of [['transfer-head', undefined], ['transfer-band', 0], ['transfer-band', 1]]) {
+    withVisibility.push({ offset, size: 8, url: `/parts/v${band ?? 'h'}`, kind, section: 9, pass: 'shadowed', form: 'visibility', domain: 'texel', ...(band === undefined ? {} : { band }) });
+    offset += 8;
+  }
+  const plainFetch = globalThis.fetch;
+  globalThis.fetch = async (url) => {
+    const part = withVisibility.find((p) => p.url === url);
+    return { ok: true, status: 200, statusText: 'OK', arrayBuffer: async () => new Uint8Array(part.size).fill(7).buffer };
+  };
+  streamed = [];
+  await streamAsset(app, { name: 'texel-glossy', bytes: offset, parts: withVisibility }, { kinds, domains });
+  await settle();
+  globalThis.fetch = plainFetch;
+  check(JSON.stringify(streamed) === JSON.stringify([['texel', kinds.shadowed, 1], ['texel', kinds.shadowed, 2], ['visibility', 1], ['visibility', 2]]),
+        `texel pass then visibility pass: ${JSON.stringify(streamed)}`);
   throwsMatching(() => streamAsset(app, entry, { kinds }), /domains must give/, 'streamAsset without domains');
   // A geometry error (here: a made-up one) rejects the stream with the scene's name.
   app.streamGeometry = () => 'corrupt: section 2 (indices): index 5 is out of range';

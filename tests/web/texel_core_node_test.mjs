@@ -5,6 +5,10 @@
 // reference rounding here), zero padding, prefixes of bands as order-b passes, and device limits
 // refused with messages naming both numbers. Also: the per-fragment shader's tone mapping is
 // shade.frag's, and texel-only assets (for the browser test) decode with texel passes only.
+// TPFL glossy (the bake carries a visibility pass): texel_prt.frag's glossy arithmetic run on
+// the CPU from the packed textures (tpflGlossyCpu) equals prt::tpflGlossyExitRadiance on the
+// same texels, and prt-bake shade --texels --pass glossy; its SH, lobe and Schlick functions are
+// glossy.vert's text.
 // Usage: node texel_core_node_test.mjs PRT_CORE_NODE_JS NATIVE_PRT_BAKE WORK_DIR
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -79,10 +83,10 @@ const same = (a, b) => (Number.isNaN(a) && Number.isNaN(b)) || a === b;
 // that the passes are encoded and decode band by band like a streamed one.
 const asset = path.join(workDir, 'room-texel.prt');
 execFileSync(prtBake, ['--default', '--texels', '--texture-size', '512', '--samples', '16', '--bounces', '1', '--order', '3',
-  '--passes', 'shadowed,interreflected', '--compress', 'q16', '-o', asset, '--quiet']);
+  '--passes', 'shadowed,interreflected', '--texel-glossy', '--compress', 'q16', '-o', asset, '--quiet']);
 const bytes = fs.readFileSync(asset);
 const info = core.inspectAsset(bytes);
-check(info.ok && info.passes.filter((p) => p.domain === 'texel').length === 2, `the bake has no texel passes: ${JSON.stringify(info)}`);
+check(info.ok && info.passes.filter((p) => p.domain === 'texel').length === 3, `the bake has no texel passes (2 and a visibility pass): ${JSON.stringify(info)}`);
 
 for (const kind of ['shadowed', 'interreflected']) {
   for (const bands of [0, 2]) {
@@ -134,7 +138,7 @@ for (const kind of ['shadowed', 'interreflected']) {
   check(typeof absent === 'string' && /no texel pass 'unshadowed'/.test(absent), `an absent pass: ${absent}`);
   const damaged = Buffer.from(bytes);
   damaged[damaged.length - 100] ^= 0x40;
-  const bad = core.texelPackCheck(damaged, 'interreflected', 0, 16384, 2048);
+  const bad = core.texelPackCheck(damaged, 'visibility', 0, 16384, 2048);  // the last section
   check(typeof bad === 'string' && /checksum/.test(bad), `a damaged texel pass: ${bad}`);
 }
 
@@ -142,7 +146,7 @@ for (const kind of ['shadowed', 'interreflected']) {
 {
   const only = core.texelOnlyAsset(bytes, 'room-texel-only');
   const i = typeof only === 'string' ? { ok: false, error: only } : core.inspectAsset(only);
-  check(i.ok && i.name === 'room-texel-only' && i.passes.length === 2 && i.passes.every((p) => p.domain === 'texel'), `texel-only asset: ${JSON.stringify(i)}`);
+  check(i.ok && i.name === 'room-texel-only' && i.passes.length === 3 && i.passes.every((p) => p.domain === 'texel'), `texel-only asset: ${JSON.stringify(i)}`);
   const vertexOnly = path.join(workDir, 'room-vertex.prt');
   execFileSync(prtBake, ['--default', '--samples', '16', '--order', '2', '-o', vertexOnly, '--quiet']);
   const refused = core.texelOnlyAsset(fs.readFileSync(vertexOnly), '');
@@ -156,6 +160,64 @@ for (const kind of ['shadowed', 'interreflected']) {
   for (const name of ['acesFit', 'linearToSrgb']) {
     const a = fn(shaderText('shade.frag'), name), b = fn(shaderText('texel_prt.frag'), name);
     check(a !== null && a === b, `${name} differs between shade.frag and texel_prt.frag`);
+  }
+}
+
+// ---- TPFL glossy: the shader's arithmetic on the packed textures against the CPU reference ----
+// Texels, positions and normals from prt-bake shade --texels --pass glossy (every sampled texel;
+// the glossy objects are the sphere and the torus, the rest is matte with k_s = 0). Two lightings:
+// (a) order-3 coloured lighting with every coefficient set (a fixed pseudo-random draw), so
+// every P_ik and every visibility layer and lane counts, against prt::tpflGlossyExitRadiance on
+// the float visibility; (b) constant radiance 1 (L_0 = sqrt(4 pi)), against the native baker's
+// own numbers. Tolerance 2e-3 of the peak: the RGBA16F visibility is the float one rounded to
+// 11 bits (relative 4.9e-4 per coefficient), summed with both signs over 25 coefficients.
+{
+  const eye = [0.7, 1.6, 3.2];
+  const shade = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', 'constant', '--pass', 'glossy', '--view', eye.join(','),
+    '--glossy-only', '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
+  // Every 7th glossy texel and every 97th matte one: enough to cover both objects, quick.
+  const picked = shade.texels.filter((t, k) => (t.radiance.some((r) => r !== 0) ? k % 7 === 0 : k % 97 === 0));
+  const glossyCount = picked.filter((t) => t.radiance.some((r) => r !== 0)).length;
+  check(glossyCount > 500, `only ${glossyCount} glossy texels picked: the comparison proves little`);
+  const flat = picked.flatMap((t) => [0, t.x, t.y, ...t.position, ...t.normal]);
+  let seed = 12345;
+  const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648) * 2 - 1;
+  const coloured = Array.from({ length: 27 }, (_, k) => (k < 3 ? 3 + k * 0.5 : 0.8 * random()));
+  const constant = [Math.sqrt(4 * Math.PI), Math.sqrt(4 * Math.PI), Math.sqrt(4 * Math.PI), ...new Array(24).fill(0)];
+  for (const [what, lighting, against] of [['coloured lighting', coloured, 'tpflGlossyExitRadiance'], ['constant radiance 1', constant, 'prt-bake shade']]) {
+    const r = core.tpflTexelCheck(bytes, flat, eye, lighting, 3);
+    if (!check(typeof r === 'object', `TPFL ${what}: ${r}`)) continue;
+    check(r.visibilityOrder === 5 && r.transferOrder === 5 && r.layers === 7 && r.rowTexels === 7,
+      `TPFL ${what}: visibility order ${r.visibilityOrder}, transfer order ${r.transferOrder}, ${r.layers} layers, ${r.rowTexels} texels a row (want 5, 5, 7, 7)`);
+    const want = against === 'prt-bake shade' ? picked.flatMap((t) => t.radiance) : Array.from(r.reference);
+    let peak = 0, worst = 0, at = '', matteNonZero = 0;
+    for (const x of want) peak = Math.max(peak, Math.abs(x));
+    for (let k = 0; k < picked.length; k++) {
+      for (let c = 0; c < 3; c++) {
+        const e = Math.abs(r.gpu[3 * k + c] - want[3 * k + c]);
+        if (e > worst) { worst = e; at = `texel (${picked[k].x}, ${picked[k].y}) channel ${c}: shader ${r.gpu[3 * k + c]}, ${against} ${want[3 * k + c]}`; }
+        if (want[3 * k + c] === 0 && r.gpu[3 * k + c] !== 0) matteNonZero++;
+      }
+    }
+    console.log(`TPFL ${what}: ${picked.length} texels (${glossyCount} glossy), shader emulation vs ${against}: worst ${(worst / peak).toExponential(2)} of the peak ${peak.toFixed(4)}`);
+    check(peak > 0.01, `TPFL ${what}: the reference is dark (peak ${peak})`);
+    check(worst <= 2e-3 * peak, `TPFL ${what}: worst difference ${(worst / peak).toExponential(2)} of the peak > 2e-3 (${at})`);
+    check(matteNonZero === 0, `TPFL ${what}: ${matteNonZero} matte channel values not exactly 0`);
+  }
+}
+
+// ---- the TPFL term evaluates the lobe with glossy.vert's own functions ----
+{
+  const shaderText = (name) => fs.readFileSync(path.join(here, '../../web/shaders', name), 'utf8');
+  // A function's text from its signature to the closing brace at the start of a line.
+  const fn = (text, signature) => {
+    const i = text.indexOf(signature);
+    return i < 0 ? null : text.slice(i, text.indexOf('\n}\n', i) + 3);
+  };
+  for (const signature of ['float shA(int i)', 'float shB(int i)', 'void shBasis(int order, vec3 d)', 'void phongBandScales(int bands, float s, out float g[8])',
+    'vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on)']) {
+    const a = fn(shaderText('glossy.vert'), signature), b = fn(shaderText('texel_prt.frag'), signature);
+    check(a !== null && a === b, `${signature} differs between glossy.vert and texel_prt.frag`);
   }
 }
 

@@ -53,25 +53,10 @@ void shBasis(int order, vec3 d) {
   }
 }
 
-vec4 transferTexel(int i) { return texelFetch(uTransfer, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
-
-void main() {
-  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-  vGlossy = vec3(0.0);
-  vec3 d = uEye - aPosition;
-  float distance = length(d);
-  if (!(distance > 0.0)) return;
-  vec3 toEye = d * (1.0 / distance);
-  vec3 n = aNormal;
-  vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
-  float rl = length(r);
-  r = rl > 0.0 ? r * (1.0 / rl) : n;
-  shBasis(uBands, r);
-  // Phong band scales g_l(s) = (s+1) I_l (prt/glossy_lobe.cpp's recurrence, in float).
-  float s = aSpecular.w;
-  float g[8];
+// Phong band scales g_l(s) = (s+1) I_l (prt/glossy_lobe.cpp's recurrence, in float).
+void phongBandScales(int bands, float s, out float g[8]) {
   float evenPrev = 1.0 / (s + 1.0), oddPrev = 1.0 / (s + 2.0);
-  for (int l = 0; l < uBands; ++l) {
+  for (int l = 0; l < bands; ++l) {
     float value;
     if (l == 0) {
       value = evenPrev;
@@ -86,13 +71,33 @@ void main() {
     }
     g[l] = (s + 1.0) * value;
   }
-  vec3 f0 = aSpecular.rgb;
-  vec3 ks = f0;
-  if (uFresnel == 1) {
-    float k = 1.0 - clamp(dot(n, toEye), 0.0, 1.0);
-    float k2 = k * k, k5 = k2 * k2 * k;
-    ks = f0 + (aSpecularF90 - f0) * k5;
-  }
+}
+
+// Schlick's k_s = f0 + (f90 - f0)(1 - max(0, n.v))^5 (prt::schlickFresnel); f0 alone when off.
+vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on) {
+  if (!on) return f0;
+  float k = 1.0 - clamp(cosNormalView, 0.0, 1.0);
+  float k2 = k * k, k5 = k2 * k2 * k;
+  return f0 + (f90 - f0) * k5;
+}
+
+vec4 transferTexel(int i) { return texelFetch(uTransfer, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+
+void main() {
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  vGlossy = vec3(0.0);
+  vec3 d = uEye - aPosition;
+  float distance = length(d);
+  if (!(distance > 0.0)) return;
+  vec3 toEye = d * (1.0 / distance);
+  vec3 n = aNormal;
+  vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
+  float rl = length(r);
+  r = rl > 0.0 ? r * (1.0 / rl) : n;
+  shBasis(uBands, r);
+  float g[8];
+  phongBandScales(uBands, aSpecular.w, g);
+  vec3 ks = schlick(aSpecular.rgb, aSpecularF90, dot(n, toEye), uFresnel == 1);
   int rows = uBands * uBands, activeTexels = (rows + 3) / 4;
   // The lobe's band scales folded into the basis once: gy_i = g_l(i) y_i(R), zero from rows on.
   vec4 gy[16];

@@ -155,9 +155,10 @@ const glossyView = {
 };
 function updateGlossyControl() {
   if (!glossyControl || !app) return;
-  // Transfer textures are diffuse only: no glossy term to switch.
-  const has = PASS_NAMES.includes(state.mode) && app.source() === client.TransferDomain.vertex &&
-    app.hasGlossy(client.ShadingMode[state.mode]);
+  // Per vertex: the pass's glossy matrix pass; per texel: the TPFL visibility pass, whose
+  // glossy term every texel pass adds.
+  const texel = app.source() === client.TransferDomain.texel;
+  const has = PASS_NAMES.includes(state.mode) && (texel ? app.hasTexelGlossy() : app.hasGlossy(client.ShadingMode[state.mode]));
   glossyControl.show(has);
   glossyControl.updateDisplay();
 }
@@ -380,7 +381,11 @@ function sourceText() {
 
 // " + glossy (order b, K clusters, N' matrices)" when the displayed pass draws a glossy term.
 function glossyText() {
-  if (!PASS_NAMES.includes(state.mode) || app.source() === client.TransferDomain.texel) return '';
+  if (!PASS_NAMES.includes(state.mode)) return '';
+  if (app.source() === client.TransferDomain.texel) {
+    const m = app.texelGlossyBands();
+    return m ? ` · ${state.glossyMix[state.mode]}: TPFL glossy, visibility order ${m}` : '';
+  }
   const kind = client.ShadingMode[state.mode];
   const bands = app.glossyBands(kind);
   if (!bands) return '';

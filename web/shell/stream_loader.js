@@ -54,8 +54,8 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
   } catch (e) {
     throw fail(`the catalogue's part list is unusable: ${e.message}`);
   }
-  // TPFL visibility passes (asset format 1.5) wait for the client's TPFL shader: not fetched.
-  const wanted = entry.parts.filter((p) => p.form !== 'visibility');
+  // Every part, the TPFL visibility pass's too (asset format 1.5: the texel passes' glossy term).
+  const wanted = entry.parts;
   const transferParts = wanted.filter((p) => p.pass !== undefined);
   Object.assign(progress, {
     bytesReceived: 0,
@@ -133,6 +133,11 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
         if (error) throw fail(error);
       }
     }
+    // A visibility pass the server did not list as parts of its own came whole with the geometry.
+    if (app.hasTexelGlossy() && !transferParts.some((p) => p.form === 'visibility')) {
+      const error = app.streamVisibilityPass(0);
+      if (error) throw fail(error);
+    }
     const domainOf = (p) => (p.domain === 'texel' ? 'texel' : 'vertex');
     if (app.hasAnyPass(displayed) && !transferParts.some((p) => kinds[p.pass] === displayed && domainOf(p) === displayedDomain)) {
       shown = true;  // a glossy-only displayed pass, whole already
@@ -140,12 +145,13 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
     }
     // The displayed pass first, then the others in file order; a pass is its kind, form and
     // domain ("shadowed/vector/vertex", the glossy "shadowed/matrix/vertex", the transfer
-    // texture "shadowed/vector/texel"), each streamed band by band.
-    const keyOf = (p) => `${p.pass}/${p.form === 'matrix' ? 'matrix' : 'vector'}/${domainOf(p)}`;
+    // texture "shadowed/vector/texel", the TPFL "shadowed/visibility/texel"), each streamed band by band.
+    const formOf = (p) => (p.form === 'matrix' || p.form === 'visibility' ? p.form : 'vector');
+    const keyOf = (p) => `${p.pass}/${formOf(p)}/${domainOf(p)}`;
     const passKeys = [...new Set(transferParts.map(keyOf))];
     const isDisplayed = (key) => {
-      const [name, , domain] = key.split('/');
-      return kinds[name] === displayed && domain === displayedDomain;
+      const [name, form, domain] = key.split('/');
+      return kinds[name] === displayed && domain === displayedDomain && form !== 'visibility';
     };
     passKeys.sort((a, b) => isDisplayed(b) - isDisplayed(a));
     const queue = passKeys.flatMap((key) => transferParts.filter((p) => keyOf(p) === key));
@@ -168,7 +174,8 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
         const request = whole ? 0 : bands;
         if (applied.get(key) === (whole ? 'all' : bands)) continue;
         const error = form === 'matrix' ? app.streamGlossyPass(k, request)
-          : domain === 'texel' ? app.streamTexelPass(k, request) : app.streamPass(k, request);
+          : form === 'visibility' ? app.streamVisibilityPass(request)
+            : domain === 'texel' ? app.streamTexelPass(k, request) : app.streamPass(k, request);
         if (error) throw fail(error);
         applied.set(key, whole ? 'all' : bands);
         if (isDisplayed(key) && !shown) {

@@ -68,6 +68,10 @@ export function installTestHook(page) {
     get texelBands() {
       return page.app ? PASS_NAMES.map((n) => page.app.texelBands(client.ShadingMode[n])) : null;
     },
+    // Bands of the TPFL visibility pass on the GPU (0: none), and the last failure to remake
+    // its product matrix ('' when none).
+    get texelGlossyBands() { return page.app ? page.app.texelGlossyBands() : 0; },
+    get texelGlossyError() { return page.app ? page.app.texelGlossyError() : ''; },
     get atlases() {
       if (!ready()) return null;
       const sizes = Array.from(page.app.atlasSizes());
@@ -76,10 +80,11 @@ export function installTestHook(page) {
     // Atlas `atlas` of texel pass `pass` rendered in UV space by the shading fragment shader with
     // the current lighting and order, read back: {width, height, data: Float32Array of linear
     // RGBA, row y = texel row y, alpha 1 where a triangle covers the texel centre}. Throws on error.
-    texelAtlasRadiance(pass, atlas = 0) {
+    // With positions = true the fragments' world positions (xyz) instead of the radiance.
+    texelAtlasRadiance(pass, atlas = 0, positions = false) {
       if (!ready()) throw new Error('texelAtlasRadiance: no scene is loaded yet');
       if (!PASS_NAMES.includes(pass)) throw new Error(`texelAtlasRadiance: pass must be one of ${PASS_NAMES.join(', ')}`);
-      const data = page.app.texelAtlasRadiance(client.ShadingMode[pass], atlas);
+      const data = page.app.texelAtlasRadiance(client.ShadingMode[pass], atlas, positions);
       if (typeof data === 'string') throw new Error(`texelAtlasRadiance: ${data}`);
       const sizes = Array.from(page.app.atlasSizes());
       return { width: sizes[2 * atlas], height: sizes[2 * atlas + 1], data };

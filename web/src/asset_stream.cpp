@@ -50,6 +50,22 @@ bool AssetStream::hasKind(int kind) const { return passIndex(kind) >= 0; }
 bool AssetStream::hasMatrixKind(int kind) const { return passIndex(kind, TransferForm::kMatrix) >= 0; }
 bool AssetStream::hasTexelKind(int kind) const { return passIndex(kind, TransferForm::kVector, TransferDomain::kTexel) >= 0; }
 
+bool AssetStream::hasVisibility() const { return visibilityIndex() >= 0; }
+
+int AssetStream::visibilityIndex() const {
+  for (std::size_t i = 0; i < summary_.passes.size(); ++i) {
+    if (summary_.passes[i].form == TransferForm::kVisibility) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+Status AssetStream::decodeVisibilityPass(int bands, TransferPass* out, int* order) {
+  if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
+  const int i = visibilityIndex();
+  if (i < 0) return Status::error(StatusCode::kInvalidArgument, "the asset has no texel visibility pass");
+  return decodeAssetPass(file_, i, bands, out, order);
+}
+
 Status AssetStream::decodeTexelPass(int kind, int bands, TransferPass* out, int* order) {
   if (!headerRead_) return Status::error(StatusCode::kInvalidArgument, "the asset's geometry has not been decoded yet");
   const int i = passIndex(kind, TransferForm::kVector, TransferDomain::kTexel);

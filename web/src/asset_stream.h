@@ -58,6 +58,12 @@ class AssetStream {
   Status decodeMatrixPassCpca(int kind, int bands, CpcaMatrixTransfer* out, TransferPass* info);
   // Whether the asset holds a matrix pass of `kind`.
   bool hasMatrixKind(int kind) const;
+  // Whether the asset has a TPFL texel visibility pass (form kVisibility; at most one is used).
+  bool hasVisibility() const;
+  // Decodes that pass from its first `bands` bands (0: all; float32 passes only decode
+  // whole); *order gets the bands decoded. Errors: no geometry decoded yet, no such pass, or
+  // the reader's (checksums, truncation).
+  Status decodeVisibilityPass(int bands, TransferPass* out, int* order);
   // The specular materials (their section must have arrived; empty without a matrix pass).
   Status decodeSpecular(std::vector<SpecularMaterial>* out);
   const AssetSummary& summary() const { return summary_; }
@@ -69,6 +75,7 @@ class AssetStream {
   bool headerRead_ = false;
   // Index into summary_.passes of the pass of `kind`, `form` and `domain`, or -1.
   int passIndex(int kind, TransferForm form = TransferForm::kVector, TransferDomain domain = TransferDomain::kVertex) const;
+  int visibilityIndex() const;  // the first kVisibility pass, or -1
   bool isCpcaAt(int index) const;
 };
 

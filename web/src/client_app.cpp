@@ -67,11 +67,15 @@ std::string ClientApp::loadAsset() {
   std::vector<std::pair<TransferKind, CpcaTransfer>> cpca;
   std::vector<std::pair<TransferKind, CpcaMatrixTransfer>> glossy;
   std::vector<TransferPass> expanded, texel;
+  std::optional<TransferPass> visibility;  // the TPFL glossy term of the texel passes
   const int glossyBands = std::min(decoded.shOrder, kMaxGlossyOrder);
   for (TransferPass& p : decoded.passes) {
     if (p.domain == TransferDomain::kTexel) {
-      if (p.form != TransferForm::kVector) continue;  // TPFL visibility: no client shader for it yet
       p.encoded = {};
+      if (p.form == TransferForm::kVisibility) {
+        if (!visibility) visibility = std::move(p);
+        continue;
+      }
       texel.push_back(std::move(p));
       continue;
     }
@@ -116,6 +120,10 @@ std::string ClientApp::loadAsset() {
     if (Status u = renderer_.uploadTexelPass(t, decoded.shOrder); !u.isOk()) return u.message();
   }
   texel = {};
+  if (visibility) {
+    if (Status u = renderer_.uploadTexelVisibility(*visibility, visibility->order, decoded.specular); !u.isOk()) return u.message();
+    visibility.reset();
+  }
   adoptGeometry(std::move(decoded));
   for (auto& [kind, m] : glossy) {
     if (std::string e = uploadGlossy(kind, std::move(m)); !e.empty()) return e;
@@ -177,17 +185,66 @@ std::string ClientApp::streamTexelPass(ShadingMode mode, int bands) {
   return "";
 }
 
+std::string ClientApp::streamVisibilityPass(int bands) {
+  if (!ok()) return error_;
+  TransferPass pass;
+  int order = 0;
+  if (Status s = stream_.decodeVisibilityPass(bands, &pass, &order); !s.isOk()) return s.toString();
+  makeCurrent();
+  if (Status u = renderer_.uploadTexelVisibility(pass, order, asset_.specular); !u.isOk()) return u.message();
+  productVersion_.reset();  // remade for the new visibility order at the next frame
+  return "";
+}
+
+bool ClientApp::hasTexelGlossy() const { return ok() && (renderer_.texelVisibilityOrder() > 0 || stream_.hasVisibility()); }
+
+std::string ClientApp::updateTexelProduct() {
+  if (renderer_.texelVisibilityOrder() == 0) return "";
+  // The product's bands: the displayed lighting's, at most the lobe's kMaxGlossyOrder.
+  const int bands = std::clamp(std::min(displayOrder_, kMaxGlossyOrder), 1, kMaxGlossyOrder);
+  const std::uint64_t version = (static_cast<std::uint64_t>(lights_.lightingVersion()) << 8) | static_cast<std::uint64_t>(bands);
+  if (productVersion_ == version) return "";
+  // The lighting block is built on the GPU (environment plus light cube): read back, as
+  // lightSH does, only when it changed. A synchronous read, a few hundred bytes.
+  const std::vector<float> flat = lights_.lightSH();
+  std::vector<Rgb> lighting(static_cast<std::size_t>(bands * bands));
+  for (std::size_t i = 0; i < lighting.size(); ++i) {
+    if (3 * i + 2 < flat.size()) lighting[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+  }
+  if (Status s = renderer_.setTexelProduct(lighting, bands); !s.isOk()) return s.message();
+  productVersion_ = version;
+  return "";
+}
+
+TexelShading ClientApp::texelShading() const {
+  TexelShading t;
+  t.displayOrder = displayOrder_;
+  t.exposure = exposure_;
+  const GlossyMix mix = glossyMix(mode_);
+  t.diffuse = mix != GlossyMix::kGlossy;
+  t.glossy = mix != GlossyMix::kDiffuse;
+  t.eye = camera_.eye();
+  t.fresnel = fresnel_;
+  return t;
+}
+
 std::vector<int> ClientApp::atlasSizes() const {
   std::vector<int> out;
   for (const TextureAtlas& a : renderer_.atlases()) out.insert(out.end(), {static_cast<int>(a.width), static_cast<int>(a.height)});
   return out;
 }
 
-std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out) {
+std::string ClientApp::texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out, bool positions) {
   if (!ok()) return error_;
   makeCurrent();
   prepareLighting();
-  if (Status s = renderer_.readTexelAtlas(kind, atlas, displayOrder_, out); !s.isOk()) return s.message();
+  if (std::string e = updateTexelProduct(); !e.empty()) return e;
+  TexelShading shading = texelShading();
+  const GlossyMix mix = glossyMix(kind);
+  shading.diffuse = mix != GlossyMix::kGlossy;
+  shading.glossy = mix != GlossyMix::kDiffuse;
+  shading.positions = positions;
+  if (Status s = renderer_.readTexelAtlas(kind, atlas, shading, out); !s.isOk()) return s.message();
   return "";
 }
 
@@ -306,6 +363,8 @@ std::string ClientApp::useSyntheticGlossy(ShadingMode kind, int bands, int chann
 }
 
 void ClientApp::adoptGeometry(BakedAsset decoded) {
+  productVersion_.reset();  // a new scene: its product matrix is made at the next frame
+  productError_.clear();
   asset_ = std::move(decoded);
   glossyCpu_ = {};
   asset_.passes.clear();  // on the GPU now; the CPU copy is not used again
@@ -328,7 +387,7 @@ std::string ClientApp::streamGeometry() {
   if (Status s = stream_.decodeGeometry(&decoded); !s.isOk()) return s.toString();
   makeCurrent();
   if (Status u = renderer_.uploadGeometry(decoded); !u.isOk()) return u.message();
-  const bool anyGlossy = stream_.hasMatrixKind(0) || stream_.hasMatrixKind(1) || stream_.hasMatrixKind(2);
+  const bool anyGlossy = stream_.hasMatrixKind(0) || stream_.hasMatrixKind(1) || stream_.hasMatrixKind(2) || stream_.hasVisibility();
   if (anyGlossy && decoded.specular.size() != decoded.positions.size()) {
     if (Status s = stream_.decodeSpecular(&decoded.specular); !s.isOk()) return s.toString();
   }
@@ -439,6 +498,10 @@ void ClientApp::render(int width, int height) {
   }
   nearZ = std::max(nearZ, farZ * 1e-4f);
   camera_.update(nearZ, farZ);
+  // Only a texel frame that shows the glossy term needs P(L) (and the lighting's read-back).
+  if (source_ == TransferDomain::kTexel && isPassKind(mode_) && glossyMix(mode_) != GlossyMix::kDiffuse) {
+    productError_ = updateTexelProduct();  // on failure the frame draws without the glossy term
+  }
   FrameParams p;
   p.viewProjection = camera_.viewProjection();
   p.mode = mode_;

@@ -86,12 +86,21 @@ class ClientApp {
   std::string streamTexelPass(ShadingMode kind, int bands);
   // Bands of texel pass `kind` on the GPU (0 when absent, and for Lambert).
   int texelBands(ShadingMode kind) const { return renderer_.texelOrder(kind); }
+  // Decodes the TPFL visibility pass from its first `bands` bands (0: all; float32 passes only
+  // decode whole) and uploads it as the texel passes' glossy term. "" or the error.
+  std::string streamVisibilityPass(int bands);
+  // Whether the scene has (or is streaming) a TPFL visibility pass: the texel glossy term.
+  bool hasTexelGlossy() const;
+  // Bands of the visibility pass on the GPU (0 when absent).
+  int texelGlossyBands() const { return renderer_.texelVisibilityOrder(); }
+  // The last failure to remake the texel glossy term's product matrix ("" when none).
+  std::string texelGlossyError() const { return productError_; }
   // The atlases' sizes, [width0, height0, width1, height1, ...] (empty without texel passes).
   std::vector<int> atlasSizes() const;
   // Tests: atlas `atlas` of texel pass `kind` rendered in UV space by the shading fragment
   // shader with this frame's lighting (updated first) at the display order, read back into
   // *out as linear RGBA (TexelRenderer::readAtlas). "" or the error.
-  std::string texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out);
+  std::string texelAtlasRadiance(ShadingMode kind, int atlas, std::vector<float>* out, bool positions = false);
 
   // ---- glossy rendering (docs/web-client.md, "Glossy rendering") ----
   // Which terms pass `kind` draws: its diffuse vector pass, its glossy matrix pass, or both
@@ -234,6 +243,10 @@ class ClientApp {
   // source_ from wantedSource_ and what the scene has; then, if the displayed pass kind is not
   // offered in that domain, the richest that is (interreflected, shadowed, unshadowed).
   void resolveSource();
+  // Remakes the texel glossy term's product matrix P(L) when the scene has a visibility pass and
+  // the lighting or the bands changed since. "" or the error.
+  std::string updateTexelProduct();
+  TexelShading texelShading() const;  // the frame's terms, order, eye for the texel draw
 
   std::string error_;
   int context_ = 0;
@@ -245,6 +258,8 @@ class ClientApp {
   std::array<GlossyMix, 3> glossyMix_{GlossyMix::kBoth, GlossyMix::kBoth, GlossyMix::kBoth};
   std::array<CpcaMatrixTransfer, 3> glossyCpu_{};  // the uploaded glossy passes, for glossyReference
   glm::vec3 lastEye_{0.0f};
+  std::optional<std::uint64_t> productVersion_;  // lighting version and bands of the uploaded P(L)
+  std::string productError_;
   std::vector<std::uint8_t> pending_;
   AssetStream stream_;
   BakedAsset asset_;

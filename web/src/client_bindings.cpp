@@ -75,9 +75,10 @@ val atlasSizes(const ClientApp& app) { return val::array(app.atlasSizes()); }
 
 // Atlas `atlas` of texel pass `kind` read back in UV space (ClientApp::texelAtlasRadiance): a
 // Float32Array of width x height x 4 linear RGBA floats, or a string naming the error.
-val texelAtlasRadiance(ClientApp& app, prt::web::ShadingMode kind, int atlas) {
+// With `positions` (tests) the fragments' world positions instead of radiance (alpha as before).
+val texelAtlasRadiance(ClientApp& app, prt::web::ShadingMode kind, int atlas, bool positions) {
   std::vector<float> rgba;
-  if (std::string e = app.texelAtlasRadiance(kind, atlas, &rgba); !e.empty()) return val(e);
+  if (std::string e = app.texelAtlasRadiance(kind, atlas, &rgba, positions); !e.empty()) return val(e);
   return val(emscripten::typed_memory_view(rgba.size(), rgba.data())).call<val>("slice");  // a copy: rgba dies here
 }
 
@@ -133,6 +134,10 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("hasSource", &ClientApp::hasSource)
       .function("streamTexelPass", &ClientApp::streamTexelPass)
       .function("texelBands", &ClientApp::texelBands)
+      .function("streamVisibilityPass", &ClientApp::streamVisibilityPass)
+      .function("hasTexelGlossy", &ClientApp::hasTexelGlossy)
+      .function("texelGlossyBands", &ClientApp::texelGlossyBands)
+      .function("texelGlossyError", &ClientApp::texelGlossyError)
       .function("atlasSizes", &atlasSizes)
       .function("texelAtlasRadiance", &texelAtlasRadiance)
       .function("setGlossyMix", &ClientApp::setGlossyMix)

@@ -409,7 +409,7 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
   vertexCount_ = static_cast<GLsizei>(asset.positions.size());
   indexCount_ = static_cast<GLsizei>(asset.indices.size());
   bakedOrder_ = asset.shOrder;
-  texels_.setGeometry(positions_, albedo_, indices_, asset.atlasUv, asset.atlases);  // nothing without atlases
+  texels_.setGeometry(positions_, albedo_, normals_, indices_, asset.atlasUv, asset.atlases);  // nothing without atlases
 }
 
 Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
@@ -444,9 +444,9 @@ Status GlRenderer::uploadTexelPass(const TransferPass& pass, int order) {
 
 int GlRenderer::texelOrder(ShadingMode mode) const { return isPassKind(mode) ? texels_.passOrder(static_cast<int>(mode)) : 0; }
 
-Status GlRenderer::readTexelAtlas(ShadingMode mode, int atlas, int displayOrder, std::vector<float>* out) {
+Status GlRenderer::readTexelAtlas(ShadingMode mode, int atlas, const TexelShading& shading, std::vector<float>* out) {
   if (!isPassKind(mode)) return Status::error(StatusCode::kInvalidArgument, "readTexelAtlas: not a pass kind");
-  return texels_.readAtlas(static_cast<int>(mode), atlas, displayOrder, out);
+  return texels_.readAtlas(static_cast<int>(mode), atlas, shading, out);
 }
 
 int GlRenderer::passOrder(ShadingMode mode) const {
@@ -608,7 +608,14 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     return;
   }
   if (p.domain == TransferDomain::kTexel) {
-    (void)texels_.draw(static_cast<int>(p.mode), p.viewProjection, p.displayOrder, p.exposure);
+    TexelShading shading;
+    shading.displayOrder = p.displayOrder;
+    shading.exposure = p.exposure;
+    shading.diffuse = p.mix != GlossyMix::kGlossy;
+    shading.glossy = p.mix != GlossyMix::kDiffuse;
+    shading.eye = p.eye;
+    shading.fresnel = p.fresnel;
+    (void)texels_.draw(static_cast<int>(p.mode), p.viewProjection, shading);
     return;
   }
   // The terms of the pass: diffuse (vector pass) and glossy (matrix pass), each captured into

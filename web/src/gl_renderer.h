@@ -55,7 +55,7 @@ struct FrameParams {
   // its transferred radiance (view-independent) while this and the display order stay put.
   unsigned lightingVersion = 0;
   // Which pass of `mode` is drawn: the vertex pass (with its glossy term) or the texel pass
-  // (transfer textures, diffuse only; docs/web-client.md "Transfer textures").
+  // (transfer textures, with the TPFL glossy term; docs/web-client.md "Transfer textures").
   TransferDomain domain = TransferDomain::kVertex;
 };
 
@@ -112,9 +112,16 @@ class GlRenderer {
   int texelOrder(ShadingMode mode) const;
   // The scene's atlases (empty without transfer textures).
   const std::vector<TextureAtlas>& atlases() const { return texels_.atlases(); }
+  // The TPFL visibility pass and the per-vertex specular materials (TexelRenderer::uploadVisibility).
+  Status uploadTexelVisibility(const TransferPass& pass, int order, std::span<const SpecularMaterial> specular) {
+    return texels_.uploadVisibility(pass, order, specular);
+  }
+  int texelVisibilityOrder() const { return texels_.visibilityOrder(); }  // 0 when absent
+  // P_c(L) for the texel glossy term from `lighting` (bands^2 RGB; TexelRenderer::setProductLighting).
+  Status setTexelProduct(std::span<const Rgb> lighting, int bands) { return texels_.setProductLighting(lighting, bands); }
   // Atlas `atlas` of texel pass `mode` rendered in UV space and read back as linear RGBA
-  // floats (TexelRenderer::readAtlas), with the bound lighting block at `displayOrder` bands.
-  Status readTexelAtlas(ShadingMode mode, int atlas, int displayOrder, std::vector<float>* out);
+  // floats (TexelRenderer::readAtlas), with the bound lighting block and `shading`'s terms.
+  Status readTexelAtlas(ShadingMode mode, int atlas, const TexelShading& shading, std::vector<float>* out);
   bool hasPass(ShadingMode mode) const;
   // How pass `mode` is drawn (kAbsent for Lambert).
   PassForm passForm(ShadingMode mode) const;
