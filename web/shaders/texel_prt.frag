@@ -118,13 +118,16 @@ vec3 glossyTerm(vec2 uv) {
   if (!(distance > 0.0)) return vec3(0.0);
   vec3 toEye = d * (1.0 / distance);
   vec3 n = normalize(vNormal);
+  vec3 ks = schlick(vSpecular.rgb, vSpecularF90, dot(n, toEye), uFresnel == 1);
+  // A matte surface (f0 = f90 = 0: the room's walls) has k_s = 0 at every angle: its glossy
+  // term is exactly 0, so skip the n^2 x m^2 product (the bulk of a texel frame's cost).
+  if (ks == vec3(0.0)) return vec3(0.0);
   vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
   float rl = length(r);
   r = rl > 0.0 ? r * (1.0 / rl) : n;
   shBasis(uBands, r);
   float g[8];
   phongBandScales(uBands, vSpecular.w, g);
-  vec3 ks = schlick(vSpecular.rgb, vSpecularF90, dot(n, toEye), uFresnel == 1);
   vec4 v[57];
   for (int t = 0; t < uVisibilityLayers; ++t) v[t] = textureLod(uVisibility, vec3(uv, float(t)), 0.0);
   int rows = uBands * uBands;
