@@ -280,6 +280,20 @@ Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings&
   return Status::ok();
 }
 
+void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer) {
+  optimizeMeshOrder(scene);
+  *transfer = options.transfer;
+  transfer->lighting = resolveLighting(*scene, options);
+  transfer->interreflection = options.storeInterreflected;
+}
+
+Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,
+                           const LightingInfo& lighting, BakedAsset* asset, std::vector<CompressedPass>* compressed) {
+  *asset = makeAsset(std::move(scene), std::move(result), options, lighting);
+  if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, compressed));
+  return Status::ok();
+}
+
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started) {
   *report = AssetBakeReport{};
@@ -298,12 +312,10 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   // Before the vertex order and the report: a generated atlas splits vertices at its seams.
   TexelAtlasPick atlas;
   if (options.texels) PRT_RETURN_IF_ERROR(pickTexelAtlas(*options.texels, &scene, &atlas));
-  optimizeMeshOrder(&scene);
+  BakeOptions transfer;
+  prepareVertexBake(options, &scene, &transfer);
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
-  BakeOptions transfer = options.transfer;
-  transfer.lighting = resolveLighting(scene, options);
-  transfer.interreflection = options.storeInterreflected;
   report->lighting = transfer.lighting;
   if (started) started(*report);
 
