@@ -1,0 +1,11 @@
+# Sharded bakes (docs/scale-out.md): plan, bake-shard and merge through the real prt-bake
+# (shard_cli_test.sh, one ctest test per case), and the same on a real single-node Slurm
+# cluster (slurm_bake_test.sh, which starts and stops its own through scripts/slurm-local.sh).
+# include()d from tests/CMakeLists.txt for native builds.
+set(PRT_SHARD_CASES identical missing corrupt mismatched changed_scene usage)
+foreach(case IN LISTS PRT_SHARD_CASES)
+  add_test(NAME shard_cli_${case}
+           COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/shard_cli_test.sh ${case} $<TARGET_FILE:prt-bake>
+                   ${CMAKE_CURRENT_BINARY_DIR}/shard_work/${case})
+  set_tests_properties(shard_cli_${case} PROPERTIES TIMEOUT 900)
+endforeach()
