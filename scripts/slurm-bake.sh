@@ -16,7 +16,7 @@
 set -euo pipefail
 
 usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
-die() { echo "slurm-bake: error: $*" >&2; exit "${2:-2}"; }
+die() { echo "slurm-bake: error: $1" >&2; exit "${2:-2}"; }
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 bake_args=() sbatch_opts=() asset="" shards="" work="" wait=0
@@ -95,8 +95,16 @@ final_opts=("${dependency[@]}" --job-name=prt-bake-asset --output="$work/logs/as
 if ((wait)); then
   echo "slurm-bake: waiting for the asset job (logs: $work/logs)" >&2
   status=0
-  sbatch "${common[@]}" --wait "${final_opts[@]}" "$work/job.sh" asset "$asset" > /dev/null || status=$?
-  if ((status != 0)); then die "the bake failed (status $status); see $work/logs" 4; fi
+  final=$(sbatch "${common[@]}" --wait "${final_opts[@]}" "$work/job.sh" asset "$asset") || status=$?
+  final=${final%%;*}
+  # sbatch --wait exits 0 for a job cancelled before it ran (a failed step cancels the jobs
+  # after it), so the job's own state decides.
+  state=$(scontrol show job "$final" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | head -1)
+  if ((status != 0)) || [[ $state != COMPLETED || ! -f $asset ]]; then
+    # The first error of each failed step, with its log.
+    grep -H "error:" "$work"/logs/*.log 2>/dev/null | head -n 10 | sed 's/^/slurm-bake: /' >&2 || true
+    die "the bake failed (asset job ${final:-?}: ${state:-unknown}, sbatch status $status); see the logs in $work/logs" 4
+  fi
   echo "slurm-bake: wrote $asset" >&2
 else
   final=$(submit "${final_opts[@]}" "$work/job.sh" asset "$asset")

@@ -9,3 +9,14 @@ foreach(case IN LISTS PRT_SHARD_CASES)
                    ${CMAKE_CURRENT_BINARY_DIR}/shard_work/${case})
   set_tests_properties(shard_cli_${case} PROPERTIES TIMEOUT 900)
 endforeach()
+
+# Real Slurm (Debian's slurm-wlm and munge, from scripts/install-deps.sh; without them the
+# tests fail, naming what is missing). Each case starts its own single-node cluster, so they
+# take turns (one set of ports), and each has a time limit so a stuck job fails the test.
+set(PRT_SLURM_CASES identical requeue failure)
+foreach(case IN LISTS PRT_SLURM_CASES)
+  add_test(NAME slurm_bake_${case}
+           COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/slurm_bake_test.sh ${case} $<TARGET_FILE:prt-bake>
+                   ${CMAKE_CURRENT_BINARY_DIR}/slurm_work/${case})
+  set_tests_properties(slurm_bake_${case} PROPERTIES TIMEOUT 900 RESOURCE_LOCK prt_slurm_local)
+endforeach()
