@@ -13,6 +13,8 @@ case_name=$1 bake=$2 work=$3
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 export SLURM_LOCAL_DIR=$work/slurm PRT_BAKE=$bake
+# Ports of their own, so a cluster a developer started by hand (port 16817) is not in the way.
+export SLURM_LOCAL_PORT=${SLURM_LOCAL_PORT:-16917}
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 # Waits up to $1 seconds for the command after it to succeed.
