@@ -2,6 +2,12 @@
 # (shard_cli_test.sh, one ctest test per case), and the same on a real single-node Slurm
 # cluster (slurm_bake_test.sh, which starts and stops its own through scripts/slurm-local.sh).
 # include()d from tests/CMakeLists.txt for native builds.
+
+# The plan, shard and merged-pass files on damaged and hostile bytes.
+add_executable(prt_shard_format_tests ${CMAKE_CURRENT_LIST_DIR}/shard_format_test.cpp)
+target_link_libraries(prt_shard_format_tests PRIVATE prt_shard GTest::gtest_main)
+target_compile_options(prt_shard_format_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME shard_format_tests COMMAND prt_shard_format_tests)
 set(PRT_SHARD_CASES identical missing corrupt mismatched changed_scene usage)
 foreach(case IN LISTS PRT_SHARD_CASES)
   add_test(NAME shard_cli_${case}
