@@ -106,18 +106,26 @@ Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* o
   return Status::ok();
 }
 
-// Before pass `pass` >= 1: merged pass pass-1, or *ended when an earlier merged pass was the
-// last of the series. The chain 0..pass-1 must be complete up to where it ends.
+// Before pass `pass` >= 1: merged pass pass-1 (one read: it exists only when no earlier pass
+// ended the series), or *ended when it is the last, or when it is absent because an earlier
+// merged pass was the last (then passes after that one wrote nothing).
 Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MergedPass* previous) {
   *ended = false;
-  for (std::uint32_t j = 0; j < pass; ++j) {
-    PRT_RETURN_IF_ERROR(readMergedPass(ctx, j, previous));
-    if (previous->final) {
-      *ended = true;
+  Status first;
+  for (std::uint32_t j = pass; j-- > 0;) {
+    const Status s = readMergedPass(ctx, j, previous);
+    if (s.code() == StatusCode::kNotFound) {
+      if (first.isOk()) first = s;
+      continue;
+    }
+    PRT_RETURN_IF_ERROR(s);
+    if (j + 1 == pass || previous->final) {
+      *ended = previous->final;
       return Status::ok();
     }
+    return first;  // pass j did not end the series, so merged pass j+1 should be there
   }
-  return Status::ok();
+  return first;
 }
 
 // bakeTransfer's stopping rule after bounce `pass`.
