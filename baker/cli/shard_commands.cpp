@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <vector>
+#include <optional>
 
 #include "baker/cli/bake_command.h"
 #include "baker/cli/progress_bar.h"

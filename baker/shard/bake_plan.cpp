@@ -1,5 +1,7 @@
 #include "baker/shard/bake_plan.h"
 
+#include <algorithm>
+
 #include "baker/shard/byte_io.h"
 #include "baker/shard/shard_container.h"
 #include "baker/transfer/hit_record.h"

@@ -1,5 +1,6 @@
 #include "baker/shard/sharded_bake.h"
 
+#include <cstdio>
 #include <span>
 #include <vector>
 
