@@ -46,13 +46,20 @@ asset_dir=$(dirname "$asset")
 [[ -d $asset_dir ]] || die "the directory of '$asset' does not exist" 3
 asset=$(realpath -m "$asset")
 work=$(realpath -m "${work:-$asset.shards}")
+created_work=0
+[[ -e $work ]] || created_work=1
 mkdir -p "$work/logs"
 plan=$work/plan
 max_requeues=${PRT_SLURM_MAX_REQUEUES:-3}
 
-# The plan is made here, so a bad option or scene fails now, not in a job.
-passes=$("$bake" plan "${bake_args[@]}" -o "$plan" --shards "$shards" --json | sed -n 's/.*"passes": \([0-9]*\).*/\1/p')
-[[ -n $passes ]] || die "prt-bake plan printed no pass count" 5
+# The plan is made here, so a bad option or scene fails now, not in a job (and leaves no
+# work directory behind it).
+status=0
+passes=$("$bake" plan "${bake_args[@]}" -o "$plan" --shards "$shards" --json | sed -n 's/.*"passes": \([0-9]*\).*/\1/p') || status=$?
+if ((status != 0)) || [[ -z $passes ]]; then
+  ((created_work)) && rm -rf "$work"
+  die "prt-bake plan failed (status $status); nothing submitted" "$((status ? status : 5))"
+fi
 
 # One script for every step. It requeues its own job when prt-bake died of a signal (killed,
 # preempted, out of memory) or of something another try may not meet (exit 6: a resource;
@@ -80,14 +87,26 @@ JOB
 chmod +x "$work/job.sh"
 
 common=(--parsable --requeue --open-mode=append --kill-on-invalid-dep=yes "${sbatch_opts[@]}")
-submit() { local id; id=$(sbatch "${common[@]}" "$@") || die "sbatch failed" 7; echo "${id%%;*}"; }
+# submit VAR SBATCH-ARGS...: submits a job and sets VAR to its id. When sbatch fails, the
+# jobs already submitted are cancelled: half a chain would only wait or fail later.
+submitted=()
+submit() {
+  local var=$1 id
+  shift
+  if ! id=$(sbatch "${common[@]}" "$@"); then
+    ((${#submitted[@]})) && scancel "${submitted[@]}" 2>/dev/null
+    die "sbatch failed; cancelled the ${#submitted[@]} jobs already submitted" 7
+  fi
+  submitted+=("${id%%;*}")
+  printf -v "$var" '%s' "${id%%;*}"
+}
 
 dependency=()
 for ((k = 0; k < passes; k++)); do
-  array=$(submit "${dependency[@]}" --job-name="prt-bake-pass$k" --array="0-$((shards - 1))" \
-                 --output="$work/logs/pass$k-shard%a.log" "$work/job.sh" shard "$k")
-  merge=$(submit --dependency="afterok:$array" --job-name="prt-bake-merge$k" \
-                 --output="$work/logs/pass$k-merge.log" "$work/job.sh" merge "$k")
+  submit array "${dependency[@]}" --job-name="prt-bake-pass$k" --array="0-$((shards - 1))" \
+               --output="$work/logs/pass$k-shard%a.log" "$work/job.sh" shard "$k"
+  submit merge --dependency="afterok:$array" --job-name="prt-bake-merge$k" \
+               --output="$work/logs/pass$k-merge.log" "$work/job.sh" merge "$k"
   echo "slurm-bake: pass $k: job array $array ($shards shards), merge job $merge" >&2
   dependency=(--dependency="afterok:$merge")
 done
@@ -107,7 +126,7 @@ if ((wait)); then
   fi
   echo "slurm-bake: wrote $asset" >&2
 else
-  final=$(submit "${final_opts[@]}" "$work/job.sh" asset "$asset")
+  submit final "${final_opts[@]}" "$work/job.sh" asset "$asset"
   echo "slurm-bake: asset job $final writes $asset (logs: $work/logs)" >&2
   echo "$final"
 fi
