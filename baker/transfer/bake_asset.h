@@ -110,8 +110,9 @@ struct AssetBakeReport {
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 
-// The steps bakeAsset takes around bakeTransfer, for a sharded bake (baker/shard) that runs
-// bakeTransfer's pieces itself; vertex passes only (no texels, no glossy material split).
+// The steps bakeAsset takes just before and after bakeTransfer, shared with a sharded bake
+// (baker/shard) that runs bakeTransfer's pieces itself (vertex passes only: it applies no
+// glossy material split and picks no atlas, which bakeAsset does before this).
 // Puts *scene in bake order (optimizeMeshOrder) and sets *transfer to the options bakeAsset
 // passes to bakeTransfer (local lighting's sphere resolved, interreflection as stored).
 void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer);
