@@ -9,13 +9,16 @@
 #   --work DIR   where the plan, shards and logs go (default: ASSET.shards); it must be on a
 #                filesystem every node sees, as must ASSET, SCENE and prt-bake
 #   --wait       return when the asset is written (exit 0) or the bake failed (non-zero)
-#   -- ...       passed to every sbatch (e.g. -- --partition=bake --time=1:00:00)
+#   -- ...       passed to every sbatch (e.g. -- --partition=bake --cpus-per-task=8); each
+#                step runs as many threads as its job has CPUs (--cpus-per-task, default 1)
 # Environment: PRT_BAKE (the prt-bake to run; default: prt-bake on PATH, else
 #   build/native/baker/prt-bake), PRT_SLURM_MAX_REQUEUES (times a killed step is requeued, default 3).
 # Needs sbatch and scontrol (Slurm's client commands) on this host and on the nodes.
 set -euo pipefail
-
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+# The whole script is one block, read before it runs: editing the file while a bake waits
+# (--wait) cannot change what the running script does next.
+{
+usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; }
 die() { echo "slurm-bake: error: $1" >&2; exit "${2:-2}"; }
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -69,10 +72,12 @@ cat > "$work/job.sh" <<JOB
 # Written by scripts/slurm-bake.sh: one step of the sharded bake of $plan.
 set -u
 step=\$1 arg=\$2
+# As many threads as the job was given CPUs (sbatch --cpus-per-task), not the node's count.
+threads=\${SLURM_CPUS_PER_TASK:-1}
 case \$step in
-  shard) "$bake" bake-shard --plan "$plan" --shard "\$SLURM_ARRAY_TASK_ID" --pass "\$arg" ;;
-  merge) "$bake" merge --plan "$plan" --pass "\$arg" ;;
-  asset) "$bake" merge --plan "$plan" -o "\$arg" ;;
+  shard) "$bake" bake-shard --plan "$plan" --shard "\$SLURM_ARRAY_TASK_ID" --pass "\$arg" --threads "\$threads" ;;
+  merge) "$bake" merge --plan "$plan" --pass "\$arg" --threads "\$threads" ;;
+  asset) "$bake" merge --plan "$plan" -o "\$arg" --threads "\$threads" ;;
 esac
 status=\$?
 if (( status >= 128 || status == 6 || status == 7 )) && (( \${SLURM_RESTART_COUNT:-0} < $max_requeues )); then
@@ -130,3 +135,5 @@ else
   echo "slurm-bake: asset job $final writes $asset (logs: $work/logs)" >&2
   echo "$final"
 fi
+exit
+}
