@@ -28,6 +28,9 @@ packages=(
   blender
   # a corpus of real glTF files, valid and malformed (glTF 1.0 among them), for loader tests
   assimp-testmodels
+  # scale-out bakes: a single-node Slurm cluster (slurmctld, slurmd, sbatch) and its
+  # authentication daemon, started without systemd by scripts/slurm-local.sh for the tests
+  slurm-wlm munge
   # syscall traces: the atomic-write test checks the directory is flushed after the rename
   strace
   # headless browser for the web client's tests (driven by playwright-core from npm)

@@ -439,6 +439,17 @@ double peakMemoryMiB() {
 
 const char* bakeHelpText() { return kHelp; }
 
+Status parseBakeCommandLine(std::span<const std::string> args, BakeCommandLine* out) {
+  BakeCli c;
+  PRT_RETURN_IF_ERROR(parseBakeArgs(args, &c));
+  out->scene = std::move(c.scene);
+  out->output = std::move(c.output);
+  out->bake = std::move(c.bake);
+  out->quiet = c.quiet;
+  out->json = c.json;
+  return Status::ok();
+}
+
 int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
   if (wantsHelp(args)) {
     std::fputs(kHelp, out);

@@ -16,6 +16,7 @@
 #include "native/file_io.h"
 #include "baker/cli/compress_command.h"
 #include "baker/cli/probe_command.h"
+#include "baker/cli/shard_commands.h"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "unknown"
@@ -35,6 +36,9 @@ constexpr const char* kHelp =
     "  info       verify a baked asset and print what it holds\n"
     "  shade      print every vertex's exit radiance under a light, from an asset\n"
     "  compress-report  size and exit-radiance error of every codec setting on an asset\n"
+    "  plan       split a bake into shards for several machines (docs/scale-out.md)\n"
+    "  bake-shard bake one shard of one pass of a plan\n"
+    "  merge      check and merge a pass's shards, or every shard into the asset\n"
     "\n"
     "Bake options: 'prt-bake --default --help'.\n"
     "\n"
@@ -65,12 +69,15 @@ int run(const std::vector<std::string>& args) {
   if (command == "info") return prt::runInfoCommand(rest, stdout, stderr);
   if (command == "shade") return prt::runShadeCommand(rest, stdout, stderr);
   if (command == "compress-report") return prt::runCompressReportCommand(rest, stdout, stderr);
+  if (command == "plan") return prt::runPlanCommand(rest, stdout, stderr);
+  if (command == "bake-shard") return prt::runBakeShardCommand(rest, stdout, stderr);
+  if (command == "merge") return prt::runMergeCommand(rest, stdout, stderr);
   // Anything else is a bake: `prt-bake SCENE -o ASSET ...` or `prt-bake --default ...`,
   // except a bare word that is neither a file nor a glTF name: most likely a mistyped command.
   const bool looksLikeScene = command[0] == '-' || command.find('.') != std::string::npos ||
                               command.find('/') != std::string::npos || access(command.c_str(), F_OK) == 0;
   if (!looksLikeScene) {
-    return usageError("unknown command '" + command + "' (commands: probe, info, shade, compress-report; or a SCENE.gltf/.glb to bake)");
+    return usageError("unknown command '" + command + "' (commands: probe, info, shade, compress-report, plan, bake-shard, merge; or a SCENE.gltf/.glb to bake)");
   }
   return prt::runBakeCommand(args, stdout, stderr);
 }

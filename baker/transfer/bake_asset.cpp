@@ -235,6 +235,25 @@ Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings&
   return Status::ok();
 }
 
+void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer,
+                       std::vector<std::uint32_t>* triangleGroup) {
+  if (triangleGroup) {
+    optimizeMeshOrder(scene, triangleGroup);
+  } else {
+    optimizeMeshOrder(scene);
+  }
+  *transfer = options.transfer;
+  transfer->lighting = resolveLighting(*scene, options);
+  transfer->interreflection = options.storeInterreflected;
+}
+
+Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,
+                           const LightingInfo& lighting, BakedAsset* asset, std::vector<CompressedPass>* compressed) {
+  *asset = makeAsset(std::move(scene), std::move(result), options, lighting);
+  if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, compressed));
+  return Status::ok();
+}
+
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started) {
   *report = AssetBakeReport{};
@@ -255,12 +274,10 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   // contiguous (the asset's atlases are runs of triangles).
   TextureSetPlan atlas;
   if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, &scene, &atlas));
-  optimizeMeshOrder(&scene, &atlas.triangleAtlas);
+  BakeOptions transfer;
+  prepareVertexBake(options, &scene, &transfer, &atlas.triangleAtlas);
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
-  BakeOptions transfer = options.transfer;
-  transfer.lighting = resolveLighting(scene, options);
-  transfer.interreflection = options.storeInterreflected;
   report->lighting = transfer.lighting;
   if (options.texels) {
     // What `started` can already say about the texture set; bakeTexels fills in the rest.

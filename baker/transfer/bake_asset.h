@@ -134,4 +134,20 @@ struct AssetBakeReport {
 Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* asset, AssetBakeReport* report,
                  const std::function<void(const AssetBakeReport&)>& started = {});
 
+// The steps bakeAsset takes just before and after bakeTransfer, shared with a sharded bake
+// (baker/shard) that runs bakeTransfer's pieces itself (vertex passes only: it applies no
+// glossy material split and picks no atlas, which bakeAsset does before this).
+// Puts *scene in bake order (optimizeMeshOrder, grouped by `triangleGroup` when given: the
+// texture sets' atlas per triangle, permuted with the triangles) and sets *transfer to the
+// options bakeAsset passes to bakeTransfer (local lighting's sphere resolved, interreflection
+// as stored).
+void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer,
+                       std::vector<std::uint32_t>* triangleGroup = nullptr);
+
+// The asset bakeAsset makes of a finished vertex bake: the chosen passes of `result`, named
+// and lit as `options` and `lighting` say, encoded with options.compress (reported in
+// *compressed). Errors: the codec's, as bakeAsset reports them.
+Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,
+                           const LightingInfo& lighting, BakedAsset* asset, std::vector<CompressedPass>* compressed);
+
 }  // namespace prt::bake

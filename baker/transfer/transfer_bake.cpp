@@ -10,6 +10,7 @@
 #include <mutex>
 #include <utility>
 
+#include "baker/transfer/diffuse_bounce.h"
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/glossy_bake.h"
@@ -88,21 +89,11 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   // A bounce's energy is its area-weighted DC transfer summed over channels: proportional
   // to the power it reflects under constant lighting, so it does not depend on how finely
   // each surface happens to be tessellated.
-  std::vector<double> vertexArea(vertexCount, 0.0);
-  for (std::size_t t = 0; t < faceNormal.size(); ++t) {
-    const double third = 0.5 * length(faceNormal[t]) / 3.0;
-    for (int c = 0; c < 3; ++c) vertexArea[scene.indices[3 * t + c]] += third;
-  }
+  const std::vector<double> vertexArea = vertexAreas(scene);
   const std::size_t stride = 3 * static_cast<std::size_t>(n2);
-  std::vector<float> previous(vertexCount * stride), current(vertexCount * stride);
+  std::vector<float> previous, current(vertexCount * stride);
   double energy0 = 0.0;
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};
-    for (int c = 0; c < 3; ++c) {
-      for (int i = 0; i < n2; ++i) previous[v * stride + c * n2 + i] = rho[c] * out->shadowed[v * n2 + i];
-      energy0 += vertexArea[v] * previous[v * stride + c * n2];
-    }
-  }
+  firstBounce(scene, o.order, out->shadowed, vertexArea, &previous, &energy0);
   out->interreflected = previous;
   out->bounceEnergy.push_back(energy0);
 
@@ -169,48 +160,25 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
         glossyCurrent.shrink_to_fit();
       }
     }
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string name = "bounce " + std::to_string(bounce);
-    ProgressReporter progress(o, name, vertexCount);
     std::vector<double> blockEnergy(blockCount, 0.0);
-    parallelFor(blockCount, threads, [&](std::size_t block, unsigned) {
-      const Block& rec = blocks[block];
-      const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
-      std::vector<float> gathered(stride);
-      double e = 0.0;
-      for (std::size_t v = begin; v < end; ++v) {
-        std::fill(gathered.begin(), gathered.end(), 0.0f);
-        const std::size_t local = v - begin;
-        for (std::uint32_t h = rec.hitStart[local]; h < rec.hitStart[local + 1]; ++h) {
-          const Hit& hit = rec.hits[h];
-          const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
-          const float w[3] = {hit.weight * (1.0f - b1 - b2), hit.weight * b1, hit.weight * b2};
-          for (int corner = 0; corner < 3; ++corner) {
-            const float* src = &previous[scene.indices[3 * hit.triangle + corner] * stride];
-            const float wc = w[corner];
-            for (std::size_t i = 0; i < stride; ++i) gathered[i] += wc * src[i];
-          }
-        }
-        if (glossyThisBounce) {
-          const float* fromGlossy = &diffuseFromGlossy[v * stride];
-          for (std::size_t i = 0; i < stride; ++i) gathered[i] += fromGlossy[i];
-        }
-        const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};
-        float* dst = &current[v * stride];
-        for (int c = 0; c < 3; ++c) {
-          for (int i = 0; i < n2; ++i) dst[c * n2 + i] = rho[c] * gathered[c * n2 + i];
-          e += vertexArea[v] * dst[c * n2];
-        }
-      }
-      blockEnergy[block] = e;
-      progress.add(end - begin, 0);
-    });
+    DiffuseBounceJob gather;
+    gather.scene = &scene;
+    gather.options = &o;
+    gather.name = "bounce " + std::to_string(bounce);
+    gather.blocks = blocks;
+    gather.previous = previous.data();
+    gather.fromGlossy = glossyThisBounce ? diffuseFromGlossy.data() : nullptr;
+    gather.vertexArea = vertexArea;
+    gather.current = current.data();
+    gather.blockEnergy = blockEnergy.data();
+    gather.threads = threads;
+    const PassStats stats = gatherDiffuseBounce(gather);
     double energy = 0.0;
     for (double e : blockEnergy) energy += e;  // fixed order: deterministic
     for (std::size_t i = 0; i < current.size(); ++i) out->interreflected[i] += current[i];
     out->bounceEnergy.push_back(energy);
     out->bounces = bounce;
-    out->passes.push_back({name, secondsSince(t0), 0});
+    out->passes.push_back(stats);
     std::swap(previous, current);
     if (!(energy > o.bounceThreshold * energy0)) break;
   }

@@ -1,0 +1,295 @@
+#include "baker/cli/shard_commands.h"
+
+#include <climits>
+#include <cstdlib>
+#include <unistd.h>
+
+#include <vector>
+#include <optional>
+
+#include "baker/cli/bake_command.h"
+#include "baker/cli/progress_bar.h"
+#include "baker/cli/report_failure.h"
+#include "baker/scene/default_scene.h"
+#include "baker/scene/gltf_loader.h"
+#include "baker/shard/bake_plan.h"
+#include "baker/shard/sharded_bake.h"
+#include "baker/transfer/bake_asset.h"
+#include "native/cli_args.h"
+#include "native/exit_status.h"
+#include "native/file_io.h"
+#include "native/json_text.h"
+#include "prt/asset.h"
+
+namespace prt {
+namespace {
+
+constexpr const char* kPlanHelp =
+    "Usage: prt-bake plan SCENE.gltf|SCENE.glb|--default -o PLAN --shards N [bake options]\n"
+    "\n"
+    "Plans a bake split into N shards (docs/scale-out.md): records the scene, its hash, the bake\n"
+    "options and N vertex ranges in PLAN. Then run, for each pass K = 0 .. passes-1,\n"
+    "'prt-bake bake-shard --plan PLAN --shard I --pass K' for every I and 'prt-bake merge --plan\n"
+    "PLAN --pass K', and finally 'prt-bake merge --plan PLAN -o ASSET' (scripts/slurm-bake.sh does\n"
+    "this on Slurm). The asset is byte for byte the one of 'prt-bake SCENE -o ASSET [options]'.\n"
+    "Bake options: those of 'prt-bake --default --help', except --texels, --texel-glossy and\n"
+    "--glossy (not sharded yet). --json prints the plan's passes and shards on stdout.\n";
+
+constexpr const char* kShardHelp =
+    "Usage: prt-bake bake-shard --plan PLAN --shard I --pass K [--threads N] [--quiet]\n"
+    "\n"
+    "Bakes shard I (0-based) of pass K (0: the direct pass; K >= 1: bounce K, which reads merged\n"
+    "pass K-1) and writes PLAN.passK.shardI atomically. When the bounce series ended before\n"
+    "pass K it says so and writes nothing (exit 0).\n";
+
+constexpr const char* kMergeHelp =
+    "Usage: prt-bake merge --plan PLAN --pass K [--threads N] [--quiet]\n"
+    "       prt-bake merge --plan PLAN -o ASSET [--json] [--quiet]\n"
+    "\n"
+    "--pass K: checks every shard of pass K (present, of this plan, checksums, ranges) and writes\n"
+    "the merged pass PLAN.passK.merged that pass K+1 reads. -o: checks every shard and merged pass\n"
+    "up to the last bounce and writes the asset. A missing or damaged file is named in the error.\n";
+
+int printHelp(std::FILE* out, const char* text) {
+  std::fputs(text, out);
+  std::fputs("\n", out);
+  std::fputs(exitStatusHelp(), out);
+  return kExitOk;
+}
+
+Status refuseUnsharded(const BakeCommandLine& c) {
+  const char* flag = c.bake.texels ? (c.bake.texels->visibilityOrder > 0 ? "--texel-glossy" : "--texels")
+                     : c.bake.transfer.glossy ? "--glossy"
+                                              : nullptr;
+  if (!flag) return Status::ok();
+  return Status::error(StatusCode::kInvalidArgument, std::string("sharded bakes do not support ") + flag +
+                                                         " yet (vertex passes only: docs/scale-out.md); bake it on one machine");
+}
+
+Status loadScene(const std::string& path, bool quiet, std::FILE* err, bake::Scene* scene) {
+  if (path.empty()) {
+    *scene = bake::makeDefaultScene();
+    return Status::ok();
+  }
+  std::vector<std::string> warnings;
+  PRT_RETURN_IF_ERROR(bake::loadGltf(path, scene, &warnings));
+  if (!quiet)
+    for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
+  return Status::ok();
+}
+
+// The plan at `planPath`, its bake options re-parsed, its scene loaded, prepared and checked.
+struct LoadedPlan {
+  bake::BakePlan plan;
+  BakeCommandLine bake;
+  bake::Scene scene;
+  bake::BakeOptions transfer;
+};
+
+Status loadPlan(const std::string& planPath, const ParsedArgs& p, bool quiet, std::FILE* err, LoadedPlan* out) {
+  std::vector<std::uint8_t> bytes;
+  PRT_RETURN_IF_ERROR(readFileBytes(planPath, std::uint64_t{1} << 30, &bytes));
+  if (Status s = bake::decodeBakePlan(bytes, &out->plan); !s.isOk()) {
+    return Status::error(s.code(), "'" + planPath + "': " + s.message());
+  }
+  if (Status s = parseBakeCommandLine(out->plan.bakeArgs, &out->bake); !s.isOk()) {
+    return Status::error(StatusCode::kCorrupt, "'" + planPath + "': its bake options do not parse: " + s.message());
+  }
+  PRT_RETURN_IF_ERROR(refuseUnsharded(out->bake));
+  if (const std::string* s = p.value("--threads")) {
+    int v = 0;
+    PRT_RETURN_IF_ERROR(parseIntArg("--threads", *s, 1, 1024, &v));
+    out->bake.bake.transfer.threads = static_cast<unsigned>(v);
+  }
+  PRT_RETURN_IF_ERROR(loadScene(out->plan.scenePath, quiet, err, &out->scene));
+  bake::prepareVertexBake(out->bake.bake, &out->scene, &out->transfer);
+  PRT_RETURN_IF_ERROR(bake::checkPlannedScene(out->plan, out->scene));
+  return Status::ok();
+}
+
+Status requiredPlan(const ParsedArgs& p, std::string* plan) {
+  const std::string* s = p.value("--plan");
+  if (!s || s->empty()) return usageError("missing --plan PLAN (written by 'prt-bake plan')");
+  *plan = *s;
+  return Status::ok();
+}
+
+Status parseIndex(const ParsedArgs& p, const char* flag, std::uint32_t* out) {
+  const std::string* s = p.value(flag);
+  if (!s) return usageError(std::string("missing ") + flag);
+  int v = 0;
+  PRT_RETURN_IF_ERROR(parseIntArg(flag, *s, 0, 1 << 30, &v));
+  *out = static_cast<std::uint32_t>(v);
+  return Status::ok();
+}
+
+}  // namespace
+
+int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
+  if (wantsHelp(args)) return printHelp(out, kPlanHelp);
+  // --shards is the plan's own flag; everything else is the bake's, recorded as given.
+  std::vector<std::string> bakeArgs;
+  std::optional<std::string> shardsText;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--") {
+      bakeArgs.insert(bakeArgs.end(), args.begin() + static_cast<std::ptrdiff_t>(i), args.end());
+      break;
+    }
+    if (args[i] == "--shards" || args[i].rfind("--shards=", 0) == 0) {
+      if (shardsText) return reportFailure(err, "plan", usageError("--shards given twice"));
+      if (args[i] == "--shards") {
+        if (i + 1 >= args.size()) return reportFailure(err, "plan", usageError("--shards needs a value"));
+        shardsText = args[++i];
+      } else {
+        shardsText = args[i].substr(9);
+      }
+      continue;
+    }
+    bakeArgs.push_back(args[i]);
+  }
+  if (!shardsText) return reportFailure(err, "plan", usageError("missing --shards N (how many vertex ranges)"));
+  int shards = 0;
+  if (Status s = parseIntArg("--shards", *shardsText, 1, static_cast<int>(bake::kMaxShards), &shards); !s.isOk()) {
+    return reportFailure(err, "plan", s);
+  }
+  BakeCommandLine c;
+  if (Status s = parseBakeCommandLine(bakeArgs, &c); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = refuseUnsharded(c); !s.isOk()) return reportFailure(err, "plan", s);
+  std::vector<std::string> inputs;
+  if (!c.scene.empty()) inputs.push_back(c.scene);
+  if (Status s = checkOutputPath(c.output, inputs); !s.isOk()) return reportFailure(err, "plan", s);
+
+  bake::BakePlan plan;
+  char cwd[PATH_MAX];
+  if (!getcwd(cwd, sizeof cwd)) {
+    return reportFailure(err, "plan", Status::error(StatusCode::kIoError, "cannot read the working directory"));
+  }
+  plan.workingDirectory = cwd;
+  if (!c.scene.empty()) {
+    // Shards may run elsewhere in the shared filesystem: record where the scene is, absolutely.
+    char real[PATH_MAX];
+    if (!realpath(c.scene.c_str(), real)) {
+      return reportFailure(err, "plan", Status::error(StatusCode::kNotFound, "'" + c.scene + "': no such scene file"));
+    }
+    plan.scenePath = real;
+  }
+  bake::Scene scene;
+  if (Status s = loadScene(plan.scenePath, c.quiet, err, &scene); !s.isOk()) return reportFailure(err, "plan", s);
+  bake::BakeOptions transfer;
+  bake::prepareVertexBake(c.bake, &scene, &transfer);
+  plan.bakeArgs = bakeArgs;
+  plan.sceneHash = bake::sceneHash(scene);
+  plan.vertices = scene.positions.size();
+  plan.triangles = scene.indices.size() / 3;
+  plan.order = static_cast<std::uint32_t>(transfer.order);
+  plan.passes = bake::plannedPasses(transfer);
+  if (Status s = bake::planRanges(plan.vertices, static_cast<std::uint32_t>(shards), &plan.shards); !s.isOk()) {
+    return reportFailure(err, "plan", s);
+  }
+  const std::vector<std::uint8_t> bytes = bake::encodeBakePlan(&plan);
+  if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return reportFailure(err, "plan", s);
+  if (!c.quiet) {
+    std::fprintf(err, "prt-bake: plan %s: %s, %llu vertices in %d shards, up to %u passes (plan id %08x)\n", c.output.c_str(),
+                 plan.scenePath.empty() ? "default scene" : plan.scenePath.c_str(),
+                 static_cast<unsigned long long>(plan.vertices), shards, plan.passes, plan.id);
+  }
+  if (c.json) {
+    std::fprintf(out, "{\"plan\": %s, \"id\": \"%08x\", \"vertices\": %llu, \"shards\": %d, \"passes\": %u}\n",
+                 jsonString(c.output).c_str(), plan.id, static_cast<unsigned long long>(plan.vertices), shards, plan.passes);
+  }
+  return kExitOk;
+}
+
+int runBakeShardCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
+  if (wantsHelp(args)) return printHelp(out, kShardHelp);
+  static constexpr FlagSpec kFlags[] = {{"--plan", true}, {"--shard", true}, {"--pass", true}, {"--threads", true}, {"--quiet", false}};
+  ParsedArgs p;
+  std::string planPath;
+  std::uint32_t shard = 0, pass = 0;
+  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "bake-shard", s);
+  if (!p.positionals.empty()) return reportFailure(err, "bake-shard", usageError("unexpected argument '" + p.positionals[0] + "'"));
+  for (Status s : {requiredPlan(p, &planPath), parseIndex(p, "--shard", &shard), parseIndex(p, "--pass", &pass)}) {
+    if (!s.isOk()) return reportFailure(err, "bake-shard", s);
+  }
+  const bool quiet = p.has("--quiet");
+  LoadedPlan l;
+  if (Status s = loadPlan(planPath, p, quiet, err, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
+  bake::ProgressBar bar(err, !quiet);
+  l.transfer.progress = [&bar](const bake::BakeProgress& pr) { bar.update(pr); };
+  bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
+  bool skipped = false;
+  bake::PassStats stats;
+  const Status s = bake::bakeShard(ctx, pass, shard, &skipped, &stats);
+  bar.finish();
+  if (!s.isOk()) return reportFailure(err, "bake-shard", s);
+  if (!quiet) {
+    if (skipped) {
+      std::fprintf(err, "prt-bake: pass %u is not needed: the bounce series ended before it; nothing written\n", pass);
+    } else {
+      std::fprintf(err, "prt-bake: wrote %s (vertices %llu … %llu, %.2f s)\n", bake::shardPath(planPath, pass, shard).c_str(),
+                   static_cast<unsigned long long>(l.plan.shards[shard].begin),
+                   static_cast<unsigned long long>(l.plan.shards[shard].end), stats.seconds);
+    }
+  }
+  return kExitOk;
+}
+
+int runMergeCommand(std::span<const std::string> args, std::FILE* out, std::FILE* err) {
+  if (wantsHelp(args)) return printHelp(out, kMergeHelp);
+  static constexpr FlagSpec kFlags[] = {{"--plan", true},    {"--pass", true}, {"-o", true},
+                                        {"--output", true}, {"--threads", true}, {"--quiet", false}, {"--json", false}};
+  ParsedArgs p;
+  std::string planPath;
+  if (Status s = parseArgs(args, kFlags, &p); !s.isOk()) return reportFailure(err, "merge", s);
+  if (!p.positionals.empty()) return reportFailure(err, "merge", usageError("unexpected argument '" + p.positionals[0] + "'"));
+  if (Status s = requiredPlan(p, &planPath); !s.isOk()) return reportFailure(err, "merge", s);
+  const std::string* output = p.value("-o") ? p.value("-o") : p.value("--output");
+  if (p.has("-o") && p.has("--output")) return reportFailure(err, "merge", usageError("give -o or --output, not both"));
+  if (p.has("--pass") == (output != nullptr)) {
+    return reportFailure(err, "merge", usageError("give --pass K (merge one pass) or -o ASSET (write the asset), not both or neither"));
+  }
+  const bool quiet = p.has("--quiet");
+  if (output && output->empty()) return reportFailure(err, "merge", usageError("-o needs a file name"));
+  if (output) {
+    if (Status s = checkOutputPath(*output, std::vector<std::string>{planPath}); !s.isOk()) return reportFailure(err, "merge", s);
+  }
+  LoadedPlan l;
+  if (Status s = loadPlan(planPath, p, quiet, err, &l); !s.isOk()) return reportFailure(err, "merge", s);
+  bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
+  if (!output) {
+    std::uint32_t pass = 0;
+    if (Status s = parseIndex(p, "--pass", &pass); !s.isOk()) return reportFailure(err, "merge", s);
+    bool skipped = false, final = false;
+    if (Status s = bake::mergePass(ctx, pass, &skipped, &final); !s.isOk()) return reportFailure(err, "merge", s);
+    if (!quiet) {
+      if (skipped) std::fprintf(err, "prt-bake: pass %u is not needed: the bounce series ended before it; nothing written\n", pass);
+      else std::fprintf(err, "prt-bake: wrote %s%s\n", bake::mergedPassPath(planPath, pass).c_str(), final ? " (the last pass)" : "");
+    }
+    return kExitOk;
+  }
+  bake::BakeResult result;
+  if (Status s = bake::mergeShards(ctx, &result); !s.isOk()) return reportFailure(err, "merge", s);
+  const int bounces = result.bounces;
+  BakedAsset asset;
+  std::vector<bake::CompressedPass> compressed;
+  if (Status s = bake::assembleVertexAsset(std::move(l.scene), std::move(result), l.bake.bake, l.transfer.lighting, &asset,
+                                           &compressed);
+      !s.isOk()) {
+    return reportFailure(err, "merge", s);
+  }
+  std::vector<std::uint8_t> bytes;
+  if (Status s = encodeAsset(asset, &bytes); !s.isOk()) {
+    return reportFailure(err, "merge", Status::error(s.code(), "cannot encode asset: " + s.message()));
+  }
+  if (Status s = writeFileAtomically(*output, bytes, std::vector<std::string>{planPath}); !s.isOk()) {
+    return reportFailure(err, "merge", s);
+  }
+  if (!quiet) std::fprintf(err, "prt-bake: wrote %s (%zu bytes, %d bounces)\n", output->c_str(), bytes.size(), bounces);
+  if (p.has("--json")) {
+    std::fprintf(out, "{\"output\": %s, \"bytes\": %zu, \"bounces\": %d, \"shards\": %zu}\n", jsonString(*output).c_str(),
+                 bytes.size(), bounces, l.plan.shards.size());
+  }
+  return kExitOk;
+}
+
+}  // namespace prt

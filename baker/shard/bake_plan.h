@@ -1,0 +1,56 @@
+// A sharded bake's plan (docs/scale-out.md): which scene, with which bake arguments, split
+// into which vertex ranges, over how many passes. Every shard and merge reads it and checks
+// that the scene it loads is the one planned (by hash), so a changed scene is refused
+// instead of baked into a mixture.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "baker/scene/scene.h"
+#include "prt/status.h"
+
+namespace prt::bake {
+
+inline constexpr std::uint32_t kMaxShards = 65536;
+
+struct VertexRange {
+  std::uint64_t begin = 0, end = 0;
+};
+
+struct BakePlan {
+  std::string scenePath;               // absolute; empty for the built-in room (--default)
+  std::vector<std::string> bakeArgs;   // the bake's arguments as given to `plan` (no --shards)
+  std::string workingDirectory;        // where `plan` ran: relative paths in bakeArgs are from there
+  std::uint32_t sceneHash = 0;         // sceneHash() of the prepared scene
+  std::uint64_t vertices = 0, triangles = 0;
+  std::uint32_t order = 0;
+  std::uint32_t passes = 1;            // 1 (direct) + the bounce limit when interreflection is stored
+  std::vector<VertexRange> shards;     // contiguous, block-aligned, covering [0, vertices)
+  std::uint32_t id = 0;                // CRC-32C of the plan file (set by encode and decode)
+};
+
+// CRC-32C of the prepared scene's vertex count, positions, normals, albedo and indices.
+std::uint32_t sceneHash(const Scene& scene);
+
+// `shards` contiguous ranges of whole 64-vertex blocks over `vertices` vertices, sizes
+// differing by at most one block. kInvalidArgument when shards is 0, above kMaxShards, or
+// above the block count (naming both).
+Status planRanges(std::uint64_t vertices, std::uint32_t shards, std::vector<VertexRange>* out);
+
+// The plan file's bytes; sets plan->id.
+std::vector<std::uint8_t> encodeBakePlan(BakePlan* plan);
+
+// Reads a plan file's bytes, checking the container and that the ranges tile the vertices
+// in whole blocks. Errors name the problem (kTruncated, kBadMagic, kChecksumMismatch, kCorrupt).
+Status decodeBakePlan(std::span<const std::uint8_t> bytes, BakePlan* plan);
+
+// Where shard `shard` of pass `pass` and merged pass `pass` of the plan at `planPath` live:
+// beside the plan, "<plan>.pass<K>.shard<i>" and "<plan>.pass<K>.merged".
+std::string shardPath(const std::string& planPath, std::uint32_t pass, std::uint32_t shard);
+std::string mergedPassPath(const std::string& planPath, std::uint32_t pass);
+
+}  // namespace prt::bake

@@ -1,0 +1,99 @@
+#include "baker/shard/shard_container.h"
+
+#include <cstring>
+
+#include "baker/shard/byte_io.h"
+#include "prt/checksum.h"
+
+namespace prt::bake {
+namespace {
+
+// Eight bytes each; the kind is in the magic so a shard never passes for a plan.
+const char* magicFor(ShardFileKind kind) {
+  switch (kind) {
+    case ShardFileKind::kPlan: return "PRTPLAN1";
+    case ShardFileKind::kShard: return "PRTSHRD1";
+    case ShardFileKind::kMergedPass: return "PRTPASS1";
+  }
+  return "????????";
+}
+
+const char* kindName(ShardFileKind kind) {
+  switch (kind) {
+    case ShardFileKind::kPlan: return "bake plan";
+    case ShardFileKind::kShard: return "bake shard";
+    case ShardFileKind::kMergedPass: return "merged pass";
+  }
+  return "file";
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const std::uint8_t> payload) {
+  std::vector<std::uint8_t> out;
+  out.reserve(kShardHeaderBytes + payload.size());
+  ByteWriter w(&out);
+  w.raw(magicFor(h.kind), 8);
+  w.u32(kShardFormatVersion);
+  w.u32(h.planId);
+  w.u32(h.pass);
+  w.u32(h.shard);
+  w.u64(h.vertexBegin);
+  w.u64(h.vertexEnd);
+  w.u64(payload.size());
+  w.u32(crc32c(payload));
+  w.u32(crc32c(out));  // bytes 0..51
+  w.raw(payload.data(), payload.size());
+  return out;
+}
+
+Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* h,
+                       std::span<const std::uint8_t>* payload) {
+  const std::string what = kindName(kind);
+  const Status notThis = Status::error(StatusCode::kBadMagic, std::string("not a ") + what + " (its first bytes are not " +
+                                                                 magicFor(kind) + ")");
+  if (bytes.size() < 8) {
+    const bool prefix = bytes.empty() || std::memcmp(bytes.data(), magicFor(kind), bytes.size()) == 0;
+    return prefix ? Status::error(StatusCode::kTruncated, "truncated: " + std::to_string(bytes.size()) + " bytes") : notThis;
+  }
+  if (std::memcmp(bytes.data(), magicFor(kind), 8) != 0) return notThis;
+  if (bytes.size() < kShardHeaderBytes) {
+    return Status::error(StatusCode::kTruncated, "truncated: " + std::to_string(bytes.size()) + " bytes, shorter than the " +
+                                                     std::to_string(kShardHeaderBytes) + "-byte header");
+  }
+  ByteReader r(bytes.subspan(8));
+  std::uint32_t version = 0, payloadCrc = 0, headerCrc = 0;
+  std::uint64_t payloadBytes = 0;
+  r.u32(&version);
+  r.u32(&h->planId);
+  r.u32(&h->pass);
+  r.u32(&h->shard);
+  r.u64(&h->vertexBegin);
+  r.u64(&h->vertexEnd);
+  r.u64(&payloadBytes);
+  r.u32(&payloadCrc);
+  r.u32(&headerCrc);
+  h->kind = kind;
+  if (crc32c(bytes.first(52)) != headerCrc) {
+    return Status::error(StatusCode::kChecksumMismatch, "header checksum mismatch: the file is damaged");
+  }
+  if (version != kShardFormatVersion) {
+    return Status::error(StatusCode::kBadVersion, what + " format version " + std::to_string(version) + ", this prt-bake reads " +
+                                                      std::to_string(kShardFormatVersion));
+  }
+  const std::uint64_t available = bytes.size() - kShardHeaderBytes;
+  if (payloadBytes > available) {
+    return Status::error(StatusCode::kTruncated, "truncated: the header declares " + std::to_string(payloadBytes) +
+                                                     " payload bytes, the file has " + std::to_string(available));
+  }
+  if (payloadBytes < available) {
+    return Status::error(StatusCode::kCorrupt, std::to_string(available - payloadBytes) + " bytes after the payload");
+  }
+  *payload = bytes.subspan(kShardHeaderBytes);
+  if (crc32c(*payload) != payloadCrc) {
+    return Status::error(StatusCode::kChecksumMismatch, "payload checksum mismatch: the file is damaged");
+  }
+  return Status::ok();
+}
+
+}  // namespace prt::bake

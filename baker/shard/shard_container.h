@@ -1,0 +1,39 @@
+// The one container every file of a sharded bake uses (plan, shard, merged pass): a
+// 56-byte header naming what the file holds and which plan it belongs to, then a payload,
+// each with a CRC-32C (prt/checksum.h). Byte layout: docs/scale-out.md, "Files".
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "prt/status.h"
+
+namespace prt::bake {
+
+enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass };
+
+inline constexpr std::uint32_t kShardFormatVersion = 1;
+inline constexpr std::size_t kShardHeaderBytes = 56;
+inline constexpr std::uint32_t kNoShard = 0xFFFFFFFFu;  // the header's shard field in plans and merged passes
+
+struct ShardHeader {
+  ShardFileKind kind = ShardFileKind::kShard;
+  std::uint32_t planId = 0;  // CRC-32C of the plan file; 0 in the plan itself
+  std::uint32_t pass = 0;    // 0: the direct pass, b: bounce b
+  std::uint32_t shard = kNoShard;
+  std::uint64_t vertexBegin = 0, vertexEnd = 0;
+};
+
+// The file's bytes: header (with the payload's size and checksum) then `payload`.
+std::vector<std::uint8_t> encodeShardFile(const ShardHeader& header, std::span<const std::uint8_t> payload);
+
+// Checks `bytes` as a file of `kind` and returns its header and payload (a view into bytes).
+// Errors, each naming the problem: kTruncated (shorter than its header or its declared
+// payload), kBadMagic (not this kind of file), kBadVersion (another format version),
+// kChecksumMismatch (header or payload), kCorrupt (bytes after the payload).
+Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* header,
+                       std::span<const std::uint8_t>* payload);
+
+}  // namespace prt::bake

@@ -1,0 +1,276 @@
+#include "baker/shard/sharded_bake.h"
+
+#include <cstdio>
+#include <span>
+#include <vector>
+
+#include "baker/shard/shard_container.h"
+#include "baker/shard/shard_payloads.h"
+#include "baker/transfer/diffuse_bounce.h"
+#include "baker/transfer/transfer_range.h"
+#include "native/file_io.h"
+#include "prt/sh_basis.h"
+
+namespace prt::bake {
+namespace {
+
+constexpr std::uint64_t kMaxShardFileBytes = std::uint64_t{1} << 40;
+
+std::string shardLabel(std::uint32_t pass, std::uint32_t shard) {
+  return "shard " + std::to_string(shard) + " of pass " + std::to_string(pass);
+}
+
+std::string mergedLabel(std::uint32_t pass) { return "merged pass " + std::to_string(pass); }
+
+// Reads and checks one file of the plan: present, this kind, this plan, pass, shard and range.
+Status readPlanFile(const ShardContext& ctx, const std::string& path, const std::string& label, ShardFileKind kind,
+                    std::uint32_t pass, std::uint32_t shard, VertexRange range, std::vector<std::uint8_t>* bytes,
+                    std::span<const std::uint8_t>* payload) {
+  const std::string named = label + " ('" + path + "')";
+  if (Status s = readFileBytes(path, kMaxShardFileBytes, bytes); !s.isOk()) {
+    if (s.code() == StatusCode::kNotFound) {
+      return Status::error(StatusCode::kNotFound, named + " is missing" +
+                                                      (kind == ShardFileKind::kShard
+                                                           ? " (run prt-bake bake-shard --plan " + ctx.planPath + " --shard " +
+                                                                 std::to_string(shard) + " --pass " + std::to_string(pass) + ")"
+                                                           : " (run prt-bake merge --plan " + ctx.planPath + " --pass " +
+                                                                 std::to_string(pass) + ")"));
+    }
+    return Status::error(s.code(), named + ": " + s.message());
+  }
+  ShardHeader h;
+  if (Status s = decodeShardFile(*bytes, kind, &h, payload); !s.isOk()) {
+    return Status::error(s.code(), named + " is corrupt: " + s.message());
+  }
+  if (h.planId != ctx.plan->id) {
+    char text[120];
+    std::snprintf(text, sizeof text, " belongs to another plan (plan id %08x, this plan is %08x)", h.planId, ctx.plan->id);
+    return Status::error(StatusCode::kInvalidArgument, named + text);
+  }
+  if (h.pass != pass || h.shard != shard || h.vertexBegin != range.begin || h.vertexEnd != range.end) {
+    return Status::error(StatusCode::kCorrupt,
+                         named + " holds pass " + std::to_string(h.pass) + " shard " +
+                             (h.shard == kNoShard ? std::string("(merged)") : std::to_string(h.shard)) + " over [" +
+                             std::to_string(h.vertexBegin) + ", " + std::to_string(h.vertexEnd) + "), the plan expects [" +
+                             std::to_string(range.begin) + ", " + std::to_string(range.end) + ")");
+  }
+  return Status::ok();
+}
+
+Status writePlanFile(const std::string& path, const ShardHeader& h, const std::vector<std::uint8_t>& payload) {
+  const std::vector<std::uint8_t> file = encodeShardFile(h, payload);
+  return writeFileAtomically(path, file);
+}
+
+int coefficients(const ShardContext& ctx) { return shCoeffCount(ctx.transfer->order); }
+
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShard* out) {
+  const VertexRange range = ctx.plan->shards[shard];
+  std::vector<std::uint8_t> bytes;
+  std::span<const std::uint8_t> payload;
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
+                                   shard, range, &bytes, &payload));
+  if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles, out); !s.isOk()) {
+    return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
+  }
+  if (out->hasHits != ctx.transfer->interreflection) {
+    return Status::error(StatusCode::kCorrupt, shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) +
+                                                   "') does not match the plan's interreflection setting");
+  }
+  return Status::ok();
+}
+
+Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, BounceShard* out) {
+  const VertexRange range = ctx.plan->shards[shard];
+  std::vector<std::uint8_t> bytes;
+  std::span<const std::uint8_t> payload;
+  const std::string path = shardPath(ctx.planPath, pass, shard);
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &bytes, &payload));
+  if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), out); !s.isOk()) {
+    return Status::error(s.code(), shardLabel(pass, shard) + " ('" + path + "') is corrupt: " + s.message());
+  }
+  return Status::ok();
+}
+
+Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* out) {
+  std::vector<std::uint8_t> bytes;
+  std::span<const std::uint8_t> payload;
+  const std::string path = mergedPassPath(ctx.planPath, pass);
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
+                                   {0, ctx.plan->vertices}, &bytes, &payload));
+  if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), out); !s.isOk()) {
+    return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
+  }
+  if (ctx.transfer->interreflection && out->bounce.empty()) {
+    return Status::error(StatusCode::kCorrupt, mergedLabel(pass) + " ('" + path + "') holds no bounce transfer");
+  }
+  return Status::ok();
+}
+
+// Before pass `pass` >= 1: merged pass pass-1 (one read: it exists only when no earlier pass
+// ended the series), or *ended when it is the last, or when it is absent because an earlier
+// merged pass was the last (then passes after that one wrote nothing).
+Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MergedPass* previous) {
+  *ended = false;
+  Status first;
+  for (std::uint32_t j = pass; j-- > 0;) {
+    const Status s = readMergedPass(ctx, j, previous);
+    if (s.code() == StatusCode::kNotFound) {
+      if (first.isOk()) first = s;
+      continue;
+    }
+    PRT_RETURN_IF_ERROR(s);
+    if (j + 1 == pass || previous->final) {
+      *ended = previous->final;
+      return Status::ok();
+    }
+    return first;  // pass j did not end the series, so merged pass j+1 should be there
+  }
+  return first;
+}
+
+// bakeTransfer's stopping rule after bounce `pass`.
+bool endsAfter(const BakeOptions& o, std::uint32_t pass, const std::vector<double>& energies) {
+  if (!o.interreflection || static_cast<int>(pass) >= o.maxBounces) return true;
+  return pass > 0 && !(energies[pass] > o.bounceThreshold * energies[0]);
+}
+
+Status checkPassShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard) {
+  if (pass >= ctx.plan->passes) {
+    return Status::error(StatusCode::kInvalidArgument, "pass " + std::to_string(pass) + " is outside the plan's passes 0 … " +
+                                                           std::to_string(ctx.plan->passes - 1));
+  }
+  if (shard != kNoShard && shard >= ctx.plan->shards.size()) {
+    return Status::error(StatusCode::kInvalidArgument, "shard " + std::to_string(shard) + " is outside the plan's shards 0 … " +
+                                                           std::to_string(ctx.plan->shards.size() - 1));
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+std::uint32_t plannedPasses(const BakeOptions& transfer) {
+  return transfer.interreflection ? 1 + static_cast<std::uint32_t>(transfer.maxBounces) : 1;
+}
+
+Status checkPlannedScene(const BakePlan& plan, const Scene& scene) {
+  const std::uint32_t hash = sceneHash(scene);
+  if (hash == plan.sceneHash && scene.positions.size() == plan.vertices && scene.indices.size() / 3 == plan.triangles) {
+    return Status::ok();
+  }
+  char text[200];
+  std::snprintf(text, sizeof text, " changed since the plan was made (scene hash %08x, %zu vertices; the plan has %08x, %llu vertices): make a new plan",
+                hash, scene.positions.size(), plan.sceneHash, static_cast<unsigned long long>(plan.vertices));
+  return Status::error(StatusCode::kInvalidArgument,
+                       (plan.scenePath.empty() ? std::string("the built-in room") : "the scene '" + plan.scenePath + "'") + text);
+}
+
+Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, bool* skipped, PassStats* stats) {
+  PRT_RETURN_IF_ERROR(checkPassShard(ctx, pass, shard));
+  *skipped = false;
+  const VertexRange range = ctx.plan->shards[shard];
+  ShardHeader h;
+  h.kind = ShardFileKind::kShard;
+  h.planId = ctx.plan->id;
+  h.pass = pass;
+  h.shard = shard;
+  h.vertexBegin = range.begin;
+  h.vertexEnd = range.end;
+  if (pass == 0) {
+    DirectRange r;
+    PRT_RETURN_IF_ERROR(bakeDirectRange(*ctx.scene, *ctx.transfer, range.begin, range.end, &r));
+    DirectShard s{std::move(r.unshadowed), std::move(r.shadowed), r.verticesOutsideLight, ctx.transfer->interreflection,
+                  std::move(r.blocks)};
+    *stats = r.stats;
+    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeDirectShard(s));
+  }
+  MergedPass previous;
+  PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+  if (*skipped) return Status::ok();
+  DirectShard direct;
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, &direct));
+  BounceShard out;
+  PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
+                                        direct.blocks, previous.bounce, &out.bounce, &out.blockEnergy, stats));
+  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeBounceShard(out));
+}
+
+Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, bool* final) {
+  PRT_RETURN_IF_ERROR(checkPassShard(ctx, pass, kNoShard));
+  *skipped = false;
+  const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
+  MergedPass merged;
+  if (pass == 0) {
+    std::vector<float> shadowed;
+    for (std::uint32_t i = 0; i < shards; ++i) {
+      DirectShard d;
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+      shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
+    }
+    double energy0 = 0.0;
+    if (ctx.transfer->interreflection) {
+      firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &merged.bounce, &energy0);
+      merged.total = merged.bounce;
+    }
+    merged.energies = {energy0};
+  } else {
+    MergedPass previous;
+    PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+    if (*skipped) return Status::ok();
+    double energy = 0.0;
+    for (std::uint32_t i = 0; i < shards; ++i) {
+      BounceShard b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      for (double e : b.blockEnergy) energy += e;  // block order, as bakeTransfer sums them
+      merged.bounce.insert(merged.bounce.end(), b.bounce.begin(), b.bounce.end());
+    }
+    merged.total = std::move(previous.total);
+    for (std::size_t i = 0; i < merged.total.size(); ++i) merged.total[i] += merged.bounce[i];
+    merged.energies = std::move(previous.energies);
+    merged.energies.push_back(energy);
+  }
+  merged.final = endsAfter(*ctx.transfer, pass, merged.energies);
+  *final = merged.final;
+  ShardHeader h;
+  h.kind = ShardFileKind::kMergedPass;
+  h.planId = ctx.plan->id;
+  h.pass = pass;
+  h.shard = kNoShard;
+  h.vertexEnd = ctx.plan->vertices;
+  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, encodeMergedPass(merged));
+}
+
+Status mergeShards(const ShardContext& ctx, BakeResult* out) {
+  *out = BakeResult{};
+  out->order = ctx.transfer->order;
+  MergedPass last;
+  std::uint32_t finalPass = 0;
+  for (;; ++finalPass) {
+    if (finalPass >= ctx.plan->passes) {
+      return Status::error(StatusCode::kCorrupt, "no merged pass of the plan ends the bounce series");
+    }
+    PRT_RETURN_IF_ERROR(readMergedPass(ctx, finalPass, &last));
+    if (last.final) break;
+  }
+  const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
+  for (std::uint32_t i = 0; i < shards; ++i) {
+    DirectShard d;
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+    out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
+    out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
+    out->verticesOutsideLight += d.verticesOutsideLight;
+  }
+  // The bounce shards were merged already; they are checked again so a lost or damaged one is named.
+  for (std::uint32_t pass = 1; pass <= finalPass; ++pass) {
+    for (std::uint32_t i = 0; i < shards; ++i) {
+      BounceShard b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+    }
+  }
+  if (ctx.transfer->interreflection) out->interreflected = std::move(last.total);
+  out->bounces = static_cast<int>(finalPass);
+  out->bounceEnergy = ctx.transfer->interreflection ? last.energies : std::vector<double>{};
+  return Status::ok();
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,101 @@
+#include "baker/transfer/transfer_range.h"
+
+#include <algorithm>
+#include <string>
+
+#include "baker/transfer/diffuse_bounce.h"
+#include "baker/transfer/direct_pass.h"
+#include "baker/transfer/embree_scene.h"
+#include "baker/transfer/parallel_for.h"
+#include "prt/sh_basis.h"
+
+namespace prt::bake {
+
+Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t begin, std::size_t end, DirectRange* out) {
+  PRT_RETURN_IF_ERROR(checkOptions(scene, o));
+  const std::size_t vertexCount = scene.positions.size();
+  if (begin % kBlockVertices != 0 || !(begin < end) || end > vertexCount) {
+    return Status::error(StatusCode::kInvalidArgument, "vertex range [" + std::to_string(begin) + ", " +
+                                                           std::to_string(end) + ") is not a block-aligned range of the scene's " +
+                                                           std::to_string(vertexCount) + " vertices");
+  }
+  if (o.glossy) return Status::error(StatusCode::kInvalidArgument, "sharded bakes do not support glossy matrices yet");
+  SampleTable table;
+  PRT_RETURN_IF_ERROR(makeSamples(o, &table));
+  EmbreeScene embree;
+  PRT_RETURN_IF_ERROR(EmbreeScene::build(scene, &embree));
+  const int n2 = shCoeffCount(o.order);
+  const std::size_t count = end - begin;
+  out->unshadowed.assign(count * n2, 0.0f);
+  out->shadowed.assign(count * n2, 0.0f);
+  out->blocks.clear();
+  const std::vector<Vec3> faceNormal = faceNormals(scene);
+  std::vector<std::uint8_t> outside(count, 0);
+  DirectPassJob job;
+  job.embree = &embree;
+  job.table = &table;
+  job.options = &o;
+  // Receivers are the range's vertices; blocks of the range start at `begin`, a block
+  // boundary, so each block holds the same vertices as in the whole-scene pass.
+  job.positions = std::span<const Vec3>(scene.positions).subspan(begin, count);
+  job.normals = std::span<const Vec3>(scene.normals).subspan(begin, count);
+  job.faceNormal = faceNormal;
+  job.threads = o.threads ? o.threads : defaultThreadCount();
+  job.unshadowed = out->unshadowed.data();
+  job.shadowed = out->shadowed.data();
+  job.blocks = o.interreflection ? &out->blocks : nullptr;
+  job.outside = outside.data();
+  GlossyKernelStats unused;
+  out->stats = runDirectPass(job, &unused);
+  out->verticesOutsideLight = 0;
+  for (std::uint8_t x : outside) out->verticesOutsideLight += x;
+  return Status::ok();
+}
+
+Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
+                         std::span<const HitBlock> blocks, std::span<const float> previous, std::vector<float>* current,
+                         std::vector<double>* blockEnergy, PassStats* stats) {
+  const std::size_t vertexCount = scene.positions.size();
+  const std::size_t stride = 3 * static_cast<std::size_t>(shCoeffCount(o.order));
+  const std::size_t begin = firstBlock * kBlockVertices;
+  const std::size_t end = std::min(vertexCount, (firstBlock + blocks.size()) * kBlockVertices);
+  if (bounce < 1 || blocks.empty() || begin >= vertexCount || previous.size() != vertexCount * stride ||
+      scene.albedo.size() != vertexCount) {
+    return Status::error(StatusCode::kInvalidArgument, "bounce " + std::to_string(bounce) + " over blocks " +
+                                                           std::to_string(firstBlock) + "+" + std::to_string(blocks.size()) +
+                                                           " does not fit the scene");
+  }
+  const std::size_t triangles = scene.indices.size() / 3;
+  for (std::size_t j = 0; j < blocks.size(); ++j) {
+    const HitBlock& b = blocks[j];
+    const std::size_t vertices = std::min(kBlockVertices, end - (begin + j * kBlockVertices));
+    if (b.hitStart.size() != vertices + 1 || b.hitStart.front() != 0 || b.hitStart.back() != b.hits.size()) {
+      return Status::error(StatusCode::kCorrupt, "hit records of block " + std::to_string(firstBlock + j) + " do not fit its vertices");
+    }
+    for (const Hit& h : b.hits) {
+      if (h.triangle >= triangles) {
+        return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(firstBlock + j) +
+                                                       " names triangle " + std::to_string(h.triangle) + " of " +
+                                                       std::to_string(triangles));
+      }
+    }
+  }
+  const std::vector<double> vertexArea = vertexAreas(scene);
+  current->assign((end - begin) * stride, 0.0f);
+  blockEnergy->assign(blocks.size(), 0.0);
+  DiffuseBounceJob job;
+  job.scene = &scene;
+  job.options = &o;
+  job.name = "bounce " + std::to_string(bounce);
+  job.firstBlock = firstBlock;
+  job.blocks = blocks;
+  job.previous = previous.data();
+  job.vertexArea = vertexArea;
+  job.current = current->data();
+  job.blockEnergy = blockEnergy->data();
+  job.threads = o.threads ? o.threads : defaultThreadCount();
+  *stats = gatherDiffuseBounce(job);
+  return Status::ok();
+}
+
+}  // namespace prt::bake

@@ -1,0 +1,43 @@
+// The vertex bake split into independent pieces for a sharded bake (baker/shard,
+// docs/scale-out.md): the direct pass over one range of vertex blocks, and one bounce's
+// gather over one range given the whole previous bounce. Each piece runs exactly the code
+// of bakeTransfer on its vertices (same direction set, same rays, same gather), so the
+// pieces put together are byte for byte the one-machine bake.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "baker/scene/scene.h"
+#include "baker/transfer/hit_record.h"
+#include "baker/transfer/transfer_bake.h"
+#include "prt/status.h"
+
+namespace prt::bake {
+
+// The direct pass's outputs for vertices [begin, end).
+struct DirectRange {
+  std::vector<float> unshadowed, shadowed;  // (end - begin) x order^2
+  std::vector<HitBlock> blocks;             // with interreflection: the range's blocks' front-face hits
+  std::size_t verticesOutsideLight = 0;     // local lighting
+  PassStats stats;
+};
+
+// Direct pass (unshadowed, shadowed, hit records when options.interreflection) over
+// vertices [begin, end) of `scene`, prepared as bakeAsset prepares it. kInvalidArgument
+// when begin is not a multiple of kBlockVertices, the range is empty or past the vertices,
+// or the options ask for glossy (sharded bakes do not split matrices yet).
+Status bakeDirectRange(const Scene& scene, const BakeOptions& options, std::size_t begin, std::size_t end,
+                       DirectRange* out);
+
+// Bounce `bounce` (>= 1) over the blocks [firstBlock, firstBlock + blocks.size()) given
+// B^{bounce-1} of every vertex (`previous`): writes B^bounce of the range's vertices into
+// *current and each block's energy into *blockEnergy (summed in block order they are
+// bakeTransfer's bounce energy). kInvalidArgument on sizes that do not fit the scene.
+Status gatherBounceRange(const Scene& scene, const BakeOptions& options, int bounce, std::size_t firstBlock,
+                         std::span<const HitBlock> blocks, std::span<const float> previous,
+                         std::vector<float>* current, std::vector<double>* blockEnergy, PassStats* stats);
+
+}  // namespace prt::bake

@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Sharded bakes through the real prt-bake (docs/scale-out.md): every plan merges to the
+# one-machine bake's exact bytes, and merge names a missing, damaged or foreign shard.
+# Usage: shard_cli_test.sh CASE PRT_BAKE WORK_DIR [ASSIMP_MODELS_DIR]
+set -euo pipefail
+case_name=$1 bake=$2 work=$3 models=${4:-/usr/share/assimp/models}
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+# Small enough for seconds on two cores, with two bounces so every pass kind runs.
+small=(--order 3 --samples 64 --bounces 2 --quiet)
+# Every command has a time limit: a hung bake fails the test instead of stalling CI.
+run() { timeout 300 "$bake" "$@"; }
+
+# Runs every pass of PLAN (shards from the plan's --json) then the asset merge to OUT.
+bake_all() {
+  local plan=$1 out=$2 shards=$3 passes=$4
+  for ((k = 0; k < passes; k++)); do
+    for ((i = 0; i < shards; i++)); do run bake-shard --plan "$plan" --shard "$i" --pass "$k" --quiet; done
+    run merge --plan "$plan" --pass "$k" --quiet
+  done
+  run merge --plan "$plan" -o "$out" --quiet
+}
+
+# plan ... --json prints {"passes": P, ...}; prints P.
+plan_passes() { sed -n 's/.*"passes": \([0-9]*\).*/\1/p'; }
+
+# expect_failure STATUS PATTERN CMD...: CMD exits with STATUS and its stderr matches PATTERN.
+expect_failure() {
+  local want=$1 pattern=$2 status=0
+  shift 2
+  timeout 300 "$@" 2> err.txt || status=$?
+  [[ $status == "$want" ]] || { cat err.txt >&2; fail "'$*' exited $status, expected $want"; }
+  grep -qE -- "$pattern" err.txt || { cat err.txt >&2; fail "'$*': stderr does not match '$pattern'"; }
+}
+
+case_identical() {
+  # Exact bounce counts; the threshold rule (0.05 stops the room's series after 3 of the 8
+  # planned bounces, so passes 4..8 have nothing to do); local lighting with a codec.
+  local options
+  for options in "${small[*]}" "--order 3 --samples 64 --bounces 0 --quiet" "--order 3 --samples 64 --bounce-threshold 0.05 --quiet" \
+                 "--order 2 --samples 64 --bounces 1 --lighting local --compress q16 --passes shadowed,interreflected --quiet"; do
+    read -ra opts <<< "$options"
+    run --default -o one.prt "${opts[@]}"
+    for shards in 1 3 4; do
+      passes=$(run plan --default -o room.plan --shards "$shards" "${opts[@]}" --json | plan_passes)
+      [[ -n $passes ]] || fail "plan --json printed no passes"
+      bake_all room.plan sharded.prt "$shards" "$passes"
+      cmp one.prt sharded.prt || fail "options '$options', $shards shards: the merged asset differs from the one-machine bake"
+      if [[ $options == *--bounce-threshold* ]]; then
+        [[ $passes == 9 && -e room.plan.pass3.merged && ! -e room.plan.pass4.merged && ! -e room.plan.pass4.shard0 ]] ||
+          fail "the threshold bake did not end after bounce 3 of $passes planned passes"
+      fi
+      rm -f room.plan*
+      echo "ok: $options, $shards shards: identical"
+    done
+  done
+}
+
+# A 4-shard plan of the small room with every pass done and merged.
+baked_plan() {
+  run --default -o one.prt "${small[@]}"
+  run plan --default -o room.plan --shards 4 "${small[@]}"
+  bake_all room.plan merged.prt 4 3
+  cmp one.prt merged.prt || fail "the merged asset differs from the one-machine bake"
+}
+
+case_missing() {
+  baked_plan
+  rm room.plan.pass1.shard2
+  expect_failure 3 "shard 2 of pass 1 \('room.plan.pass1.shard2'\) is missing" "$bake" merge --plan room.plan --pass 1
+  expect_failure 3 "shard 2 of pass 1 .* is missing" "$bake" merge --plan room.plan -o out.prt
+  [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
+  expect_failure 3 "merged pass 1 .* is missing" bash -c "rm room.plan.pass1.merged && '$bake' bake-shard --plan room.plan --shard 0 --pass 2"
+}
+
+case_corrupt() {
+  baked_plan
+  # One flipped byte in the hit records of shard 1's direct pass.
+  printf '\xff' | dd of=room.plan.pass0.shard1 bs=1 seek=100000 conv=notrunc status=none
+  expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
+    "$bake" merge --plan room.plan -o out.prt
+  [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
+  # Cut short.
+  head -c 1000 room.plan.pass2.shard3 > cut && mv cut room.plan.pass2.shard3
+  expect_failure 4 "shard 3 of pass 2 .* is corrupt: truncated" "$bake" merge --plan room.plan --pass 2
+  # Not a shard at all.
+  echo "hello" > room.plan.pass2.shard0
+  expect_failure 4 "shard 0 of pass 2 .* is corrupt: not a bake shard" "$bake" merge --plan room.plan --pass 2
+  # A damaged plan.
+  printf '\x00' | dd of=room.plan bs=1 seek=60 conv=notrunc status=none
+  expect_failure 4 "'room.plan': payload checksum mismatch" "$bake" merge --plan room.plan -o out.prt
+}
+
+case_mismatched() {
+  baked_plan
+  # The same room and shards with another seed: a different plan, whose shards fit the ranges.
+  run plan --default -o other.plan --shards 4 --order 3 --samples 64 --bounces 2 --seed 7 --quiet
+  run bake-shard --plan other.plan --shard 2 --pass 0 --quiet
+  cp other.plan.pass0.shard2 room.plan.pass0.shard2
+  expect_failure 4 "shard 2 of pass 0 .* belongs to another plan" "$bake" merge --plan room.plan -o out.prt
+  # A shard renamed into another shard's place: its header says which one it is.
+  cp room.plan.pass1.shard0 room.plan.pass1.shard1
+  expect_failure 4 "shard 1 of pass 1 .* holds pass 1 shard 0 over \[0, " "$bake" merge --plan room.plan --pass 1
+  # Outside the plan.
+  expect_failure 4 "pass 3 is outside the plan's passes 0 … 2" "$bake" bake-shard --plan room.plan --shard 0 --pass 3
+  expect_failure 4 "shard 4 is outside the plan's shards 0 … 3" "$bake" bake-shard --plan room.plan --shard 4 --pass 0
+}
+
+case_changed_scene() {
+  cp "$models/glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf" box.gltf
+  run plan box.gltf -o box.plan --shards 1 "${small[@]}"
+  run bake-shard --plan box.plan --shard 0 --pass 0 --quiet
+  sed -i 's/"metallicFactor": 0.0/"metallicFactor": 0.0, "baseColorFactor": [0.5, 0.5, 0.5, 1.0]/' box.gltf
+  expect_failure 4 "the scene '.*box.gltf' changed since the plan was made" "$bake" bake-shard --plan box.plan --shard 0 --pass 1
+  expect_failure 4 "changed since the plan was made" "$bake" merge --plan box.plan --pass 0
+  rm box.gltf
+  expect_failure 3 "box.gltf" "$bake" bake-shard --plan box.plan --shard 0 --pass 0
+}
+
+case_usage() {
+  expect_failure 2 "missing --shards" "$bake" plan --default -o p.plan
+  expect_failure 2 "--shards '0' is out of range" "$bake" plan --default -o p.plan --shards 0
+  expect_failure 4 "shard count 400 exceeds the scene's 320 blocks of 64 vertices" "$bake" plan --default -o p.plan --shards 400
+  expect_failure 4 "sharded bakes do not support --texels yet" "$bake" plan --default -o p.plan --shards 2 --texels
+  expect_failure 4 "sharded bakes do not support --glossy yet" "$bake" plan --default -o p.plan --shards 2 --glossy
+  expect_failure 2 "unknown option '--bogus'" "$bake" plan --default -o p.plan --shards 2 --bogus
+  [[ ! -e p.plan ]] || fail "a refused plan was written"
+  expect_failure 3 "no-such.plan" "$bake" bake-shard --plan no-such.plan --shard 0 --pass 0
+  expect_failure 2 "missing --pass" "$bake" bake-shard --plan no-such.plan --shard 0
+  expect_failure 2 "give --pass K .* or -o ASSET" "$bake" merge --plan no-such.plan
+  expect_failure 4 "not a bake plan" bash -c "echo nope > fake.plan && '$bake' merge --plan fake.plan --pass 0"
+}
+
+"case_$case_name"
+echo "PASS: $case_name"

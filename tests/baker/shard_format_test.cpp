@@ -1,0 +1,162 @@
+// The sharded bake's files on untrusted bytes (docs/scale-out.md, "Files"): a valid file
+// round-trips; every shorter prefix, every single flipped byte and every appended byte is
+// refused with an error, never a crash or a silent success.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "baker/shard/bake_plan.h"
+#include "baker/shard/shard_container.h"
+#include "baker/shard/shard_payloads.h"
+
+namespace prt::bake {
+namespace {
+
+BakePlan samplePlan() {
+  BakePlan p;
+  p.scenePath = "/data/scene.glb";
+  p.workingDirectory = "/data";
+  p.bakeArgs = {"/data/scene.glb", "-o", "x.plan", "--order", "3"};
+  p.sceneHash = 0x12345678u;
+  p.vertices = 200;
+  p.triangles = 300;
+  p.order = 3;
+  p.passes = 3;
+  EXPECT_TRUE(planRanges(p.vertices, 3, &p.shards).isOk());
+  return p;
+}
+
+TEST(ShardFormat, PlanRangesTileTheVerticesInWholeBlocks) {
+  std::vector<VertexRange> r;
+  ASSERT_TRUE(planRanges(20434, 4, &r).isOk());
+  ASSERT_EQ(r.size(), 4u);
+  EXPECT_EQ(r[0].begin, 0u);
+  for (std::size_t i = 0; i + 1 < r.size(); ++i) {
+    EXPECT_EQ(r[i].end, r[i + 1].begin);
+    EXPECT_EQ(r[i].end % kBlockVertices, 0u);
+  }
+  EXPECT_EQ(r.back().end, 20434u);
+  EXPECT_FALSE(planRanges(20434, 0, &r).isOk());
+  EXPECT_FALSE(planRanges(100, 3, &r).isOk());  // 2 blocks
+  EXPECT_TRUE(planRanges(100, 2, &r).isOk());
+}
+
+TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
+  BakePlan p = samplePlan();
+  const std::vector<std::uint8_t> bytes = encodeBakePlan(&p);
+  BakePlan q;
+  ASSERT_TRUE(decodeBakePlan(bytes, &q).isOk());
+  EXPECT_EQ(q.scenePath, p.scenePath);
+  EXPECT_EQ(q.bakeArgs, p.bakeArgs);
+  EXPECT_EQ(q.sceneHash, p.sceneHash);
+  EXPECT_EQ(q.shards.size(), 3u);
+  EXPECT_EQ(q.id, p.id);
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    EXPECT_FALSE(decodeBakePlan(std::span(bytes).first(n), &q).isOk()) << "prefix of " << n << " bytes";
+  }
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    std::vector<std::uint8_t> b = bytes;
+    b[i] ^= 0x01;
+    EXPECT_FALSE(decodeBakePlan(b, &q).isOk()) << "byte " << i << " flipped";
+  }
+  std::vector<std::uint8_t> longer = bytes;
+  longer.push_back(0);
+  const Status s = decodeBakePlan(longer, &q);
+  EXPECT_EQ(s.code(), StatusCode::kCorrupt) << s.message();
+}
+
+TEST(ShardFormat, ShardFileOfAnotherKindIsNotRead) {
+  BakePlan p = samplePlan();
+  const std::vector<std::uint8_t> plan = encodeBakePlan(&p);
+  ShardHeader h;
+  std::span<const std::uint8_t> payload;
+  const Status s = decodeShardFile(plan, ShardFileKind::kShard, &h, &payload);
+  EXPECT_EQ(s.code(), StatusCode::kBadMagic);
+  EXPECT_NE(s.message().find("not a bake shard"), std::string::npos) << s.message();
+}
+
+// A direct shard of 70 vertices (two blocks) with hits, at order 2.
+DirectShard sampleDirect() {
+  DirectShard d;
+  d.unshadowed.assign(70 * 4, 0.25f);
+  d.shadowed.assign(70 * 4, 0.125f);
+  d.hasHits = true;
+  d.blocks.resize(2);
+  d.blocks[0].hitStart.assign(65, 0);
+  d.blocks[0].hitStart[64] = 2;
+  for (int v = 1; v < 64; ++v) d.blocks[0].hitStart[v] = 1;
+  d.blocks[0].hits = {{5, 100, 200, 0.5f}, {7, 0, 65535, 0.25f}};
+  d.blocks[1].hitStart.assign(7, 0);
+  d.blocks[1].hitStart[6] = 1;
+  d.blocks[1].hits = {{9, 1, 2, 0.125f}};
+  return d;
+}
+
+TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
+  const DirectShard d = sampleDirect();
+  const std::vector<std::uint8_t> payload = encodeDirectShard(d);
+  DirectShard e;
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, &e).isOk());
+  EXPECT_EQ(e.unshadowed, d.unshadowed);
+  ASSERT_EQ(e.blocks.size(), 2u);
+  EXPECT_EQ(e.blocks[0].hitStart, d.blocks[0].hitStart);
+  EXPECT_EQ(e.blocks[1].hits[0].triangle, 9u);
+  EXPECT_EQ(e.blocks[0].hits[1].v, 65535);
+  // A triangle outside the scene.
+  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, &e).code(), StatusCode::kCorrupt);
+  // Another vertex count or order.
+  EXPECT_FALSE(decodeDirectShard(payload, 69, 4, 10, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 9, 10, &e).isOk());
+  for (std::size_t n = 0; n < payload.size(); ++n) {
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, &e).isOk()) << "prefix of " << n << " bytes";
+  }
+  // In a file, any flipped byte is caught by a checksum.
+  ShardHeader h;
+  h.planId = 7;
+  h.pass = 0;
+  h.shard = 1;
+  h.vertexBegin = 64;
+  h.vertexEnd = 134;
+  const std::vector<std::uint8_t> file = encodeShardFile(h, payload);
+  ShardHeader g;
+  std::span<const std::uint8_t> view;
+  ASSERT_TRUE(decodeShardFile(file, ShardFileKind::kShard, &g, &view).isOk());
+  EXPECT_EQ(g.vertexBegin, 64u);
+  for (std::size_t i = 0; i < file.size(); i += 7) {
+    std::vector<std::uint8_t> b = file;
+    b[i] ^= 0x80;
+    EXPECT_FALSE(decodeShardFile(b, ShardFileKind::kShard, &g, &view).isOk()) << "byte " << i << " flipped";
+  }
+}
+
+TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
+  BounceShard b;
+  b.bounce.assign(70 * 12, 0.5f);
+  b.blockEnergy = {1.0, 2.0};
+  const std::vector<std::uint8_t> bp = encodeBounceShard(b);
+  BounceShard c;
+  ASSERT_TRUE(decodeBounceShard(bp, 70, 4, &c).isOk());
+  EXPECT_EQ(c.blockEnergy, b.blockEnergy);
+  EXPECT_FALSE(decodeBounceShard(bp, 64, 4, &c).isOk());
+  EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, &c).isOk());
+
+  MergedPass m;
+  m.final = true;
+  m.energies = {3.0, 1.0};
+  m.bounce.assign(70 * 12, 0.25f);
+  m.total.assign(70 * 12, 0.75f);
+  const std::vector<std::uint8_t> mp = encodeMergedPass(m);
+  MergedPass n;
+  ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, &n).isOk());
+  EXPECT_TRUE(n.final);
+  EXPECT_EQ(n.total, m.total);
+  EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, &n).isOk());  // energies of another pass
+  EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, &n).isOk());
+  for (std::size_t len = 0; len < mp.size(); len += 97) {
+    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 1, 70, 4, &n).isOk()) << "prefix of " << len << " bytes";
+  }
+}
+
+}  // namespace
+}  // namespace prt::bake
