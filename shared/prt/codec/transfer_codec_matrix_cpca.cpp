@@ -9,8 +9,9 @@
 //     float mean) gives kMaxVectors principal matrices and the members' weights; a cluster
 //     with fewer members than the sketch is captured exactly (its rows span the subspace).
 //  3. For each basis count N' and weight step delta the error is known in weight space
-//     (dropped eigenvalues + quantisation error of the kept weights) and the size after an
-//     entropy coder is estimated (tables raw, streams by order-0 entropy per byte plane).
+//     (dropped eigenvalues + quantisation error of the kept weights, + the rounding of 8-bit
+//     basis entries when settings.cpcaBasisBits is 8) and the size after an entropy coder is
+//     estimated (tables raw, streams by order-0 entropy per byte plane).
 // Each pass over the data is an axpy over the sketch width, so it vectorises without
 // reassociation (-ffp-contract=off holds); temporary memory is O(V * kSketch + K * kMaxVectors * D).
 #include <algorithm>
@@ -413,7 +414,8 @@ std::vector<PartPayload> matrixCpcaParts(const MatrixFit& fit, std::size_t V, in
       for (std::size_t c = 0; c < C; ++c)
         for (std::size_t e = 0; e < S; ++e) putF32(shell.bytes, cf.mean[c * E + first + e]);
     if (basisBits == 8) {
-      // A scale per (cluster, basis matrix) of this shell, then the levels, same order.
+      // A scale per (cluster, basis matrix) of this shell, then the levels, same order. The
+      // fit is back in the input's space here (weights divided out), so no entry weights.
       for (const ClusterFit& cf : fit.fits) {
         for (std::size_t j = 0; j < N; ++j) {
           const float scale = j < static_cast<std::size_t>(cf.vectors) ? basisScale(storedShell(cf, j, {}, order, b, packing, channels)) : 0.0f;
