@@ -63,6 +63,7 @@ struct TransferCodecSettings {
   // format), or 8: int8 levels with one float32 scale per (cluster, basis matrix, shell),
   // half the bytes, written as version 1.2 (docs/transfer-codec.md "8-bit basis entries").
   // Their rounding is part of the verified error. Setting names "cpca16b8", "cpca8b8".
+  // Vector CPCA (encodeTransfer) ignores it: its basis vectors are binary16.
   int cpcaBasisBits = 16;
 };
 

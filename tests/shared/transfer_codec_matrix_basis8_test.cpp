@@ -2,7 +2,8 @@
 // 1.2): the verified error meets the target (plain and row-weighted, measured here), the
 // stored levels and scales as the page lays them out (read here byte by byte), the band
 // prefix rule, blobs built by hand from the page in both the 1.1 (binary16) and the 1.2
-// layout, every truncation and byte flip rejected, crafted errors named, and the settings.
+// layout, every truncation and byte flip rejected, crafted errors named, and the settings
+// (which vector CPCA reads as its binary16 form).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -418,11 +419,16 @@ TEST(TransferCodecMatrixBasis8, SettingsNameTheBasisWidth) {
   defaults.cpcaBasisBits = 8;
   ASSERT_TRUE(parseTransferSetting("cpca16@0.04", defaults, &s).isOk());
   EXPECT_EQ(s.cpcaBasisBits, 16);
-  // Refusals: 8-bit basis entries are matrix CPCA's; other widths do not exist.
-  Bytes blob;
-  const Status vector = encodeTransfer(std::vector<float>(20 * 4, 0.25f), 2, 1, setting("cpca16b8@0.05"), &blob);
-  EXPECT_EQ(vector.code(), StatusCode::kInvalidArgument);
-  EXPECT_NE(vector.message().find("matrix CPCA only"), std::string::npos) << vector.message();
+  // 8-bit basis entries are matrix CPCA's: vector CPCA writes the binary16 blob of the same
+  // setting without them, byte for byte (so one setting serves an asset's vector and matrix
+  // passes). Other widths do not exist.
+  Lcg g{31};
+  std::vector<float> vec(40 * 9);
+  for (float& v : vec) v = static_cast<float>(g.gauss());
+  Bytes blob, blob16;
+  ASSERT_TRUE(encodeTransfer(vec, 3, 1, setting("cpca16b8@0.05"), &blob).isOk());
+  ASSERT_TRUE(encodeTransfer(vec, 3, 1, setting("cpca16@0.05"), &blob16).isOk());
+  EXPECT_EQ(blob, blob16);
   TransferCodecSettings odd = setting("cpca16@0.05");
   odd.cpcaBasisBits = 12;
   const Status st = encodeTransferMatrix(std::vector<float>(20 * 16, 0.25f), 2, MatrixPacking::kFull, 1, odd, &blob);
