@@ -55,13 +55,17 @@ md += smallest
   ? `\nSmallest setting at >= 40 dB (worst case): **${smallest.setting}, ${f(smallest.zstd_bytes_per_vertex)} B/vertex after zstd** (${f(3 * 4 * bake.order ** 4 / smallest.zstd_bytes_per_vertex, 0)}x below float32).\n\n`
   : `\nNo setting reached 40 dB in the worst case.\n\n`;
 // Where a CPCA blob's bytes go, from its header counts (docs/transfer-codec.md, "CPCA over
-// whole matrices"): float32 means K*D, binary16 basis K*N'*D, weights V*N' at 1 or 2 bytes.
+// whole matrices" and "8-bit basis entries"): float32 means K*D, basis K*N'*D binary16 (or,
+// for cpca16b8/cpca8b8, int8 plus a float32 scale per cluster, basis matrix and shell),
+// weights V*N' at 1 or 2 bytes.
 const split = (r) => {
   const D = codec.channels * codec.order ** 4, K = r.clusters, N = r.vectors_per_band[0] ?? 0, V = codec.vertices;
   const weightBytes = r.setting.startsWith('cpca16') ? 2 : 1;
-  const parts = { means: 4 * K * D, basis: 2 * K * N * D, weights: weightBytes * N * V };
+  const basis8 = /^cpca(8|16)b8/.test(r.setting);
+  const basis = basis8 ? K * N * D + 4 * K * N * codec.order : 2 * K * N * D;
+  const parts = { means: 4 * K * D, basis, weights: weightBytes * N * V };
   const pct = (x) => f((100 * x) / r.bytes, 0);
-  return `${r.setting}: of its ${f(r.bytes_per_vertex, 1)} raw B/vertex, the basis matrices are ${pct(parts.basis)}% (${K} clusters x ${N} x ${D} binary16), the means ${pct(parts.means)}%, the per-vertex weights ${pct(parts.weights)}%`;
+  return `${r.setting}: of its ${f(r.bytes_per_vertex, 1)} raw B/vertex, the basis matrices are ${pct(parts.basis)}% (${K} clusters x ${N} x ${D} ${basis8 ? 'int8' : 'binary16'}), the means ${pct(parts.means)}%, the per-vertex weights ${pct(parts.weights)}%`;
 };
 const cpcaRows = codec.rows.filter((r) => !r.error && r.setting.startsWith('cpca'));
 if (cpcaRows.length) md += `Where the bytes go: ${cpcaRows.map(split).join('; ')}.\n\n`;

@@ -17,6 +17,7 @@ target_sources(prt_shared PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_cpca_search.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_cpca_decode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_matrix.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_basis8.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_matrix_cpca.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prt/codec/transfer_codec_matrix_cpca_decode.cpp
 )

@@ -4,7 +4,8 @@
 
 add_executable(prt_transfer_codec_tests ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_test.cpp
                                         ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_matrix_test.cpp
-                                        ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_matrix_weights_test.cpp)
+                                        ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_matrix_weights_test.cpp
+                                        ${CMAKE_CURRENT_LIST_DIR}/shared/transfer_codec_matrix_basis8_test.cpp)
 target_link_libraries(prt_transfer_codec_tests PRIVATE prt_test_support ${PRT_GTEST_MAIN})
 # The tests check the codec's internals (streams, half floats, k-means, eigen) too.
 target_include_directories(prt_transfer_codec_tests PRIVATE ${PROJECT_SOURCE_DIR}/shared/prt/codec)

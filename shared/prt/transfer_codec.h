@@ -59,10 +59,17 @@ struct TransferCodecSettings {
   // sqrt(sum w_i^2 (M' - M)_ij^2 / sum w_i^2 M_ij^2) (docs/transfer-codec.md "Row weights").
   // Empty: unweighted. The blob's format does not change; decoders need not know.
   std::vector<double> cpcaMatrixRowWeights;
+  // Matrix kCpca only. Storage of the basis matrices' entries: 16 binary16 (version 1.1's
+  // format), or 8: int8 levels with one float32 scale per (cluster, basis matrix, shell),
+  // half the bytes, written as version 1.2 (docs/transfer-codec.md "8-bit basis entries").
+  // Their rounding is part of the verified error. Setting names "cpca16b8", "cpca8b8".
+  // Vector CPCA (encodeTransfer) ignores it: its basis vectors are binary16.
+  int cpcaBasisBits = 16;
 };
 
-// Parses a setting name: "f32", "f16", "q16", "q8", "cpca8", "cpca16", the CPCA ones
-// optionally with a target, "cpca8@0.02". The unspecified fields come from `defaults`.
+// Parses a setting name: "f32", "f16", "q16", "q8", "cpca8", "cpca16", "cpca8b8",
+// "cpca16b8" (8-bit basis entries, matrix transfer only), the CPCA ones optionally with a
+// target, "cpca8@0.02". The unspecified fields come from `defaults`.
 Status parseTransferSetting(std::string_view text, const TransferCodecSettings& defaults, TransferCodecSettings* out);
 
 // The canonical name of a setting, as parseTransferSetting reads it ("q8", "cpca8@0.02").
@@ -101,7 +108,10 @@ Status encodeTransfer(std::span<const float> transfer, int order, int channels, 
 inline constexpr std::uint32_t kMaxTransferVertices = 1u << 28;
 inline constexpr std::uint32_t kMaxTransferClusters = 65536;
 inline constexpr std::uint16_t kTransferCodecVersionMajor = 1;
-inline constexpr std::uint16_t kTransferCodecVersionMinor = 1;  // 1: matrix layout (header bytes 36..39); vector blobs are still written as 1.0
+// Minor 1: matrix layout (header bytes 36..39); 2: 8-bit matrix CPCA basis entries (header
+// byte 40). Each blob is written with the lowest minor version that holds it: vector blobs
+// as 1.0, matrix blobs as 1.1 unless their basis is 8-bit.
+inline constexpr std::uint16_t kTransferCodecVersionMinor = 2;
 
 enum class TransferPartType : std::uint16_t {
   kClusters = 1,  // CPCA: the cluster id of every vertex
@@ -131,6 +141,8 @@ struct TransferBlobInfo {
   MatrixPacking packing{};
   bool matrix = false;
   int vectors = 0;
+  // Matrix CPCA: bits per stored basis entry, 16 (binary16) or 8 (since 1.2); 0 otherwise.
+  int basisBits = 0;
   std::uint64_t blobSize = 0;      // as the header declares it
   std::vector<TransferPartInfo> parts;  // in blob order: [clusters,] band 0, band 1, ...
   // How many leading bands have all their parts (and the cluster part) inside the bytes
@@ -243,6 +255,7 @@ struct CpcaMatrixTransfer {
   std::uint32_t clusterCount = 0;
   int weightBits = 8;
   int vectors = 0;                        // N', basis matrices per cluster
+  int basisBits = 16;                     // how the blob stored the basis entries (16 or 8); `matrices` holds them decoded
   std::vector<std::uint32_t> clusterOf;   // per vertex, < clusterCount
   std::vector<float> steps;               // per cluster: weight (v, j) = levels[v * vectors + j] * steps[cluster of v]
   std::vector<std::int16_t> levels;       // vertexCount * vectors

@@ -13,7 +13,8 @@
 //   bit 0 set:   the blob's checksums are recomputed before decoding (as the tests' reseal()
 //                does), so damage reaches the content checks instead of stopping at a CRC;
 //   bit 2 set:   (with bit 1) the transfer is per-vertex packed matrices (symmetric or full,
-//                encodeTransferMatrix) instead of vectors.
+//                encodeTransferMatrix) instead of vectors; a CPCA setting then stores 8-bit
+//                basis entries (version 1.2) when bit 2 of the description's channel byte is set.
 //
 // Beyond "no crash, no sanitizer report", it traps when results disagree: whatever
 // decodes is finite; every band prefix of a decodable blob decodes to the first bands of
@@ -78,6 +79,7 @@ std::size_t encodeFromInput(const std::uint8_t* data, std::size_t size, Bytes* b
   prt::TransferCodecSettings s;
   if (!prt::parseTransferSetting(kSettings[data[0] % 8], {}, &s).isOk()) return 0;
   s.cpcaMaxClusters = 8;
+  if (matrix && s.encoding == prt::TransferEncoding::kCpca && (data[2] & 4)) s.cpcaBasisBits = 8;
   const int order = matrix ? 1 + data[1] % 3 : 1 + data[1] % 4, channels = (data[2] & 1) ? 3 : 1;
   const prt::MatrixPacking packing = (data[2] & 2) ? prt::MatrixPacking::kFull : prt::MatrixPacking::kSymmetric;
   const std::size_t perChannel = matrix ? prt::matrixEntryCount(order, packing) : static_cast<std::size_t>(order * order);
@@ -126,6 +128,9 @@ void decodeMatrixAndCheck(const Bytes& blob, const prt::TransferBlobInfo& info) 
   if (info.encoding == prt::TransferEncoding::kCpca && fullStatus.isOk()) {
     prt::CpcaMatrixTransfer cpca;
     check(prt::decodeCpcaMatrixTransfer(blob, info.order, &cpca).isOk());
+    check(cpca.basisBits == info.basisBits && (info.basisBits == 8 || info.basisBits == 16));
+    check(info.basisBits == 16 || info.versionMinor >= 2);
+    for (float x : cpca.matrices) check(std::isfinite(x) && std::fabs(x) <= prt::kMaxTransferMagnitude * 1.0001f);
     std::vector<float> again(full.size());
     check(prt::cpcaMatrixReconstruct(cpca, again).isOk());
     check(std::memcmp(again.data(), full.data(), full.size() * sizeof(float)) == 0);

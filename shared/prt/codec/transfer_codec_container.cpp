@@ -60,9 +60,12 @@ std::uint64_t matrixWeightsPartBytes(std::uint32_t clusters, int vectors, std::u
   return 4 * std::uint64_t{clusters} + streamGroupBytes(static_cast<std::uint64_t>(vectors), vertices, weightBytes);
 }
 
-std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing) {
+std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing,
+                                       int basisBits) {
   const std::uint64_t perMatrix = static_cast<std::uint64_t>(channels) * shellEntries(band, packing);
-  return std::uint64_t{clusters} * perMatrix * (4 + 2 * static_cast<std::uint64_t>(vectors));
+  const std::uint64_t k = clusters, n = static_cast<std::uint64_t>(vectors);
+  if (basisBits == 8) return k * perMatrix * (4 + n) + 4 * k * n;
+  return k * perMatrix * (4 + 2 * n);
 }
 
 void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::vector<std::uint8_t>* out) {
@@ -74,8 +77,10 @@ void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::
   blob.reserve(total);
   for (std::uint8_t m : kMagic) putU8(blob, m);
   putU16(blob, kTransferCodecVersionMajor);
-  // Vector blobs stay version 1.0, byte for byte: only matrix blobs need 1.1's fields.
-  putU16(blob, h.matrix ? kTransferCodecVersionMinor : std::uint16_t{0});
+  // Each blob takes the lowest version that holds it, so older blobs stay byte for byte:
+  // vector blobs 1.0, matrix blobs 1.1, 8-bit matrix CPCA basis entries 1.2.
+  const bool basis8 = h.matrix && h.encoding == TransferEncoding::kCpca && h.basisBits == 8;
+  putU16(blob, basis8 ? std::uint16_t{2} : h.matrix ? std::uint16_t{1} : std::uint16_t{0});
   putU8(blob, static_cast<std::uint8_t>(h.encoding));
   putU8(blob, static_cast<std::uint8_t>(h.weightBits));
   putU8(blob, static_cast<std::uint8_t>(h.order));
@@ -88,7 +93,8 @@ void assembleBlob(const BlobHeader& h, std::span<const PartPayload> parts, std::
   putU8(blob, h.matrix ? 1 : 0);
   putU8(blob, h.matrix ? static_cast<std::uint8_t>(h.packing) : 0);
   putU16(blob, static_cast<std::uint16_t>(h.vectors));
-  putU32(blob, 0);  // reserved
+  putU8(blob, basis8 ? 8 : 0);
+  for (int i = 0; i < 3; ++i) putU8(blob, 0);  // reserved
   putU32(blob, 0);  // header CRC, below
 
   std::uint64_t offset = tableEnd;
@@ -210,6 +216,12 @@ Status readHeader(std::span<const std::uint8_t> bytes, TransferBlobInfo* info, s
                                                                           : " (expected 0 unless matrix CPCA)"));
   }
   info->vectors = vectors;
+  // Byte 40 (since 1.2): 8-bit basis entries of matrix CPCA; 0 is binary16 (1.1's format).
+  const std::uint8_t basisByte = b[layout::kBasisBits];
+  if (basisByte != 0 && (basisByte != 8 || !info->matrix || !cpca || info->versionMinor < 2)) {
+    return corrupt("basis bits " + num(basisByte) + " (expected 0, or 8 for matrix CPCA since version 1.2)");
+  }
+  info->basisBits = info->matrix && cpca ? (basisByte == 8 ? 8 : 16) : 0;
   *partCount = readLe32(b + layout::kPartCount);
   const std::uint32_t expectedParts = static_cast<std::uint32_t>(info->order) + (cpca ? (info->matrix ? 2u : 1u) : 0u);
   if (*partCount != expectedParts) {
@@ -293,7 +305,7 @@ Status readTransferBlobInfo(std::span<const std::uint8_t> bytes, TransferBlobInf
     } else if (weights) {
       want = matrixWeightsPartBytes(info.clusterCount, info.vectors, info.vertexCount, info.weightBits / 8);
     } else if (info.matrix) {
-      want = cpca ? matrixCpcaShellPartBytes(info.clusterCount, info.vectors, info.channels, p.band, info.packing)
+      want = cpca ? matrixCpcaShellPartBytes(info.clusterCount, info.vectors, info.channels, p.band, info.packing, info.basisBits)
                   : matrixShellPartBytes(info.encoding, info.channels, p.band, info.packing, info.vertexCount);
     } else if (!cpca) {
       want = bandPartBytes(info.encoding, info.channels, p.band, info.vertexCount);

@@ -32,7 +32,8 @@ inline constexpr std::size_t kTableCrc = 32;     // u32, CRC-32C of the part tab
 inline constexpr std::size_t kLayout = 36;       // u8 (since 1.1): 0 vector transfer, 1 matrix transfer
 inline constexpr std::size_t kPacking = 37;      // u8 (since 1.1): matrix MatrixPacking (1 symmetric, 2 full), else 0
 inline constexpr std::size_t kVectors = 38;      // u16 (since 1.1): matrix CPCA basis matrices per cluster, else 0
-inline constexpr std::size_t kReserved = 40;     // 4 bytes, zero (36..43 were all reserved in 1.0)
+inline constexpr std::size_t kBasisBits = 40;    // u8 (since 1.2): matrix CPCA 8 for 8-bit basis entries, else 0 (binary16)
+inline constexpr std::size_t kReserved = 41;     // 3 bytes, zero (36..43 were all reserved in 1.0, 40..43 in 1.1)
 inline constexpr std::size_t kHeaderCrc = 44;    // u32, CRC-32C of header bytes 0..43
 
 inline constexpr std::size_t kPartType = 0;    // u16 TransferPartType
@@ -68,14 +69,17 @@ std::uint64_t matrixShellPartBytes(TransferEncoding encoding, int channels, int 
 // Payload size of the matrix CPCA weights part: a step per cluster, `vectors` streams.
 std::uint64_t matrixWeightsPartBytes(std::uint32_t clusters, int vectors, std::uint64_t vertices, int weightBytes);
 // Payload size of matrix CPCA shell `band`: every cluster's mean (float32) and basis
-// matrices (binary16) restricted to that shell.
-std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing);
+// matrices restricted to that shell, basisBits 16: binary16 entries; 8: a float32 scale
+// per (cluster, basis matrix) and int8 entries.
+std::uint64_t matrixCpcaShellPartBytes(std::uint32_t clusters, int vectors, int channels, int band, MatrixPacking packing,
+                                       int basisBits);
 
 struct BlobHeader {
   TransferEncoding encoding = TransferEncoding::kFloat32;
   bool matrix = false;  // matrix layout: written as version 1.1 with packing and vectors
   MatrixPacking packing = MatrixPacking::kFull;
   int vectors = 0;
+  int basisBits = 16;  // matrix CPCA: 8 is written as version 1.2 with header byte 40 = 8
   int weightBits = 0;
   int order = 0;
   int channels = 0;

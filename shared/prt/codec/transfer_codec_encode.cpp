@@ -52,6 +52,9 @@ Status checkInput(std::span<const float> transfer, int order, int channels, cons
       if (s.cpcaMaxClusters < 1 || static_cast<std::uint32_t>(s.cpcaMaxClusters) > kMaxTransferClusters) {
         return invalid("CPCA cluster limit " + std::to_string(s.cpcaMaxClusters) + " is outside 1.." + std::to_string(kMaxTransferClusters));
       }
+      // cpcaBasisBits is matrix CPCA's: vector CPCA's bands store binary16 basis vectors
+      // whatever it says, so one setting ("cpca16b8@0.04") serves an asset's vector and
+      // matrix passes alike.
       break;
     default: return invalid("unknown encoding " + std::to_string(static_cast<int>(s.encoding)));
   }

@@ -92,6 +92,9 @@ Status checkMatrixInput(std::span<const float> packed, int order, MatrixPacking 
         return invalid("CPCA cluster limit " + std::to_string(s.cpcaMaxClusters) + " is outside 1.." +
                        std::to_string(kMaxTransferClusters));
       }
+      if (s.cpcaBasisBits != 8 && s.cpcaBasisBits != 16) {
+        return invalid("CPCA basis bits is " + std::to_string(s.cpcaBasisBits) + " (expected 8 or 16)");
+      }
       break;
     default: return invalid("unknown encoding " + std::to_string(static_cast<int>(s.encoding)));
   }

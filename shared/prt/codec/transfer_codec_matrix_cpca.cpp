@@ -9,8 +9,9 @@
 //     float mean) gives kMaxVectors principal matrices and the members' weights; a cluster
 //     with fewer members than the sketch is captured exactly (its rows span the subspace).
 //  3. For each basis count N' and weight step delta the error is known in weight space
-//     (dropped eigenvalues + quantisation error of the kept weights) and the size after an
-//     entropy coder is estimated (tables raw, streams by order-0 entropy per byte plane).
+//     (dropped eigenvalues + quantisation error of the kept weights, + the rounding of 8-bit
+//     basis entries when settings.cpcaBasisBits is 8) and the size after an entropy coder is
+//     estimated (tables raw, streams by order-0 entropy per byte plane).
 // Each pass over the data is an axpy over the sketch width, so it vectorises without
 // reassociation (-ffp-contract=off holds); temporary memory is O(V * kSketch + K * kMaxVectors * D).
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <limits>
 #include <string>
 
+#include "transfer_codec_basis8.h"
 #include "transfer_codec_eigen.h"
 #include "prt/half_float.h"
 #include "transfer_codec_kmeans.h"
@@ -275,10 +277,50 @@ struct Choice {
   double delta = 0.0;
 };
 
+// The entries of basis matrix j of `cf` in shell `band` as they are stored: divided by the
+// entry weights (if any) in float, exactly as encodeMatrixCpca does before writing.
+std::vector<float> storedShell(const ClusterFit& cf, std::size_t j, std::span<const float> entryWeight, int order, int band,
+                               MatrixPacking packing, int channels) {
+  const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels), D = C * E;
+  const std::size_t first = matrixEntryCount(band, packing), S = static_cast<std::size_t>(shellEntries(band, packing));
+  std::vector<float> u(C * S);
+  for (std::size_t c = 0; c < C; ++c)
+    for (std::size_t e = 0; e < S; ++e) {
+      const std::size_t d = c * E + first + e;
+      u[c * S + e] = entryWeight.empty() ? cf.basis[j * D + d] : cf.basis[j * D + d] / entryWeight[d];
+    }
+  return u;
+}
+
+// Per basis matrix j of `cf`: the squared norm, in the fitted (weighted) space, of the
+// rounding error of its 8-bit storage (a scale per shell). The members' weights on basis j
+// have energy lambda_j and are uncorrelated with those on the other basis matrices
+// (Rayleigh-Ritz), so storing B_j as B_j + dB_j adds lambda_j |dB_j|^2 to the cluster's error.
+std::vector<double> basis8Errors(const ClusterFit& cf, std::span<const float> entryWeight, int order, MatrixPacking packing,
+                                 int channels) {
+  const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels);
+  std::vector<double> err(static_cast<std::size_t>(cf.vectors), 0.0);
+  for (std::size_t j = 0; j < err.size(); ++j) {
+    for (int b = 0; b < order; ++b) {
+      const std::vector<float> u = storedShell(cf, j, entryWeight, order, b, packing, channels);
+      const float scale = basisScale(u);
+      const std::size_t first = matrixEntryCount(b, packing), S = u.size() / C;
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        const double w = entryWeight.empty() ? 1.0 : static_cast<double>(entryWeight[(i / S) * E + first + i % S]);
+        const double e = (static_cast<double>(basisValue(basisLevel(u[i], scale), scale)) - u[i]) * w;
+        err[j] += e * e;
+      }
+    }
+  }
+  return err;
+}
+
 // Best (N', delta) of one fit: smallest estimated size whose estimated error meets `goal`.
 // `scale` (>= 1) multiplies the per-vertex costs (ids, weights) when `fit` is of a sample.
+// `basisBits` 8: the basis matrices' rounding (basis8Errors) counts in the error and their
+// tables take a byte per entry plus a scale per shell; `entryWeight` is the fit's space.
 Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order, MatrixPacking packing, int bits,
-                    double goal, int* tried, double scale = 1.0) {
+                    int basisBits, std::span<const float> entryWeight, double goal, int* tried, double scale = 1.0) {
   const int levelsMax = quantLevels(bits), wb = bits / 8;
   const std::uint64_t E = matrixEntryCount(order, packing), C = static_cast<std::uint64_t>(channels);
   const std::uint64_t K = static_cast<std::uint64_t>(fit.clusters);
@@ -286,12 +328,17 @@ Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order
   const double fixedBytes = static_cast<double>(kHeaderBytes + kPartEntryBytes * static_cast<std::uint64_t>(order + 2)) +
                             scale * estimateStreamGroupBytes(ids, 1, V, clusterIdBytes(fit.clusters)) + 4.0 * static_cast<double>(K);
   // Energy left after keeping N' vectors (per-cluster eigenvalues; clusters with fewer keep all).
+  // With 8-bit basis entries, plus their rounding error (basis8Errors) for the kept ones.
   std::vector<double> resid(kMaxVectors + 1, 0.0);
-  for (int n = 0; n <= kMaxVectors; ++n) {
-    for (const ClusterFit& cf : fit.fits) {
-      double r = cf.centredEnergy;
-      for (int j = 0; j < std::min(n, cf.vectors); ++j) r -= cf.energy[static_cast<std::size_t>(j)];
-      resid[static_cast<std::size_t>(n)] += std::max(r, 0.0);
+  for (const ClusterFit& cf : fit.fits) {
+    const std::vector<double> rounding = basisBits == 8 ? basis8Errors(cf, entryWeight, order, packing, channels) : std::vector<double>{};
+    for (int n = 0; n <= kMaxVectors; ++n) {
+      double r = cf.centredEnergy, added = 0.0;
+      for (int j = 0; j < std::min(n, cf.vectors); ++j) {
+        r -= cf.energy[static_cast<std::size_t>(j)];
+        if (!rounding.empty()) added += cf.energy[static_cast<std::size_t>(j)] * rounding[static_cast<std::size_t>(j)];
+      }
+      resid[static_cast<std::size_t>(n)] += std::max(r, 0.0) + added;
     }
   }
   double maxWeight = 0.0;
@@ -304,7 +351,8 @@ Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order
     double errSum = 0.0, streamSum = 0.0;
     for (int n = 0; n <= kMaxVectors; ++n) {
       ++*tried;
-      const double tables = static_cast<double>(K * C * E) * (4.0 + 2.0 * n);
+      const double tables = basisBits == 8 ? static_cast<double>(K * C * E) * (4.0 + n) + 4.0 * static_cast<double>(K) * n * order
+                                           : static_cast<double>(K * C * E) * (4.0 + 2.0 * n);
       const double bytes = fixedBytes + streamSum + tables;
       if (resid[static_cast<std::size_t>(n)] + errSum <= goal && bytes < best.bytes) best = {bytes, n, delta};
       if (n == kMaxVectors || static_cast<std::uint64_t>(n) >= C * E) break;
@@ -344,7 +392,7 @@ std::vector<float> matrixEntryWeights(std::span<const double> rows, int order, M
 }
 
 std::vector<PartPayload> matrixCpcaParts(const MatrixFit& fit, std::size_t V, int order, MatrixPacking packing, int channels,
-                                         int bits, int vectors, const Quantised& q) {
+                                         int bits, int basisBits, int vectors, const Quantised& q) {
   const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels), D = C * E;
   const std::size_t N = static_cast<std::size_t>(vectors);
   std::vector<PartPayload> parts;
@@ -365,13 +413,31 @@ std::vector<PartPayload> matrixCpcaParts(const MatrixFit& fit, std::size_t V, in
     for (const ClusterFit& cf : fit.fits)
       for (std::size_t c = 0; c < C; ++c)
         for (std::size_t e = 0; e < S; ++e) putF32(shell.bytes, cf.mean[c * E + first + e]);
-    for (const ClusterFit& cf : fit.fits)
-      for (std::size_t j = 0; j < N; ++j)
-        for (std::size_t c = 0; c < C; ++c)
-          for (std::size_t e = 0; e < S; ++e) {
-            const float x = j < static_cast<std::size_t>(cf.vectors) ? cf.basis[j * D + c * E + first + e] : 0.0f;
-            putU16(shell.bytes, floatToHalf(x));
-          }
+    if (basisBits == 8) {
+      // A scale per (cluster, basis matrix) of this shell, then the levels, same order. The
+      // fit is back in the input's space here (weights divided out), so no entry weights.
+      for (const ClusterFit& cf : fit.fits) {
+        for (std::size_t j = 0; j < N; ++j) {
+          const float scale = j < static_cast<std::size_t>(cf.vectors) ? basisScale(storedShell(cf, j, {}, order, b, packing, channels)) : 0.0f;
+          putF32(shell.bytes, scale);
+        }
+      }
+      for (const ClusterFit& cf : fit.fits)
+        for (std::size_t j = 0; j < N; ++j) {
+          const bool kept = j < static_cast<std::size_t>(cf.vectors);
+          const std::vector<float> u = kept ? storedShell(cf, j, {}, order, b, packing, channels) : std::vector<float>(C * S, 0.0f);
+          const float scale = basisScale(u);
+          for (float x : u) putU8(shell.bytes, static_cast<std::uint8_t>(basisLevel(x, scale)));
+        }
+    } else {
+      for (const ClusterFit& cf : fit.fits)
+        for (std::size_t j = 0; j < N; ++j)
+          for (std::size_t c = 0; c < C; ++c)
+            for (std::size_t e = 0; e < S; ++e) {
+              const float x = j < static_cast<std::size_t>(cf.vectors) ? cf.basis[j * D + c * E + first + e] : 0.0f;
+              putU16(shell.bytes, floatToHalf(x));
+            }
+    }
     parts.push_back(std::move(shell));
   }
   return parts;
@@ -383,7 +449,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
                         const TransferCodecSettings& settings, std::vector<std::uint8_t>* out, TransferEncodeReport* report) {
   const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels), D = C * E;
   const std::size_t V = packed.size() / D;
-  const int bits = settings.cpcaWeightBits;
+  const int bits = settings.cpcaWeightBits, basisBits = settings.cpcaBasisBits;
   const double target = settings.cpcaTargetError;
   const int maxClusters = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(settings.cpcaMaxClusters), V));
   // x: the matrices in the space the fit and the target live in, each entry times its rows'
@@ -464,7 +530,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     MatrixFit fit = fitMatrixCpca(sample, S, D, k, settings.seed, samplePoints, pointDims, sampleEnergy);
     if (fit.clusters == previousClusters) break;  // no more distinct points to split
     previousClusters = fit.clusters;
-    const Choice c = chooseForFit(fit, S, channels, order, packing, bits, sampleGoal, &tried, scale);
+    const Choice c = chooseForFit(fit, S, channels, order, packing, bits, basisBits, entryWeight, sampleGoal, &tried, scale);
     const bool improved = c.bytes < bestChoice.bytes;
     if (improved) {
       bestChoice = c;
@@ -480,15 +546,16 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     // twice the clusters, up to the limit.
     for (int k = std::max(bestK, 1);; k = std::min(2 * k, maxClusters)) {
       best = fitMatrixCpca(x, V, D, k, settings.seed, points, pointDims, energy);
-      bestChoice = chooseForFit(best, V, channels, order, packing, bits, goal, &tried);
+      bestChoice = chooseForFit(best, V, channels, order, packing, bits, basisBits, entryWeight, goal, &tried);
       if (bestChoice.bytes < INFINITY || k >= maxClusters || best.clusters < k) break;
     }
   }
   if (!(bestChoice.bytes < INFINITY)) {
     return Status::error(StatusCode::kInvalidArgument,
                          "matrix CPCA cannot reach the target " + metric + "relative error " + std::to_string(target) + " with " +
-                             std::to_string(bits) + "-bit weights and at most " + std::to_string(kMaxVectors) +
-                             " basis matrices per cluster; use " + (bits < 16 ? "16-bit weights, " : "") +
+                             std::to_string(bits) + "-bit weights" + (basisBits == 8 ? ", 8-bit basis entries" : "") +
+                             " and at most " + std::to_string(kMaxVectors) + " basis matrices per cluster; use " +
+                             (bits < 16 ? "16-bit weights, " : "") + (basisBits == 8 ? "binary16 basis entries, " : "") +
                              "more clusters (the limit was " + std::to_string(maxClusters) + ") or a larger target");
   }
 
@@ -502,6 +569,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   header.vertexCount = static_cast<std::uint32_t>(V);
   header.clusterCount = static_cast<std::uint32_t>(best.clusters);
   header.vectors = bestChoice.vectors;
+  header.basisBits = basisBits;
   // Back from the weighted space: the stored means and basis matrices are of the input's
   // matrices, so decoders and renderers never see the weights.
   if (!entryWeight.empty()) {
@@ -516,7 +584,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   for (int attempt = 0; attempt <= kVerifyRetries; ++attempt) {
     const Quantised q = quantiseWeights(best, V, delta, quantLevels(bits));
     std::vector<std::uint8_t> blob;
-    assembleBlob(header, matrixCpcaParts(best, V, order, packing, channels, bits, bestChoice.vectors, q), &blob);
+    assembleBlob(header, matrixCpcaParts(best, V, order, packing, channels, bits, basisBits, bestChoice.vectors, q), &blob);
     if (Status s = decodeTransferMatrix(blob, order, decoded); !s.isOk()) {
       return Status::error(StatusCode::kInvalidArgument,
                            "the matrix transfer cannot be stored as CPCA within the transfer range: " + s.message());
@@ -542,12 +610,13 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
       *out = std::move(blob);
       return Status::ok();
     }
-    // The estimate missed (binary16 basis, float sums): a finer step, then the tightest.
+    // The estimate missed (basis rounding, float sums): a finer step, then the tightest.
     delta = attempt + 1 == kVerifyRetries ? 0.0 : delta * 0.7;
   }
   return Status::error(StatusCode::kInvalidArgument,
                        "matrix CPCA could not verify the target " + metric + "relative error " + std::to_string(target) + " with " +
-                           std::to_string(bits) + "-bit weights; use 16-bit weights or a larger target");
+                           std::to_string(bits) + "-bit weights" + (basisBits == 8 ? " and 8-bit basis entries" : "") +
+                           "; use 16-bit weights" + (basisBits == 8 ? ", binary16 basis entries" : "") + " or a larger target");
 }
 
 }  // namespace prt::transfer_codec

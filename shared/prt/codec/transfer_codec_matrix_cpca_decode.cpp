@@ -7,6 +7,7 @@
 #include <string>
 
 #include "prt/transfer_codec.h"
+#include "transfer_codec_basis8.h"
 #include "transfer_codec_container.h"
 #include "transfer_codec_decode_util.h"
 #include "prt/half_float.h"
@@ -79,6 +80,32 @@ Status decodeWeights(std::span<const std::uint8_t> bytes, const TransferBlobInfo
   return Status::ok();
 }
 
+// 8-bit basis entries of one shell (version 1.2): K * N float32 scales [cluster][basis],
+// then K * N * C * S int8 levels [cluster][basis][channel][shell entry]; `p` points at the
+// scales. A scale must be finite, >= 0 and keep its 127 levels within the transfer range,
+// a level within +-127 (-128 is never written).
+template <typename At>
+Status decodeBasis8(const std::uint8_t* p, const std::string& name, std::size_t K, std::size_t N, std::size_t C, std::size_t S,
+                    At&& at) {
+  const std::uint8_t* levels = p + 4 * K * N;
+  for (std::size_t k = 0; k < K; ++k)
+    for (std::size_t j = 0; j < N; ++j) {
+      const float scale = readLeF32(p + 4 * (k * N + j));
+      const std::string what = name + ": basis scale of cluster " + std::to_string(k) + ", basis matrix " + std::to_string(j);
+      if (Status s = checkStep(scale, kBasisLevels, what); !s.isOk()) return s;
+      for (std::size_t c = 0; c < C; ++c)
+        for (std::size_t e = 0; e < S; ++e, ++levels) {
+          const int q = static_cast<std::int8_t>(*levels);
+          if (q < -kBasisLevels) {
+            return corrupt(name + ": basis matrix " + std::to_string(j) + " of cluster " + std::to_string(k) + " has level " +
+                           std::to_string(q) + ", outside +-" + std::to_string(kBasisLevels));
+          }
+          at(k, j + 1, c, e) = basisValue(q, scale);
+        }
+    }
+  return Status::ok();
+}
+
 // Shell part `band` into out->matrices ([cluster][matrix][channel][entry < Eb]).
 Status decodeShellPart(std::span<const std::uint8_t> bytes, const TransferBlobInfo& info, int band, std::size_t Eb,
                        CpcaMatrixTransfer* out) {
@@ -102,6 +129,7 @@ Status decodeShellPart(std::span<const std::uint8_t> bytes, const TransferBlobIn
         }
         at(k, 0, c, e) = x;
       }
+  if (info.basisBits == 8) return decodeBasis8(p, name, K, N, C, S, at);
   for (std::size_t k = 0; k < K; ++k)
     for (std::size_t j = 0; j < N; ++j)
       for (std::size_t c = 0; c < C; ++c)
@@ -141,12 +169,13 @@ Status decodeCpcaMatrixTransfer(std::span<const std::uint8_t> bytes, int bands, 
   cpca.clusterCount = info.clusterCount;
   cpca.weightBits = info.weightBits;
   cpca.vectors = info.vectors;
+  cpca.basisBits = info.basisBits;
   if (Status s = decodeIds(bytes, info, &cpca); !s.isOk()) return s;
   std::vector<std::int32_t> largest;
   if (Status s = decodeWeights(bytes, info, &cpca, &largest); !s.isOk()) return s;
   const std::size_t K = info.clusterCount, N = static_cast<std::size_t>(info.vectors), C = static_cast<std::size_t>(info.channels);
   const std::size_t Eb = matrixEntryCount(bands, info.packing);
-  // At most twice the shells' bytes: 4 bytes per stored float32 or binary16.
+  // At most four times the shells' bytes: 4 bytes per stored float32, binary16 or int8.
   cpca.matrices.assign(K * (N + 1) * C * Eb, 0.0f);
   for (int b = 0; b < bands; ++b) {
     if (Status s = decodeShellPart(bytes, info, b, Eb, &cpca); !s.isOk()) return s;

@@ -61,11 +61,14 @@ Status parseTransferSetting(std::string_view text, const TransferCodecSettings& 
   else if (name == "f16") s.encoding = TransferEncoding::kFloat16;
   else if (name == "q16") s.encoding = TransferEncoding::kQuant16;
   else if (name == "q8") s.encoding = TransferEncoding::kQuant8;
-  else if (name == "cpca8" || name == "cpca16") {
+  else if (name == "cpca8" || name == "cpca16" || name == "cpca8b8" || name == "cpca16b8") {
+    // cpca<weight bits>[b8]: the name says both widths, whatever `defaults` held.
     s.encoding = TransferEncoding::kCpca;
-    s.cpcaWeightBits = name == "cpca8" ? 8 : 16;
+    s.cpcaWeightBits = name.starts_with("cpca8") ? 8 : 16;
+    s.cpcaBasisBits = name.ends_with("b8") ? 8 : 16;
   } else {
-    return bad("unknown setting (expected f32, f16, q16, q8, cpca8 or cpca16, the CPCA ones optionally @TARGET, e.g. cpca8@0.02)");
+    return bad("unknown setting (expected f32, f16, q16, q8, cpca8, cpca16, cpca8b8 or cpca16b8, the CPCA ones optionally "
+               "@TARGET, e.g. cpca8@0.02)");
   }
   if (at != std::string_view::npos) {
     if (s.encoding != TransferEncoding::kCpca) return bad("only CPCA settings take a target (@)");
@@ -84,7 +87,8 @@ Status parseTransferSetting(std::string_view text, const TransferCodecSettings& 
 
 std::string transferSettingName(const TransferCodecSettings& settings) {
   if (settings.encoding != TransferEncoding::kCpca) return transferEncodingName(settings.encoding);
-  return "cpca" + std::to_string(settings.cpcaWeightBits) + "@" + formatTarget(settings.cpcaTargetError);
+  return "cpca" + std::to_string(settings.cpcaWeightBits) + (settings.cpcaBasisBits == 8 ? "b8" : "") + "@" +
+         formatTarget(settings.cpcaTargetError);
 }
 
 }  // namespace prt
