@@ -61,6 +61,14 @@ void bindUniformBlock(GLuint program, const char* name, GLuint binding) {
   if (index != GL_INVALID_INDEX) glUniformBlockBinding(program, index, binding);
 }
 
+void specularAttributePointers(GLsizei floatsPerVertex) {
+  const GLsizei stride = floatsPerVertex * static_cast<GLsizei>(sizeof(float));
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, stride, nullptr);
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(4 * sizeof(float)));
+}
+
 void setNearestClamp(GLenum target) {
   glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);

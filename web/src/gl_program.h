@@ -16,6 +16,11 @@ Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* cons
 // Binds the program's uniform block `name` (if it has one) to binding point `binding`.
 void bindUniformBlock(GLuint program, const char* name, GLuint binding);
 
+// Points vertex attributes 5 (vec4: f0 rgb, Phong exponent) and 6 (float: f90) of the bound
+// vertex array into the ARRAY_BUFFER bound now, `floatsPerVertex` floats a vertex: the
+// specular material layout of both glossy paths (glossy_texture.h, kGlossySpecularFloats).
+void specularAttributePointers(GLsizei floatsPerVertex);
+
 // Texture parameters for texelFetch-only textures (no filtering, no wrapping).
 void setNearestClamp(GLenum target);
 

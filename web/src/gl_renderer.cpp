@@ -244,11 +244,7 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glEnableVertexAttribArray(4);
   glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
   g.specular = makeBuffer(GL_ARRAY_BUFFER, packed.specular.data(), packed.specular.size() * sizeof(float));
-  constexpr GLsizei kStride = static_cast<GLsizei>(kGlossySpecularFloats * sizeof(float));
-  glEnableVertexAttribArray(5);
-  glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, kStride, nullptr);
-  glEnableVertexAttribArray(6);
-  glVertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, kStride, reinterpret_cast<const void*>(4 * sizeof(float)));
+  specularAttributePointers(static_cast<GLsizei>(kGlossySpecularFloats));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   if (Status s = glErrorStatus("this scene's glossy transfer", "uploading a glossy pass"); !s.isOk()) {

@@ -184,11 +184,7 @@ Status TexelRenderer::uploadVisibility(const TransferPass& pass, int order, std:
   glBindBuffer(GL_ARRAY_BUFFER, specular_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(material.size() * sizeof(float)), material.data(), GL_STATIC_DRAW);
   glBindVertexArray(vao_);
-  constexpr GLsizei kStride = static_cast<GLsizei>(kGlossySpecularFloats * sizeof(float));
-  glEnableVertexAttribArray(5);
-  glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, kStride, nullptr);
-  glEnableVertexAttribArray(6);
-  glVertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, kStride, reinterpret_cast<const void*>(4 * sizeof(float)));
+  specularAttributePointers(static_cast<GLsizei>(kGlossySpecularFloats));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   releasePass(&visibility_);
