@@ -16,23 +16,12 @@
 #include "prt/checksum.h"
 #include "prt/transfer_codec.h"
 #include "prt/transfer_matrix.h"
+#include "matrix_codec_test_util.h"
 
 namespace prt {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
-
-struct Lcg {
-  std::uint64_t s;
-  double next() {  // uniform in [0, 1)
-    s = s * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(s >> 11) * 0x1.0p-53;
-  }
-  double gauss() {
-    const double u = 1.0 - next(), v = next();
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);
-  }
-};
+using namespace codec_test;
 
 // Clusters of a mean plus `rank` random directions with small noise (CPCA's own model); the
 // entries fall off with the row's band, as smooth transfer's do, so shells differ in scale.
@@ -86,21 +75,6 @@ TransferCodecSettings setting(const char* name, int maxClusters = 8) {
   return s;
 }
 
-Bytes encodeOrDie(const std::vector<float>& x, int order, MatrixPacking packing, int channels, const TransferCodecSettings& s,
-                  TransferEncodeReport* report = nullptr) {
-  Bytes blob;
-  const Status st = encodeTransferMatrix(x, order, packing, channels, s, &blob, report);
-  EXPECT_TRUE(st.isOk()) << st.toString();
-  return blob;
-}
-
-std::vector<float> decodeOrDie(const Bytes& blob, int bands) {
-  std::vector<float> out;
-  const Status st = decodeTransferMatrix(blob, bands, &out);
-  EXPECT_TRUE(st.isOk()) << st.toString();
-  return out;
-}
-
 std::uint32_t rd32(const Bytes& b, std::size_t at) {
   return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
          static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
@@ -147,8 +121,6 @@ void reseal(Bytes& b) {
   wr32(b, 32, crc32c({b.data() + 48, static_cast<std::size_t>(tableEnd) - 48}));
   wr32(b, 44, crc32c({b.data(), 44}));
 }
-
-constexpr MatrixPacking kPackings[] = {MatrixPacking::kSymmetric, MatrixPacking::kFull};
 
 // Reads shell `band` of an 8-bit-basis blob as the page lays it out (means, K * N' scales,
 // K * N' * C * S int8 levels) and checks it against the unexpanded decode: every basis entry

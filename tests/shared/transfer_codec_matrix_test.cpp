@@ -16,23 +16,12 @@
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 #include "prt/transfer_matrix.h"
+#include "matrix_codec_test_util.h"
 
 namespace prt {
 namespace {
 
-using Bytes = std::vector<std::uint8_t>;
-
-struct Lcg {
-  std::uint64_t s;
-  double next() {  // uniform in [0, 1)
-    s = s * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(s >> 11) * 0x1.0p-53;
-  }
-  double gauss() {
-    const double u = 1.0 - next(), v = next();
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);
-  }
-};
+using namespace codec_test;
 
 TransferCodecSettings setting(const char* name) {
   TransferCodecSettings s;
@@ -147,23 +136,6 @@ void reseal(Bytes& b) {
   wr32(b, 32, crc32c({b.data() + 48, static_cast<std::size_t>(tableEnd) - 48}));
   wr32(b, 44, crc32c({b.data(), 44}));
 }
-
-Bytes encodeOrDie(const std::vector<float>& x, int order, MatrixPacking packing, int channels, const TransferCodecSettings& s,
-                  TransferEncodeReport* report = nullptr) {
-  Bytes blob;
-  const Status st = encodeTransferMatrix(x, order, packing, channels, s, &blob, report);
-  EXPECT_TRUE(st.isOk()) << st.toString();
-  return blob;
-}
-
-std::vector<float> decodeOrDie(const Bytes& blob, int bands) {
-  std::vector<float> out;
-  const Status st = decodeTransferMatrix(blob, bands, &out);
-  EXPECT_TRUE(st.isOk()) << st.toString();
-  return out;
-}
-
-constexpr MatrixPacking kPackings[] = {MatrixPacking::kSymmetric, MatrixPacking::kFull};
 
 TEST(TransferCodecMatrix, PerEntryEncodingsRoundTripWithinTheirBounds) {
   for (MatrixPacking packing : kPackings) {
