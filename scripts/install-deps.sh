@@ -35,6 +35,9 @@ packages=(
   strace
   # headless browser for the web client's tests (driven by playwright-core from npm)
   chromium
+  # the client's renderer on native OpenGL ES (prt-gpu-frames: GPU frame times without a
+  # browser): EGL and GLES headers (GLVND), and Mesa's software driver for its tests here
+  pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()

@@ -1,7 +1,5 @@
 #include "client_app.h"
 
-#include <emscripten/html5.h>
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -15,32 +13,23 @@
 
 namespace prt::web {
 
-ClientApp::ClientApp(const std::string& selector) {
-  EmscriptenWebGLContextAttributes attrs;
-  emscripten_webgl_init_context_attributes(&attrs);
-  attrs.majorVersion = 2;
-  attrs.minorVersion = 0;
-  attrs.antialias = true;
-  attrs.depth = true;
-  attrs.preserveDrawingBuffer = true;  // screenshots and tests read the canvas after a frame
-  context_ = emscripten_webgl_create_context(selector.c_str(), &attrs);
-  if (context_ <= 0) {
-    error_ = "WebGL2 is not available in this browser (context creation failed)";
+ClientApp::ClientApp(const GlContextOptions& options) {
+  if (std::string e = context_.create(options); !e.empty()) {
+    error_ = std::move(e);
     return;
   }
-  emscripten_webgl_make_context_current(context_);
   if (Status s = renderer_.init(); !s.isOk()) {
     error_ = s.message();
     return;
   }
   // Float render targets (the light cube, the GPU projection); without them the cube is
   // RGBE8 and projected on the CPU.
-  const bool floatTargets = emscripten_webgl_enable_extension(context_, "EXT_color_buffer_float");
+  const bool floatTargets = context_.enableExtension("EXT_color_buffer_float");
   if (Status s = lights_.init(floatTargets); !s.isOk()) error_ = s.message();
   setWhiteFurnace(1.0f);
 }
 
-void ClientApp::makeCurrent() const { emscripten_webgl_make_context_current(context_); }
+void ClientApp::makeCurrent() const { context_.makeCurrent(); }
 
 std::uint8_t* ClientApp::reserveAsset(std::size_t bytes) {
   pending_.clear();

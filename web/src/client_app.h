@@ -14,6 +14,7 @@
 #include "asset_stream.h"
 #include "client_limits.h"
 #include "dynamic_lighting.h"
+#include "gl_context.h"
 #include "gl_renderer.h"
 #include "glm_types.h"
 #include "orbit_camera.h"
@@ -24,9 +25,10 @@ namespace prt::web {
 
 class ClientApp {
  public:
-  // Creates a WebGL2 context on the canvas matching `selector` ("#canvas"). On failure
-  // error() says why (WebGL2 missing) and every other call is a no-op.
-  explicit ClientApp(const std::string& selector);
+  // Creates the GL context (gl_context.h: WebGL2 on the canvas `options.canvas` in the
+  // browser, an off-screen OpenGL ES 3 context natively). On failure error() says why
+  // (WebGL2 missing) and every other call is a no-op.
+  explicit ClientApp(const GlContextOptions& options);
   const std::string& error() const { return error_; }
 
   // Memory JS streams the asset into (no extra copy): call with the byte count, fill it,
@@ -249,7 +251,7 @@ class ClientApp {
   TexelShading texelShading() const;  // the frame's terms, order, eye for the texel draw
 
   std::string error_;
-  int context_ = 0;
+  GlContext context_;
   GlRenderer renderer_;
   DynamicLighting lights_;
   bool environmentEnabled_ = true;

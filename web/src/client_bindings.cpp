@@ -9,6 +9,9 @@ using prt::web::ClientApp;
 
 namespace {
 
+// new Module.ClientApp("#canvas"): the WebGL2 context on that canvas.
+ClientApp* makeClientApp(const std::string& canvas) { return new ClientApp(prt::web::GlContextOptions{canvas, 0, 0}); }
+
 // A Uint8Array over the reserved asset memory, for fetch() to stream into; null when the
 // allocation failed (out of memory). Re-take it after any other call into the module:
 // memory growth detaches old views.
@@ -114,7 +117,7 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .value("vertex", prt::TransferDomain::kVertex)
       .value("texel", prt::TransferDomain::kTexel);
   emscripten::class_<ClientApp>("ClientApp")
-      .constructor<std::string>()
+      .constructor(&makeClientApp, emscripten::allow_raw_pointers())
       .function("error", &ClientApp::error)
       .function("reserveAsset", &reserveAsset)
       .function("loadAsset", &ClientApp::loadAsset)

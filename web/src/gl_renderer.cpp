@@ -1,13 +1,12 @@
 #include "gl_renderer.h"
 
-#include <webgl/webgl2.h>  // glGetBufferSubData (WebGL2, not GLES3)
-
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "client_limits.h"
 #include "gl_program.h"
+#include "gl_readback.h"
 #include "lighting_block.h"
 #include "transfer_texture.h"
 #include "web_shaders.h"
@@ -360,7 +359,7 @@ void GlRenderer::finishGlossy(ShadingMode mode, GlossyWork work) const {
   if (!isPassKind(mode) || glossy_[static_cast<std::size_t>(mode)].bands == 0) return;
   float value = 0.0f;
   glBindBuffer(GL_ARRAY_BUFFER, work == GlossyWork::kTableOnly ? glossy_[static_cast<std::size_t>(mode)].tableBuffer : glossyBuffer_);
-  glGetBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float), &value);
+  (void)readBoundBuffer(GL_ARRAY_BUFFER, sizeof(float), &value);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
@@ -368,7 +367,7 @@ std::vector<float> GlRenderer::readGlossy(std::size_t vertices) const {
   std::vector<float> out(std::min(vertices, static_cast<std::size_t>(vertexCount_)) * 3);
   if (out.empty()) return out;
   glBindBuffer(GL_ARRAY_BUFFER, glossyBuffer_);
-  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+  (void)readBoundBuffer(GL_ARRAY_BUFFER, out.size() * sizeof(float), out.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   return out;
 }
@@ -496,7 +495,7 @@ std::vector<float> GlRenderer::readRadiance(std::size_t vertices) const {
   std::vector<float> out(std::min(vertices, static_cast<std::size_t>(vertexCount_)) * 3);
   if (out.empty()) return out;
   glBindBuffer(GL_ARRAY_BUFFER, radianceBuffer_);
-  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(out.size() * sizeof(float)), out.data());
+  (void)readBoundBuffer(GL_ARRAY_BUFFER, out.size() * sizeof(float), out.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   return out;
 }

@@ -1,10 +1,9 @@
 #include "lighting_block.h"
 
-#include <webgl/webgl2.h>  // glGetBufferSubData (WebGL2, not GLES3)
-
 #include <string>
 
 #include "gl_program.h"
+#include "gl_readback.h"
 #include "web_shaders.h"
 
 namespace prt::web {
@@ -66,7 +65,7 @@ void LightingBlock::readFirstTexel() {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   } else {
     glBindBuffer(GL_UNIFORM_BUFFER, buffer_);
-    glGetBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof texel, texel);
+    (void)readBoundBuffer(GL_UNIFORM_BUFFER, sizeof texel, texel);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
   }
 }
@@ -101,7 +100,7 @@ void LightingBlock::bind() const { glBindBufferBase(GL_UNIFORM_BUFFER, kLighting
 
 void LightingBlock::read(float* packed) const {
   glBindBuffer(GL_UNIFORM_BUFFER, buffer_);
-  glGetBufferSubData(GL_UNIFORM_BUFFER, 0, kPackedLightingFloats * sizeof(float), packed);
+  (void)readBoundBuffer(GL_UNIFORM_BUFFER, kPackedLightingFloats * sizeof(float), packed);
   glBindBuffer(GL_UNIFORM_BUFFER, 0);
 }
 
