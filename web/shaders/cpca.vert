@@ -14,7 +14,8 @@ layout(location = 4) in uint aCluster;
 
 uniform sampler2D uTable;     // RGB32F: entry k * uEntries + e
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + t
-uniform int uTextureWidth;    // both textures
+uniform int uTextureMask;     // the textures' width - 1 (a power of two) — both textures
+uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uEntries;         // 1 + 4 * uWeightTexels
 uniform int uWeightTexels;
 uniform int uActiveTexels;    // texels holding the displayed bands' weights
@@ -22,8 +23,10 @@ uniform int uChannels;        // 1: scalar transfer, multiplied by the albedo
 
 out vec3 vRadiance;
 
+ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
+
 vec3 entry(int i) {
-  return texelFetch(uTable, ivec2(i % uTextureWidth, i / uTextureWidth), 0).rgb;
+  return texelFetch(uTable, texelCoord(i), 0).rgb;
 }
 
 void main() {
@@ -32,7 +35,7 @@ void main() {
   int base = gl_VertexID * uWeightTexels;
   for (int t = 0; t < uActiveTexels; ++t) {
     int i = base + t;
-    vec4 q = vec4(texelFetch(uWeights, ivec2(i % uTextureWidth, i / uTextureWidth), 0));
+    vec4 q = vec4(texelFetch(uWeights, texelCoord(i), 0));
     int e = first + 1 + 4 * t;
     radiance += q.x * entry(e) + q.y * entry(e + 1) + q.z * entry(e + 2) + q.w * entry(e + 3);
   }

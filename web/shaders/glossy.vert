@@ -16,7 +16,8 @@ layout(location = 5) in vec4 aSpecular;  // f0 r, g, b; Phong exponent s
 layout(location = 6) in float aSpecularF90;  // Schlick's grazing reflectance (0: no specular part)
 
 uniform sampler2D uTransfer;  // RGBA32F: T_vc rows 4t .. 4t+3 at texel (c * uVertices + v) * uRowTexels + t
-uniform int uTextureWidth;
+uniform int uTextureMask;     // the textures' width - 1 (a power of two)
+uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uRowTexels;       // ceil(packed bands^2 / 4)
 uniform int uVertices;
 uniform int uBands;           // displayed bands (<= 8)
@@ -81,7 +82,9 @@ vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on) {
   return f0 + (f90 - f0) * k5;
 }
 
-vec4 transferTexel(int i) { return texelFetch(uTransfer, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
+
+vec4 transferTexel(int i) { return texelFetch(uTransfer, texelCoord(i), 0); }
 
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);

@@ -12,7 +12,8 @@ precision highp int;
 precision highp sampler2D;
 
 uniform sampler2D uMatrices;  // RGBA32F: matrix ((k * (1 + N') + m) * uChannels + c), uMatrixTexels texels each
-uniform int uTextureWidth;
+uniform int uTextureMask;     // the textures' width - 1 (a power of two)
+uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uRowTexels;       // ceil(packed bands^2 / 4): texels of one row and of one table vector
 uniform int uMatrixTexels;    // packed bands^2 * uRowTexels
 uniform int uChannels;        // 1: one matrix for r, g, b; 3: one per channel
@@ -25,7 +26,9 @@ layout(std140) uniform Lighting {  // the frame's lighting (lighting_combine.ver
 
 out vec4 vTable;
 
-vec4 texelAt(int texel) { return texelFetch(uMatrices, ivec2(texel % uTextureWidth, texel / uTextureWidth), 0); }
+ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
+
+vec4 texelAt(int texel) { return texelFetch(uMatrices, texelCoord(texel), 0); }
 
 void main() {
   int t = gl_VertexID % uRowTexels;

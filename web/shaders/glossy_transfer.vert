@@ -16,7 +16,8 @@ layout(location = 4) in uint aCluster;
 
 uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
-uniform int uTextureWidth;
+uniform int uTextureMask;     // the textures' width - 1 (a power of two)
+uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uRowTexels;       // ceil(packed bands^2 / 4): the table's stride (<= 16)
 uniform int uActiveTexels;    // ceil(displayed bands^2 / 4) (<= uRowTexels)
 uniform int uVectors;         // N' (<= 64)
@@ -25,25 +26,31 @@ uniform int uChannel;         // 0 r, 1 g, 2 b
 
 out vec4 vT0, vT1, vT2, vT3, vT4, vT5, vT6, vT7, vT8, vT9, vT10, vT11, vT12, vT13, vT14, vT15;
 
-vec4 tableTexel(int i) { return texelFetch(uTable, ivec2(i % uTextureWidth, i / uTextureWidth), 0); }
+ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
+
+vec4 tableTexel(int i) { return texelFetch(uTable, texelCoord(i), 0); }
 
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-  float levels[64];
-  int wbase = gl_VertexID * uWeightTexels;
-  for (int t = 0; t < uWeightTexels; ++t) {
-    int i = wbase + t;
-    vec4 q = vec4(texelFetch(uWeights, ivec2(i % uTextureWidth, i / uTextureWidth), 0));
-    for (int u = 0; u < 4; ++u)
-      if (4 * t + u < uVectors) levels[4 * t + u] = q[u];
-  }
-  int first = int(aCluster) * (1 + uVectors);
+  // Basis vectors outer, row texels inner: each basis vector's level is read once and its row
+  // is one run of texels from `row`; the loops have constant bounds (16 texels, 4 levels a
+  // weight texel) so the accumulators stay in registers where the compiler unrolls them. The
+  // sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N'.
+  int stride = 3 * uRowTexels;  // texels from basis vector j's row for channel c to j + 1's
+  int row = (int(aCluster) * (1 + uVectors) * 3 + uChannel) * uRowTexels;
   vec4 tr[16];
-  for (int t = 0; t < 16; ++t) tr[t] = vec4(0.0);
-  for (int t = 0; t < uActiveTexels; ++t) {
-    vec4 acc = tableTexel((first * 3 + uChannel) * uRowTexels + t);
-    for (int j = 0; j < uVectors; ++j) acc += levels[j] * tableTexel(((first + 1 + j) * 3 + uChannel) * uRowTexels + t);
-    tr[t] = acc;
+  for (int t = 0; t < 16; ++t) tr[t] = t < uActiveTexels ? tableTexel(row + t) : vec4(0.0);
+  int weightTexel = gl_VertexID * uWeightTexels;
+  for (int w = 0; w < uWeightTexels; ++w) {
+    vec4 q = vec4(texelFetch(uWeights, texelCoord(weightTexel + w), 0));
+    for (int u = 0; u < 4; ++u) {
+      if (4 * w + u >= uVectors) break;
+      row += stride;
+      for (int t = 0; t < 16; ++t) {
+        if (t >= uActiveTexels) break;
+        tr[t] += q[u] * tableTexel(row + t);
+      }
+    }
   }
   vT0 = tr[0]; vT1 = tr[1]; vT2 = tr[2]; vT3 = tr[3]; vT4 = tr[4]; vT5 = tr[5]; vT6 = tr[6]; vT7 = tr[7];
   vT8 = tr[8]; vT9 = tr[9]; vT10 = tr[10]; vT11 = tr[11]; vT12 = tr[12]; vT13 = tr[13]; vT14 = tr[14]; vT15 = tr[15];

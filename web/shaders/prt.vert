@@ -13,7 +13,8 @@ layout(location = 1) in vec3 aAlbedo;
 
 uniform mat4 uViewProjection;
 uniform sampler2D uTransfer;
-uniform int uTextureWidth;
+uniform int uTextureMask;     // the textures' width - 1 (a power of two)
+uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uTexelsPerChannel;  // ceil(order^2 / 4) at the baked order
 uniform int uChannels;          // 1 or 3
 uniform int uActiveTexels;      // ceil(order'^2 / 4) at the displayed order (<= uTexelsPerChannel)
@@ -26,8 +27,10 @@ layout(std140) uniform Lighting {  // built on the GPU by lighting_combine.vert
 
 out vec3 vRadiance;
 
+ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
+
 vec4 transferTexel(int index) {
-  return texelFetch(uTransfer, ivec2(index % uTextureWidth, index / uTextureWidth), 0);
+  return texelFetch(uTransfer, texelCoord(index), 0);
 }
 
 void main() {

@@ -39,6 +39,13 @@ GLuint makeWeightTexture(int weightBits, int width, int height, const void* leve
   return t;
 }
 
+// The transfer textures' row layout (kTransferTextureWidth wide) for the bound program's texel
+// fetches: its uTextureMask and uTextureShift uniforms at these locations.
+void setTextureLayout(GLint maskLocation, GLint shiftLocation) {
+  glUniform1i(maskLocation, kTransferTextureWidth - 1);
+  glUniform1i(shiftLocation, kTransferTextureShift);
+}
+
 }  // namespace
 
 Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char* feedback) {
@@ -57,7 +64,8 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->lightB = glGetUniformLocation(p, "uLightB");
   out->exposure = glGetUniformLocation(p, "uExposure");
   out->transfer = glGetUniformLocation(p, "uTransfer");
-  out->textureWidth = glGetUniformLocation(p, "uTextureWidth");
+  out->textureMask = glGetUniformLocation(p, "uTextureMask");
+  out->textureShift = glGetUniformLocation(p, "uTextureShift");
   out->texelsPerChannel = glGetUniformLocation(p, "uTexelsPerChannel");
   out->channels = glGetUniformLocation(p, "uChannels");
   out->activeTexels = glGetUniformLocation(p, "uActiveTexels");
@@ -279,7 +287,7 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.matrices);
   glUniform1i(glossyTable_.matrices, 0);
-  glUniform1i(glossyTable_.textureWidth, kTransferTextureWidth);
+  setTextureLayout(glossyTable_.textureMask, glossyTable_.textureShift);
   glUniform1i(glossyTable_.rowTexels, g.rowTexels);
   glUniform1i(glossyTable_.matrixTexels, g.matrixTexels);
   glUniform1i(glossyTable_.channels, g.channels);
@@ -301,7 +309,7 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, g.weights);
   glUniform1i(t.weights, 1);
-  glUniform1i(t.textureWidth, kTransferTextureWidth);
+  setTextureLayout(t.textureMask, t.textureShift);
   glUniform1i(t.rowTexels, g.rowTexels);
   glUniform1i(t.activeTexels, texelsForOrder(bands));
   glUniform1i(t.vectors, g.vectors);
@@ -339,7 +347,7 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.transfer);
   glUniform1i(glossyProgram_.transfer, 0);
-  glUniform1i(glossyProgram_.textureWidth, kTransferTextureWidth);
+  setTextureLayout(glossyProgram_.textureMask, glossyProgram_.textureShift);
   glUniform1i(glossyProgram_.rowTexels, g.rowTexels);
   glUniform1i(glossyProgram_.vertices, vertexCount_);
   glUniform1i(glossyProgram_.bands, bands);
@@ -521,7 +529,7 @@ void GlRenderer::usePrtProgram(const PassTexture& t, int activeOrder) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, t.texture);
   glUniform1i(prt_.transfer, 0);
-  glUniform1i(prt_.textureWidth, kTransferTextureWidth);
+  setTextureLayout(prt_.textureMask, prt_.textureShift);
   glUniform1i(prt_.texelsPerChannel, t.texelsPerChannel);
   glUniform1i(prt_.channels, t.channels);
   glUniform1i(prt_.activeTexels, texelsForOrder(activeOrder));
@@ -547,7 +555,7 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, t.weights);
   glUniform1i(cpca_.weights, 1);
-  glUniform1i(cpca_.textureWidth, kTransferTextureWidth);
+  setTextureLayout(cpca_.textureMask, cpca_.textureShift);
   glUniform1i(cpca_.entries, t.entriesPerCluster);
   glUniform1i(cpca_.weightTexels, t.weightTexels);
   glUniform1i(cpca_.activeTexels, (t.weightsBefore[static_cast<std::size_t>(activeOrder)] + 3) / 4);

@@ -140,7 +140,7 @@ class GlRenderer {
   struct Program {
     GLuint id = 0;
     GLint viewProjection = -1, lightR = -1, lightG = -1, lightB = -1, exposure = -1;
-    GLint transfer = -1, textureWidth = -1, texelsPerChannel = -1, channels = -1, activeTexels = -1;
+    GLint transfer = -1, textureMask = -1, textureShift = -1, texelsPerChannel = -1, channels = -1, activeTexels = -1;
     GLint inverseViewProjection = -1;
     GLint table = -1, weights = -1, entries = -1, weightTexels = -1;
     // glossy_table.vert, glossy.vert

@@ -13,8 +13,11 @@
 
 namespace prt::web {
 
-// Guaranteed by every WebGL2 implementation (MAX_TEXTURE_SIZE >= 2048).
-inline constexpr int kTransferTextureWidth = 2048;
+// Guaranteed by every WebGL2 implementation (MAX_TEXTURE_SIZE >= 2048). A power of two: the
+// shaders split a texel index into (x, y) with a mask and a shift (uTextureMask,
+// uTextureShift), since an integer division per fetch is what a CPU rasteriser pays most for.
+inline constexpr int kTransferTextureShift = 11;
+inline constexpr int kTransferTextureWidth = 1 << kTransferTextureShift;
 
 struct TransferTexture {
   int width = 0, height = 0;   // texels
