@@ -89,6 +89,9 @@ vec4 transferTexel(int i) { return texelFetch(uTransfer, texelCoord(i), 0); }
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
   vGlossy = vec3(0.0);
+  // A matte vertex (f0 = f90 = 0: k_s = 0 at every angle) has no glossy term: exactly the 0
+  // that k_s times the sum below would give, without the basis and the fetches.
+  if (aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0)) return;
   vec3 d = uEye - aPosition;
   float distance = length(d);
   if (!(distance > 0.0)) return;
