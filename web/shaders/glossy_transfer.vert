@@ -13,6 +13,8 @@ precision highp sampler2D;
 precision highp isampler2D;
 
 layout(location = 4) in uint aCluster;
+layout(location = 5) in vec4 aSpecular;      // f0 r, g, b; Phong exponent s
+layout(location = 6) in float aSpecularF90;  // Schlick's grazing reflectance
 
 uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
@@ -32,16 +34,23 @@ vec4 tableTexel(int i) { return texelFetch(uTable, texelCoord(i), 0); }
 
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  vec4 tr[16];
+  for (int t = 0; t < 16; ++t) tr[t] = vec4(0.0);
+  // A matte vertex (f0 = f90 = 0) has no glossy term (glossy.vert returns 0 for it): its T is
+  // left 0, unread.
+  bool matte = aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0);
   // Basis vectors outer, row texels inner: each basis vector's level is read once and its row
   // is one run of texels from `row`; the loops have constant bounds (16 texels, 4 levels a
   // weight texel) so the accumulators stay in registers where the compiler unrolls them. The
   // sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N'.
   int stride = 3 * uRowTexels;  // texels from basis vector j's row for channel c to j + 1's
   int row = (int(aCluster) * (1 + uVectors) * 3 + uChannel) * uRowTexels;
-  vec4 tr[16];
-  for (int t = 0; t < 16; ++t) tr[t] = t < uActiveTexels ? tableTexel(row + t) : vec4(0.0);
+  for (int t = 0; t < 16; ++t) {
+    if (matte || t >= uActiveTexels) break;
+    tr[t] = tableTexel(row + t);
+  }
   int weightTexel = gl_VertexID * uWeightTexels;
-  for (int w = 0; w < uWeightTexels; ++w) {
+  for (int w = 0; w < (matte ? 0 : uWeightTexels); ++w) {
     vec4 q = vec4(texelFetch(uWeights, texelCoord(weightTexel + w), 0));
     for (int u = 0; u < 4; ++u) {
       if (4 * w + u >= uVectors) break;

@@ -242,10 +242,12 @@ std::vector<float> glossyTransferCpu(const GlossyTextures& p, const std::vector<
   const int activeTexels = texelsForOrder(std::clamp(activeBands, 1, p.bands));
   const std::size_t V = p.clusterOf.size(), N = static_cast<std::size_t>(p.vectors), R = static_cast<std::size_t>(p.rowTexels);
   std::vector<float> transfer(static_cast<std::size_t>(p.transferTexels) * 4, 0.0f);
-  if (table.size() != static_cast<std::size_t>(p.tableTexels) * 4) return transfer;
+  if (table.size() != static_cast<std::size_t>(p.tableTexels) * 4 || p.specular.size() != V * kGlossySpecularFloats) return transfer;
   for (std::size_t c = 0; c < 3; ++c) {
     for (std::size_t v = 0; v < V; ++v) {
-      // glossy_transfer.vert: the draw of channel c, point v.
+      // glossy_transfer.vert: the draw of channel c, point v; a matte vertex's T stays 0.
+      const float* material = &p.specular[v * kGlossySpecularFloats];
+      if (material[0] == 0.0f && material[1] == 0.0f && material[2] == 0.0f && material[4] == 0.0f) continue;
       const std::size_t first = static_cast<std::size_t>(p.clusterOf[v]) * (1 + N);
       for (std::size_t t = 0; t < static_cast<std::size_t>(activeTexels); ++t) {
         const float* mean = &table[((first * 3 + c) * R + t) * 4];

@@ -107,7 +107,8 @@ void glossyShBasis(int order, Vec3 dir, float* out);
 std::vector<float> glossyTableCpu(const GlossyTextures& packed, const float* lighting, int activeBands);
 
 // glossy_transfer.vert on the CPU: the transferred radiance (transferTexels * 4 floats) from
-// glossyTableCpu's table at `activeBands` (rows beyond are zero), in the shader's order.
+// glossyTableCpu's table at `activeBands` (rows beyond are zero, and so is a matte vertex's
+// whole T: f0 = f90 = 0, no glossy term), in the shader's order.
 std::vector<float> glossyTransferCpu(const GlossyTextures& packed, const std::vector<float>& table, int activeBands);
 
 // glossy.vert on the CPU from the transferred radiance: glossy exit radiance toward `eye`, RGB
