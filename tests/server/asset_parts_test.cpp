@@ -260,6 +260,31 @@ TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
   }
 }
 
+// Texel normals (format 1.6) travel like the atlas sections: one part of their own, marked
+// texel and without a pass, so the page fetches them with the geometry.
+TEST(AssetParts, TexelNormalsAreOneTexelPartWithoutAPass) {
+  const TexelTransferAsset texel = makeTexelTransferAsset(60, 3, 5);
+  BakedAsset asset;
+  ASSERT_TRUE(decodeAsset(texel.bytes, &asset).isOk());
+  asset.texelNormals.assign(2 * asset.texelCoverage.size(), 0);  // +z at every (sampled) texel
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(encodeAsset(asset, &bytes).isOk());
+  const AssetSummary summary = verified(bytes);
+  const std::vector<AssetPart> parts = cutAssetParts(bytes, summary);
+  expectTiling(parts, bytes.size());
+  int normals = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kTexelNormals)) normals = static_cast<int>(i);
+  }
+  ASSERT_GE(normals, 0);
+  const auto mine = partsOfSection(parts, normals);
+  ASSERT_EQ(mine.size(), 1u);
+  EXPECT_EQ(mine[0]->kind, AssetPartKind::kSection);
+  EXPECT_EQ(mine[0]->domain, TransferDomain::kTexel);
+  EXPECT_FALSE(mine[0]->hasPass);
+  EXPECT_GE(mine[0]->size, 4 * summary.texelCount);
+}
+
 // A TPFL visibility pass (format 1.5) is cut at its own bands (order 2n - 1, not the asset's
 // n) and its parts are marked visibility and texel, so a client without a TPFL shader can
 // leave them alone; the texel vector pass beside it keeps its plain listing.

@@ -102,7 +102,7 @@ TEST(AssetVisibility, FloatAndEncodedVisibilityPassesRoundTrip) {
   AssetSummary summary, peeked;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
   ASSERT_TRUE(peekAssetHeader(file, &peeked).isOk());
-  EXPECT_EQ(summary.versionMinor, 5);
+  EXPECT_EQ(summary.versionMinor, 6);
   for (const AssetSummary* s : {&summary, &peeked}) {
     ASSERT_EQ(s->passes.size(), 2u);
     const AssetPassInfo& v = s->passes[1];
