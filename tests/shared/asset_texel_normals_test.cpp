@@ -117,18 +117,6 @@ BakedAsset normalAsset(bool normals) {
   return a;
 }
 
-Bytes encodeOrDie(const BakedAsset& a) {
-  Bytes out;
-  const Status s = encodeAsset(a, &out);
-  EXPECT_TRUE(s.isOk()) << s.toString();
-  return out;
-}
-
-void expectError(const Status& s, StatusCode code, const std::string& fragment) {
-  EXPECT_EQ(s.code(), code) << s.toString();
-  EXPECT_NE(s.message().find(fragment), std::string::npos) << "message '" << s.message() << "' lacks '" << fragment << "'";
-}
-
 // decodeAsset, verifyAsset and (for the atlas sections' own checks) decodeAssetAtlases agree.
 void expectCorrupt(const Bytes& file, const std::string& fragment) {
   BakedAsset out;
