@@ -36,6 +36,15 @@ void expectTiling(const std::vector<AssetPart>& parts, std::uint64_t fileSize) {
   EXPECT_EQ(at, fileSize);
 }
 
+// The table index of the (last) section of `type`, or -1.
+int sectionOfType(const AssetSummary& summary, AssetSectionType type) {
+  int found = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    if (summary.sections[i].type == static_cast<std::uint32_t>(type)) found = static_cast<int>(i);
+  }
+  return found;
+}
+
 std::vector<const AssetPart*> partsOfSection(const std::vector<AssetPart>& parts, int section) {
   std::vector<const AssetPart*> out;
   for (const AssetPart& p : parts) {
@@ -182,10 +191,7 @@ TEST(AssetParts, EncodedMatrixTransferIsCutAtItsShells) {
   const AssetSummary summary = verified(file);
   const std::vector<AssetPart> parts = cutAssetParts(file, summary);
   expectTiling(parts, file.size());
-  int matrixSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer)) matrixSection = static_cast<int>(i);
-  }
+  const int matrixSection = sectionOfType(summary, AssetSectionType::kEncodedMatrixTransfer);
   ASSERT_GE(matrixSection, 0);
   const auto mine = partsOfSection(parts, matrixSection);
   ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + 2 + order));  // head, ids, weights, shells
@@ -224,10 +230,7 @@ TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
   const AssetSummary summary = verified(texel.bytes);
   const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
   expectTiling(parts, texel.bytes.size());
-  int texelSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer)) texelSection = static_cast<int>(i);
-  }
+  const int texelSection = sectionOfType(summary, AssetSectionType::kEncodedTexelTransfer);
   ASSERT_GE(texelSection, 0);
   const auto mine = partsOfSection(parts, texelSection);
   ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + texel.order));  // blob head, bands (q8: no clusters)
@@ -272,10 +275,7 @@ TEST(AssetParts, TexelNormalsAreOneTexelPartWithoutAPass) {
   const AssetSummary summary = verified(bytes);
   const std::vector<AssetPart> parts = cutAssetParts(bytes, summary);
   expectTiling(parts, bytes.size());
-  int normals = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kTexelNormals)) normals = static_cast<int>(i);
-  }
+  const int normals = sectionOfType(summary, AssetSectionType::kTexelNormals);
   ASSERT_GE(normals, 0);
   const auto mine = partsOfSection(parts, normals);
   ASSERT_EQ(mine.size(), 1u);
@@ -293,12 +293,8 @@ TEST(AssetParts, EncodedVisibilityPassIsCutAtItsOwnBandsAndMarked) {
   const AssetSummary summary = verified(texel.bytes);
   const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
   expectTiling(parts, texel.bytes.size());
-  int visibilitySection = -1, texelSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    const auto type = static_cast<AssetSectionType>(summary.sections[i].type);
-    if (type == AssetSectionType::kEncodedTexelVisibility) visibilitySection = static_cast<int>(i);
-    if (type == AssetSectionType::kEncodedTexelTransfer) texelSection = static_cast<int>(i);
-  }
+  const int visibilitySection = sectionOfType(summary, AssetSectionType::kEncodedTexelVisibility);
+  const int texelSection = sectionOfType(summary, AssetSectionType::kEncodedTexelTransfer);
   ASSERT_GE(visibilitySection, 0);
   ASSERT_GE(texelSection, 0);
   const int m = 2 * texel.order - 1;
