@@ -13,6 +13,7 @@ constexpr std::uint32_t kTypeMatrixTransfer = static_cast<std::uint32_t>(AssetSe
 constexpr std::uint32_t kTypeEncodedMatrixTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer);
 constexpr std::uint32_t kTypeAtlasUv = static_cast<std::uint32_t>(AssetSectionType::kAtlasUv);
 constexpr std::uint32_t kTypeTexelCoverage = static_cast<std::uint32_t>(AssetSectionType::kTexelCoverage);
+constexpr std::uint32_t kTypeTexelNormals = static_cast<std::uint32_t>(AssetSectionType::kTexelNormals);
 constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kTexelTransfer);
 constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
 constexpr std::uint32_t kTypeTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kTexelVisibility);
@@ -35,7 +36,8 @@ AssetPart sectionPart(std::uint64_t begin, std::uint64_t end, AssetPartKind kind
   const bool texelPass = info.type == kTypeTexelTransfer || info.type == kTypeEncodedTexelTransfer || p.visibility;
   p.hasPass = info.type == kTypeTransfer || info.type == kTypeEncodedTransfer || p.matrix || texelPass;
   p.pass = p.hasPass ? static_cast<TransferKind>(info.arg0) : TransferKind::kUnshadowed;
-  const bool atlasSection = info.type >= kTypeAtlasUv && info.type <= kTypeTexelCoverage;
+  // The texel normals (19) go with the atlas sections: only texel passes use them.
+  const bool atlasSection = (info.type >= kTypeAtlasUv && info.type <= kTypeTexelCoverage) || info.type == kTypeTexelNormals;
   p.domain = texelPass || atlasSection ? TransferDomain::kTexel : TransferDomain::kVertex;
   return p;
 }

@@ -32,7 +32,8 @@ struct AssetPart {
   TransferKind pass = TransferKind::kUnshadowed;  // ...of this pass (the section's arg0)
   bool matrix = false;       // ...a glossy matrix pass (types 9, 10): listed with "form":"matrix"
   bool visibility = false;   // ...a TPFL texel visibility pass (types 17, 18): "form":"visibility"
-  // kTexel for a texel pass's parts (types 15-18) and the atlas sections' (12-14), which only
+  // kTexel for a texel pass's parts (types 15-18) and the atlas sections' (12-14, and the texel
+  // normals, 19), which only
   // texel passes need: listed with "domain":"texel" (pass parts otherwise "domain":"vertex").
   TransferDomain domain = TransferDomain::kVertex;
   int band = -1;             // kTransferBand: the SH band l; -1 otherwise

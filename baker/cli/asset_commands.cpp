@@ -200,7 +200,7 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   if (Status s = readAsset(path, &bytes); !s.isOk()) return reportFailure(err, "info", s);
   AssetSummary sum;
   if (Status s = verifyAsset(bytes, &sum); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
-  BakedAsset atlases;  // only the atlas fields are filled
+  BakedAsset atlases;  // only the atlas fields (and the texel normals) are filled
   if (Status s = decodeAssetAtlases(bytes, &atlases); !s.isOk()) {
     return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   }
@@ -238,7 +238,12 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       s += std::string(i ? ", " : "") + "{\"sampled\": " + std::to_string(usage[i].sampled) +
            ", \"dilated\": " + std::to_string(usage[i].dilated) + "}";
     }
-    s += "]\n}\n";
+    s += "],\n  \"texel_normals\": ";
+    // null without the section (no normal map: the glossy term uses the interpolated normal).
+    s += atlases.texelNormals.empty() ? std::string("null")
+                                      : "{\"encoding\": \"octahedral snorm16\", \"bytes\": " +
+                                            std::to_string(atlases.texelNormals.size() * 2) + "}";
+    s += "\n}\n";
     std::fputs(s.c_str(), out);
   } else {
     std::fprintf(out, "%s: PRT asset v%u.%u, %zu bytes, checksums ok\n", path.c_str(), sum.versionMajor,
@@ -277,6 +282,10 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!atlases.atlases.empty()) {
       std::fputs(infoAtlasesLine(atlases.atlases, texels).c_str(), out);
       std::fputs(infoAtlasLines(atlases.atlases, usage).c_str(), out);
+    }
+    if (!atlases.texelNormals.empty()) {
+      std::fprintf(out, "texel normals: normal-mapped shading normals for the glossy term, octahedral 2 x 16 bits (snorm), %llu bytes\n",
+                   static_cast<unsigned long long>(atlases.texelNormals.size() * 2));
     }
   }
   return kExitOk;

@@ -9,6 +9,7 @@
 #include "native/json_text.h"
 #include "prt/exit_radiance.h"
 #include "prt/glossy_radiance.h"
+#include "prt/octahedral_normal.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_triple_product.h"
 
@@ -22,9 +23,23 @@ std::string prefixed(const std::string& path, const Status& s) { return "'" + pa
 // 2 order - 1 (bands past it do not reach the product's first `order` bands).
 int productTransferOrder(int order, int m) { return std::min(std::max(m, order), 2 * order - 1); }
 
-// The TPFL glossy term of every texel sample into *out (3 per texel).
+// The shading normal of every texel sample: the asset's stored one where it has texel normals
+// (normal maps: the reflection direction and Schlick's n.v follow the bump, as in the client),
+// else the interpolated vertex normal. The texel numbering is the asset's (its coverage's).
+std::vector<Vec3> texelShadingNormals(const BakedAsset& asset, const std::vector<bake::AtlasTexel>& texels) {
+  std::vector<Vec3> normals(texels.size());
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    const std::size_t code = 2 * static_cast<std::size_t>(texels[i].index);
+    normals[i] = code + 1 < asset.texelNormals.size()
+                     ? decodeOctahedralNormal(asset.texelNormals[code], asset.texelNormals[code + 1])
+                     : texels[i].normal;
+  }
+  return normals;
+}
+
+// The TPFL glossy term of every texel sample into *out (3 per texel), reflecting about `normals`.
 Status tpflTexelRadiance(const BakedAsset& asset, const TexelShade& shade, const std::vector<bake::AtlasTexel>& texels,
-                         int order, const std::vector<Rgb>& lighting, std::vector<float>* out) {
+                         const std::vector<Vec3>& normals, int order, const std::vector<Rgb>& lighting, std::vector<float>* out) {
   const TransferPass& v = *shade.visibility;
   if (order > kMaxTripleProductOrder) {
     return Status::error(StatusCode::kInvalidArgument, "TPFL glossy shading supports lighting orders up to " +
@@ -37,7 +52,7 @@ Status tpflTexelRadiance(const BakedAsset& asset, const TexelShade& shade, const
   const std::size_t m2 = static_cast<std::size_t>(v.order) * static_cast<std::size_t>(v.order);
   const std::size_t t2 = static_cast<std::size_t>(t) * static_cast<std::size_t>(t), kept = std::min(m2, t2);
   std::vector<float> visibility(texels.size() * t2, 0.0f);
-  std::vector<Vec3> positions(texels.size()), normals(texels.size());
+  std::vector<Vec3> positions(texels.size());
   for (std::size_t i = 0; i < texels.size(); ++i) {
     // decodeAsset checked the pass's size against the texel count, and the samples' indices
     // came from the same atlases.
@@ -45,7 +60,6 @@ Status tpflTexelRadiance(const BakedAsset& asset, const TexelShade& shade, const
     if (from + m2 > v.coeffs.size()) return Status::error(StatusCode::kCorrupt, "the visibility pass is shorter than its texels");
     std::copy_n(v.coeffs.begin() + static_cast<std::ptrdiff_t>(from), kept, visibility.begin() + static_cast<std::ptrdiff_t>(i * t2));
     positions[i] = texels[i].position;
-    normals[i] = texels[i].normal;
   }
   std::vector<SpecularMaterial> specular;
   PRT_RETURN_IF_ERROR(bake::assetTexelSpecular(asset, texels, &specular));
@@ -70,6 +84,7 @@ int printTexels(const BakedAsset& asset, const TexelShade& shade, const std::str
   if (Status s = bake::assetTexelSamples(asset, &texels); !s.isOk()) {
     return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
   }
+  const std::vector<Vec3> shading = texelShadingNormals(asset, texels);
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(asset.shOrder));
   const std::size_t perTexel = n2 * static_cast<std::size_t>(pass.channels);
   std::vector<float> exit(3 * texels.size(), 0.0f);
@@ -87,7 +102,7 @@ int printTexels(const BakedAsset& asset, const TexelShade& shade, const std::str
   }
   if (shade.visibility != nullptr) {
     std::vector<float> glossy;
-    if (Status s = tpflTexelRadiance(asset, shade, texels, order, lighting, &glossy); !s.isOk()) {
+    if (Status s = tpflTexelRadiance(asset, shade, texels, shading, order, lighting, &glossy); !s.isOk()) {
       return reportFailure(err, "shade", Status::error(s.code(), prefixed(path, s)));
     }
     for (std::size_t i = 0; i < exit.size(); ++i) exit[i] += glossy[i];
@@ -119,7 +134,11 @@ int printTexels(const BakedAsset& asset, const TexelShade& shade, const std::str
       text += "    {\"atlas\": " + std::to_string(s.atlas) + ", \"x\": " + std::to_string(s.x) + ", \"y\": " +
               std::to_string(s.y) + ", \"position\": [" + jsonNumber(s.position.x) + ", " + jsonNumber(s.position.y) +
               ", " + jsonNumber(s.position.z) + "], \"normal\": [" + jsonNumber(s.normal.x) + ", " +
-              jsonNumber(s.normal.y) + ", " + jsonNumber(s.normal.z) + "], \"radiance\": [" + jsonNumber(e[0]) + ", " +
+              jsonNumber(s.normal.y) + ", " + jsonNumber(s.normal.z) + "], " +
+              (asset.texelNormals.empty() ? std::string()
+                                          : "\"shading_normal\": [" + jsonNumber(shading[t].x) + ", " + jsonNumber(shading[t].y) +
+                                                ", " + jsonNumber(shading[t].z) + "], ") +
+              "\"radiance\": [" + jsonNumber(e[0]) + ", " +
               jsonNumber(e[1]) + ", " + jsonNumber(e[2]) + "]}" + (t + 1 < texels.size() ? ",\n" : "\n");
     } else {
       char line[320];

@@ -19,11 +19,12 @@ struct TexelShade {
   bool glossyOnly = false;                   // print the glossy term alone
 };
 
-// Prints every sampled texel (atlas, texel, position, normal, RGB radiance) of `asset` (a
+// Prints every sampled texel (atlas, texel, position, normal, with texel normals the stored
+// shading normal, RGB radiance) of `asset` (a
 // decoded, valid asset with atlases) under `lighting` (order^2 coefficients, order <= the
 // asset's) as a table or JSON to `out`; errors to `err`. The glossy term, when asked for, is
-// k_s sum_i g_l(i) (P V)_i y_i(R) at the texel's sample (prt::tpflGlossyExitRadiance) with the
-// texel's material interpolated from its triangle's vertices, the lighting's `order` bands and
+// k_s sum_i g_l(i) (P V)_i y_i(R) at the texel's sample (prt::tpflGlossyExitRadiance), R and
+// Schlick's n.v about the asset's stored texel normal when it has one, with the texel's material interpolated from its triangle's vertices, the lighting's `order` bands and
 // V cut or zero-padded to the product's transfer order min(max(m, order), 2 order - 1), which
 // changes nothing (V's bands past 2 order - 2 do not reach the first order bands). Returns the
 // exit status.

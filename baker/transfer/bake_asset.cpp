@@ -96,6 +96,7 @@ struct TexelBake {
   std::vector<float> atlasUv;
   std::vector<TextureAtlas> atlases;
   std::vector<std::uint8_t> coverage;
+  std::vector<std::int16_t> normals;  // TexelBakeResult::normals
   std::vector<TransferPass> passes;
 };
 
@@ -175,6 +176,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
     out->atlasUv[2 * v + 1] = uv[v].v;
   }
   out->coverage = std::move(r.coverage);
+  out->normals = std::move(r.normals);
   auto texelPass = [](TransferKind kind, int channels, int bounces, std::vector<float>&& coeffs) {
     TransferPass p{kind, channels, bounces, std::move(coeffs), {}};
     p.domain = TransferDomain::kTexel;
@@ -311,6 +313,7 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
     asset->atlasUv = std::move(texel.atlasUv);
     asset->atlases = std::move(texel.atlases);
     asset->texelCoverage = std::move(texel.coverage);
+    asset->texelNormals = std::move(texel.normals);
   }
   if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, &report->compressed));
   return Status::ok();

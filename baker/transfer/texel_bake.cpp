@@ -13,6 +13,7 @@
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/parallel_for.h"
+#include "prt/octahedral_normal.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -255,6 +256,25 @@ Status bakeInto(const Scene& scene, std::span<const Uv> atlasUv, std::span<const
         scatterAndDilate(samples, atlases, seams, visibility.data(), m2, options.dilation, &texture, &filled));
     out->visibility = std::move(texture.values);
     out->visibilityOrder = options.visibilityOrder;
+  }
+  if (out->normalMappedTexels > 0) {
+    // Dilated like the transfer, so a bilinear read at a chart's edge blends normals of that
+    // chart only; the sum of neighbours is made unit again before it is encoded.
+    std::vector<float> flat(3 * receivers);
+    for (std::size_t r = 0; r < receivers; ++r) {
+      flat[3 * r] = shading[r].x;
+      flat[3 * r + 1] = shading[r].y;
+      flat[3 * r + 2] = shading[r].z;
+    }
+    PRT_RETURN_IF_ERROR(scatterAndDilate(samples, atlases, seams, flat.data(), 3, options.dilation, &texture, &filled));
+    out->normals.assign(2 * texture.values.size() / 3, 0);
+    for (std::size_t t = 0; t < filled.size(); ++t) {
+      if (!samples.sampled[t] && !filled[t]) continue;  // empty: (0, 0), as the asset format demands
+      const float* v = &texture.values[3 * t];
+      const std::array<std::int16_t, 2> code = encodeOctahedralNormal(Vec3{v[0], v[1], v[2]});
+      out->normals[2 * t] = code[0];
+      out->normals[2 * t + 1] = code[1];
+    }
   }
   out->order = o.order;
   out->texels = samples.firstTexel.back();

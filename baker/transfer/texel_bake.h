@@ -46,6 +46,11 @@ struct TexelBakeResult {
   std::vector<float> interreflected;     // [texel][channel][coefficient], dilated; empty without interreflection
   int visibilityOrder = 0;
   std::vector<float> visibility;         // [texel][coefficient] at visibilityOrder, dilated; empty if not asked for
+  // The shading normal per texel as 2 octahedral snorm16 codes (prt/octahedral_normal.h): the
+  // normal-mapped one at sampled texels, dilated into the gutters, (0, 0) at empty texels. Empty
+  // unless some sampled texel is normal-mapped (normalMappedTexels > 0): without a normal map
+  // the interpolated vertex normal is the shading normal, and the client has it already.
+  std::vector<std::int16_t> normals;
   int bounces = 0;
   std::vector<double> bounceEnergy;      // per bounce: sum over sampled texels of texel area x DC, all channels
   std::vector<PassStats> passes;

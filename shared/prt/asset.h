@@ -155,6 +155,11 @@ struct BakedAsset {
   std::vector<float> atlasUv;
   std::vector<TextureAtlas> atlases;
   std::vector<std::uint8_t> texelCoverage;
+  // The shading normal per texel where normal maps turned it (PRTT §6.2), for the glossy term's
+  // reflection direction and Schlick's n.v: empty, or 2 per texel (texelCoverage's order),
+  // octahedral snorm16 codes (prt/octahedral_normal.h), never -32768, (0, 0) at empty texels.
+  // The baker writes it only when some texel's material has a normal map (docs/asset-format.md).
+  std::vector<std::int16_t> texelNormals;
 };
 
 // Texels of all atlases together (sum of width x height); 0 without atlases.
@@ -173,8 +178,8 @@ inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
 // New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular,
 // 4: transfer textures: atlas uv, atlases, texel coverage, texel transfer float32 and encoded,
-// 5: texel visibility float32 and encoded, for TPFL glossy).
-inline constexpr std::uint16_t kAssetVersionMinor = 5;
+// 5: texel visibility float32 and encoded, for TPFL glossy, 6: texel normals).
+inline constexpr std::uint16_t kAssetVersionMinor = 6;
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -215,7 +220,12 @@ enum class AssetSectionType : std::uint32_t {
   // TPFL glossy visibility (since 1.5): arg0 kind (shadowed), arg1 channels (1), arg2 its order m.
   kTexelVisibility = 17,         // float32 [texel][coefficient], m^2 per texel; needs specular and the atlases
   kEncodedTexelVisibility = 18,  // bytes: a transfer codec blob of order m, 1 channel, texels as rows
+  // Normal-mapped shading normals (since 1.6): 2 snorm16 octahedral codes per texel; only with the atlases.
+  kTexelNormals = 19,
 };
+
+// Bytes per texel of the texel normals section: int16 x, y (octahedral, snorm16).
+inline constexpr std::size_t kAssetTexelNormalBytes = 4;
 
 // Transfer-texture limits: an atlas side as large as common GPUs' maximum texture size, and
 // totals that keep every derived size (texels x channels x coefficients x 4) far from overflow.
@@ -300,6 +310,7 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // order 0), under distant lighting (TPFL is a product with distant light). With a texel pass: 1..kMaxAssetAtlases atlases of sides 1..kMaxAssetAtlasSize covering the
 // triangles contiguously in order, at most kMaxAssetTexels texels, atlasUv 2 per vertex in
 // [0, 1], texelCoverage one value (0, 1 or 2) per texel; without one, all three empty.
+// texelNormals empty, or (with a texel pass) 2 codes per texel, none -32768, (0, 0) at empty texels.
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.
@@ -395,9 +406,10 @@ Status decodeAssetPass(std::span<const std::uint8_t> file, int pass, int bands, 
 Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, int bands, CpcaMatrixTransfer* out,
                                  TransferPass* info);
 
-// Decodes the atlas uv, atlases and texel coverage sections (they must have arrived) into
-// out->atlasUv, out->atlases and out->texelCoverage, leaving the rest of *out alone; all three
-// empty for a file without texel passes. *out is unchanged on error. Safe on untrusted input.
+// Decodes the atlas uv, atlases, texel coverage and (if the file has one) texel normals
+// sections (they must have arrived) into out->atlasUv, out->atlases, out->texelCoverage and
+// out->texelNormals, leaving the rest of *out alone; all empty for a file without texel passes,
+// texelNormals empty for one without normals. *out is unchanged on error. Safe on untrusted input.
 Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out);
 
 // Decodes the specular section (it must have arrived) into *out, one per vertex; empty when

@@ -17,6 +17,7 @@
 #include "prt/asset.h"
 #include "prt/checksum.h"
 #include "prt/little_endian.h"
+#include "prt/octahedral_normal.h"
 #include "prt/transfer_codec.h"
 #include "prt/sh_basis.h"
 
@@ -51,6 +52,7 @@ struct Parsed {
   int specular = -1;  // required exactly when a matrix section exists (format 1.3)
   // Transfer textures (format 1.4): each required exactly once with a texel pass, else absent.
   int atlasUv = -1, atlases = -1, coverage = -1;
+  int texelNormals = -1;  // optional (format 1.6), only with the atlas sections
   std::uint64_t texelCount = 0;  // the coverage section's size (1 byte per texel); 0 without one
   std::vector<int> transfer;  // entry indices, table order (vector, matrix and texel passes)
 };
@@ -80,6 +82,7 @@ constexpr std::uint32_t kTypeTexelTransfer = static_cast<std::uint32_t>(AssetSec
 constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer);
 constexpr std::uint32_t kTypeTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kTexelVisibility);
 constexpr std::uint32_t kTypeEncodedTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelVisibility);
+constexpr std::uint32_t kTypeTexelNormals = static_cast<std::uint32_t>(AssetSectionType::kTexelNormals);
 
 bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
 bool isVisibilityType(std::uint32_t type) { return type == kTypeTexelVisibility || type == kTypeEncodedTexelVisibility; }
@@ -133,6 +136,7 @@ std::string sectionLabel(const Entry& e) {
     case kTypeAtlasUv: s += "atlas uv"; break;
     case kTypeAtlases: s += "atlases"; break;
     case kTypeTexelCoverage: s += "texel coverage"; break;
+    case kTypeTexelNormals: s += "texel normals"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -312,6 +316,11 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       if (Status t = once(&p->coverage); !t.isOk()) return t;
       p->texelCount = e.size;
       return Status::ok();
+    case kTypeTexelNormals:
+      // Its size depends on the texel count (the coverage section's size): checked in
+      // parseTable (checkTexelSections), since the coverage entry may come later in the table.
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      return once(&p->texelNormals);
     case kTypeTexelVisibility:
     case kTypeEncodedTexelVisibility: {
       // TPFL glossy visibility (since 1.5): shadowed, one channel, arg2 its own order. A float32
@@ -401,6 +410,15 @@ Status checkTexelSections(const Parsed& p) {
     if (anyTexel && slot < 0) return corrupt(std::string("the asset has a texel transfer section but no ") + name + " section");
     if (!anyTexel && slot >= 0) {
       return corrupt(sectionLabel(p.entries[static_cast<std::size_t>(slot)]) + " is present without a texel transfer section");
+    }
+  }
+  if (p.texelNormals >= 0) {
+    const Entry& e = p.entries[static_cast<std::size_t>(p.texelNormals)];
+    if (!anyTexel) return corrupt(sectionLabel(e) + " is present without a texel transfer section");
+    // texels <= 2^28: 4 bytes each stays below 2^30.
+    if (e.size != p.texelCount * kAssetTexelNormalBytes) {
+      return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(p.texelCount * kAssetTexelNormalBytes) +
+                     " expected (4 bytes per texel, " + num(p.texelCount) + " texels)");
     }
   }
   for (int t : p.transfer) {
@@ -709,6 +727,23 @@ Status checkCoverage(std::span<const std::uint8_t> payload, const Entry& e) {
   return Status::ok();
 }
 
+// Texel normals: no code -32768 (it would decode like -32767: one encoding per normal), and
+// (0, 0) at the empty texels of `coverage` (the same texel count: checkTexelSections).
+Status checkTexelNormals(std::span<const std::uint8_t> payload, const Entry& e, std::span<const std::uint8_t> coverage) {
+  for (std::size_t t = 0; t < coverage.size(); ++t) {
+    const std::int16_t x = static_cast<std::int16_t>(readLe16(payload.data() + kAssetTexelNormalBytes * t));
+    const std::int16_t y = static_cast<std::int16_t>(readLe16(payload.data() + kAssetTexelNormalBytes * t + 2));
+    if (x == kOctahedralInvalidCode || y == kOctahedralInvalidCode) {
+      return corrupt(sectionLabel(e) + ": texel " + num(t) + " has the code -32768; -32767 to 32767 expected");
+    }
+    if (coverage[t] == static_cast<std::uint8_t>(TexelCoverage::kEmpty) && (x != 0 || y != 0)) {
+      return corrupt(sectionLabel(e) + ": texel " + num(t) + " is empty in the coverage but holds (" +
+                     std::to_string(x) + ", " + std::to_string(y) + "); (0, 0) expected");
+    }
+  }
+  return Status::ok();
+}
+
 // Everything decodeAsset checks; afterwards every section may be read without checks.
 // An encoded transfer section's blob: its header must describe the asset's pass, and it must
 // decode in full (every part's checksum and value). `decoded` (may be null) receives the floats.
@@ -803,6 +838,7 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeAtlasUv: s = checkAtlasUv(payload, e); break;
       case kTypeAtlases: s = parseAtlases(payload, e, *p, nullptr); break;
       case kTypeTexelCoverage: s = checkCoverage(payload, e); break;
+      case kTypeTexelNormals: s = checkTexelNormals(payload, e, payloadOf(bytes, p->entries[static_cast<std::size_t>(p->coverage)])); break;
       case kTypeEncodedTransfer:
       case kTypeEncodedMatrixTransfer:
       case kTypeEncodedTexelTransfer:
@@ -894,6 +930,14 @@ void readAtlasSections(std::span<const std::uint8_t> bytes, const Parsed& p, Bak
   static_cast<void>(parseAtlases(payload(p.atlases), p.entries[static_cast<std::size_t>(p.atlases)], p, &out->atlases).isOk());
   const auto coverage = payload(p.coverage);
   out->texelCoverage.assign(coverage.begin(), coverage.end());
+  out->texelNormals.clear();
+  if (p.texelNormals >= 0) {
+    const auto normals = payload(p.texelNormals);
+    out->texelNormals.resize(normals.size() / 2);
+    for (std::size_t i = 0; i < out->texelNormals.size(); ++i) {
+      out->texelNormals[i] = static_cast<std::int16_t>(readLe16(normals.data() + 2 * i));
+    }
+  }
 }
 
 void readSpecular(std::span<const std::uint8_t> payload, std::vector<SpecularMaterial>* out) {
@@ -1250,12 +1294,16 @@ Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out) {
   if (Status s = parseTable(file, &p); !s.isOk()) return s;
   BakedAsset a;
   if (p.atlases >= 0) {  // parseTable: then all three exist, with a texel pass
-    for (int slot : {p.atlasUv, p.atlases, p.coverage}) {
+    for (int slot : {p.atlasUv, p.atlases, p.coverage, p.texelNormals}) {
+      if (slot < 0) continue;  // the texel normals are optional
       const Entry& e = p.entries[static_cast<std::size_t>(slot)];
       if (Status s = checkSectionCrc(file, e); !s.isOk()) return s;
       const auto payload = payloadOf(file, e);
-      Status s = e.type == kTypeAtlasUv ? checkAtlasUv(payload, e) : e.type == kTypeAtlases ? parseAtlases(payload, e, p, nullptr)
-                                                                                          : checkCoverage(payload, e);
+      Status s = e.type == kTypeAtlasUv   ? checkAtlasUv(payload, e)
+                 : e.type == kTypeAtlases ? parseAtlases(payload, e, p, nullptr)
+                 : e.type == kTypeTexelNormals
+                     ? checkTexelNormals(payload, e, payloadOf(file, p.entries[static_cast<std::size_t>(p.coverage)]))
+                     : checkCoverage(payload, e);
       if (!s.isOk()) return s;
     }
     readAtlasSections(file, p, &a);
@@ -1263,6 +1311,7 @@ Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out) {
   out->atlasUv = std::move(a.atlasUv);
   out->atlases = std::move(a.atlases);
   out->texelCoverage = std::move(a.texelCoverage);
+  out->texelNormals = std::move(a.texelNormals);
   return Status::ok();
 }
 

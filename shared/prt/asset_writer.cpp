@@ -10,6 +10,7 @@
 #include "prt/asset.h"
 #include "prt/checksum.h"
 #include "prt/little_endian.h"
+#include "prt/octahedral_normal.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 
@@ -114,6 +115,7 @@ Status checkNoAtlasData(const BakedAsset& asset) {
   if (!asset.atlases.empty()) return refuse(asset.atlases.size(), "atlases");
   if (!asset.atlasUv.empty()) return refuse(asset.atlasUv.size(), "atlas uv floats");
   if (!asset.texelCoverage.empty()) return refuse(asset.texelCoverage.size(), "texel coverage values");
+  if (!asset.texelNormals.empty()) return refuse(asset.texelNormals.size(), "texel normal codes");
   return Status::ok();
 }
 
@@ -155,6 +157,28 @@ Status checkAtlasList(const std::vector<TextureAtlas>& atlases, std::uint64_t tr
   return Status::ok();
 }
 
+// The optional texel normals: none, or 2 codes per texel (coverage checked), never -32768
+// (one encoding per normal), (0, 0) where the texel is empty, as the reader demands.
+Status checkTexelNormalCodes(const BakedAsset& asset) {
+  if (asset.texelNormals.empty()) return Status::ok();
+  if (asset.texelNormals.size() != 2 * asset.texelCoverage.size()) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.texelNormals.size()) +
+                                                        " texel normal codes for " + std::to_string(asset.texelCoverage.size()) +
+                                                        " texels; two per texel are needed");
+  }
+  for (std::size_t t = 0; t < asset.texelCoverage.size(); ++t) {
+    const std::int16_t x = asset.texelNormals[2 * t], y = asset.texelNormals[2 * t + 1];
+    if (x == kOctahedralInvalidCode || y == kOctahedralInvalidCode) {
+      return Status::error(StatusCode::kInvalidArgument, "texel normal " + std::to_string(t) + " has the code -32768; -32767 to 32767 expected");
+    }
+    if (asset.texelCoverage[t] == static_cast<std::uint8_t>(TexelCoverage::kEmpty) && (x != 0 || y != 0)) {
+      return Status::error(StatusCode::kInvalidArgument, "texel normal " + std::to_string(t) + " is (" + std::to_string(x) + ", " +
+                                                             std::to_string(y) + ") at an empty texel; (0, 0) expected");
+    }
+  }
+  return Status::ok();
+}
+
 // With a texel pass: the atlases, a uv per vertex in [0, 1] and a coverage value per texel.
 Status checkAtlasData(const BakedAsset& asset) {
   const std::uint64_t vertexCount = asset.positions.size();
@@ -183,7 +207,7 @@ Status checkAtlasData(const BakedAsset& asset) {
                                                              std::to_string(asset.texelCoverage[i]) + "; 0 (empty), 1 (sampled) or 2 (gutter) expected");
     }
   }
-  return Status::ok();
+  return checkTexelNormalCodes(asset);
 }
 
 // A texel visibility pass (TPFL glossy): shadowed, one channel, no bounces, its own order, and
@@ -421,6 +445,11 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
     sections.push_back({AssetSectionType::kAtlases, AssetElementFormat::kBytes, static_cast<std::uint32_t>(asset.atlases.size()), 0, 0,
                         asset.atlases.size() * kAssetAtlasEntryBytes, 0, nullptr});
     sections.push_back({AssetSectionType::kTexelCoverage, AssetElementFormat::kBytes, 0, 0, 0, asset.texelCoverage.size(), 0, nullptr});
+    // With the atlases, before the passes: the glossy term reads them from its first band.
+    if (!asset.texelNormals.empty()) {
+      sections.push_back({AssetSectionType::kTexelNormals, AssetElementFormat::kBytes, 0, 0, 0,
+                          asset.texelNormals.size() / 2 * kAssetTexelNormalBytes, 0, nullptr});
+    }
   }
   const std::uint64_t texelCount = assetTexelCount(asset);
   for (const TransferPass& pass : asset.passes) {
@@ -518,6 +547,11 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         }
         break;
       case AssetSectionType::kTexelCoverage: std::memcpy(p, asset.texelCoverage.data(), asset.texelCoverage.size()); break;
+      case AssetSectionType::kTexelNormals:
+        for (std::size_t k = 0; k < asset.texelNormals.size(); ++k) {
+          writeLe16(p + 2 * k, static_cast<std::uint16_t>(asset.texelNormals[k]));
+        }
+        break;
       case AssetSectionType::kSpecular:
         for (std::size_t v = 0; v < asset.specular.size(); ++v) {
           const SpecularMaterial& m = asset.specular[v];

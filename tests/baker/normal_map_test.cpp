@@ -3,6 +3,7 @@
 // flat normal-mapped quad against the finely tessellated bumpy surface it stands for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -14,6 +15,7 @@
 #include "baker/scene/normal_map.h"
 #include "baker/transfer/texel_bake.h"
 #include "baker/transfer/transfer_bake.h"
+#include "prt/octahedral_normal.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_zonal.h"
 
@@ -258,6 +260,19 @@ TEST(NormalMaps, FlatNormalMappedQuadLightsLikeTheTessellatedBumpySurface) {
   EXPECT_EQ(mapped.normalMappedTexels, static_cast<std::size_t>(kTexels * kTexels));
   EXPECT_EQ(flat.normalMappedTexels, 0u);
   const std::size_t count = static_cast<std::size_t>(kTexels) * kTexels;
+  // The shading normals the asset stores (format 1.6, texel normals): a code pair per texel,
+  // each decoding to the analytic bump normal at the texel within the 8-bit map's quantisation
+  // and its bilinear read; none for the quad without a map.
+  ASSERT_EQ(mapped.normals.size(), 2 * count);
+  EXPECT_TRUE(flat.normals.empty());
+  double worstDegrees = 0.0;
+  for (std::size_t t = 0; t < count; ++t) {
+    const Vec3 want = bumpNormal(texelCentre(static_cast<int>(t % kTexels)), texelCentre(static_cast<int>(t / kTexels)));
+    const Vec3 got = decodeOctahedralNormal(mapped.normals[2 * t], mapped.normals[2 * t + 1]);
+    worstDegrees = std::max(worstDegrees, std::acos(std::min(1.0, static_cast<double>(dot(want, got)))) * 180.0 / kPi);
+  }
+  std::printf("stored texel normals: worst %.3f degrees from the analytic bump normal\n", worstDegrees);
+  EXPECT_LT(worstDegrees, 1.0);
   for (std::size_t t = 0; t < count; ++t) mean += exit(&reference.shadowed[t * n2]) / count;
   for (std::size_t t = 0; t < count; ++t) {
     // Texel (x, y) and reference vertex j * kTexels + i sit at the same (x, z).

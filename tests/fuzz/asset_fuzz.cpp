@@ -13,8 +13,9 @@
 // specular sections are explored from well-formed files. With bit 2 set (and bit 1 clear),
 // the input describes a small asset with transfer textures (atlases, atlas uv, coverage, a
 // texel pass float32 or encoded, optionally a vertex pass and a TPFL visibility pass of its
-// own order with the specular materials it needs), likewise encoded and damaged, so that the
-// atlas, texel and visibility sections (formats 1.4, 1.5) are explored from well-formed files.
+// own order with the specular materials it needs, and texel normals), likewise encoded and
+// damaged, so that the atlas, texel, visibility and texel normals sections (formats 1.4 to
+// 1.6) are explored from well-formed files.
 //
 // Beyond "no crash, no sanitizer report", it traps when the entry points disagree:
 // decodeAsset and verifyAsset must return the same code; whatever decodes must also pass
@@ -22,6 +23,7 @@
 // everything the decoder does) to bytes that decode to the same asset; every pass decodes
 // progressively to the same floats, decodeAssetSpecular to the same materials and
 // decodeAssetAtlases to the same atlases.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -76,7 +78,10 @@ bool sameLighting(const prt::LightingInfo& a, const prt::LightingInfo& b) {
 }
 
 bool sameAtlases(const prt::BakedAsset& a, const prt::BakedAsset& b) {
-  if (!sameBits(a.atlasUv, b.atlasUv) || a.texelCoverage != b.texelCoverage || a.atlases.size() != b.atlases.size()) return false;
+  if (!sameBits(a.atlasUv, b.atlasUv) || a.texelCoverage != b.texelCoverage || a.texelNormals != b.texelNormals ||
+      a.atlases.size() != b.atlases.size()) {
+    return false;
+  }
   for (std::size_t i = 0; i < a.atlases.size(); ++i) {
     const prt::TextureAtlas &x = a.atlases[i], &y = b.atlases[i];
     if (x.width != y.width || x.height != y.height || x.firstTriangle != y.firstTriangle || x.triangleCount != y.triangleCount) {
@@ -144,7 +149,8 @@ std::size_t glossyFromInput(const std::uint8_t* data, std::size_t size, std::vec
 // An asset with transfer textures from the input: [order][flags][triangles][atlas sizes...]
 // [values...]; the rest are edits. One or two atlases of up to 8 x 8 texels over 1 to 4
 // triangles, a texel pass (kind and encoding from the flags), a vertex pass when flags & 1,
-// and, per one more input byte, a visibility pass of order 2 to 5, float32 or encoded.
+// and, per one more input byte, a visibility pass of order 2 to 5, float32 or encoded, and per
+// another texel normals.
 std::size_t texelFromInput(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>* file) {
   if (size < 3) return 0;
   prt::BakedAsset a;
@@ -204,6 +210,14 @@ std::size_t texelFromInput(const std::uint8_t* data, std::size_t size, std::vect
     }
     a.passes.push_back(std::move(v));
     for (std::uint32_t i = 0; i < V; ++i) a.specular.push_back({{next() / 255.0f, 0.04f, 1.0f}, static_cast<float>(next()), next() / 255.0f});
+  }
+  if (next() & 1) {  // texel normals (format 1.6): any code but -32768, (0, 0) at empty texels
+    for (std::uint8_t coverage : a.texelCoverage) {
+      for (int k = 0; k < 2; ++k) {
+        const auto code = static_cast<std::int16_t>(static_cast<std::uint16_t>(next() << 8 | next()));
+        a.texelNormals.push_back(coverage == 0 ? 0 : std::max<std::int16_t>(code, -32767));
+      }
+    }
   }
   if (!prt::encodeAsset(a, file).isOk()) return 0;
   return std::min(used, size);

@@ -36,6 +36,15 @@ void expectTiling(const std::vector<AssetPart>& parts, std::uint64_t fileSize) {
   EXPECT_EQ(at, fileSize);
 }
 
+// The table index of the (last) section of `type`, or -1.
+int sectionOfType(const AssetSummary& summary, AssetSectionType type) {
+  int found = -1;
+  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
+    if (summary.sections[i].type == static_cast<std::uint32_t>(type)) found = static_cast<int>(i);
+  }
+  return found;
+}
+
 std::vector<const AssetPart*> partsOfSection(const std::vector<AssetPart>& parts, int section) {
   std::vector<const AssetPart*> out;
   for (const AssetPart& p : parts) {
@@ -182,10 +191,7 @@ TEST(AssetParts, EncodedMatrixTransferIsCutAtItsShells) {
   const AssetSummary summary = verified(file);
   const std::vector<AssetPart> parts = cutAssetParts(file, summary);
   expectTiling(parts, file.size());
-  int matrixSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedMatrixTransfer)) matrixSection = static_cast<int>(i);
-  }
+  const int matrixSection = sectionOfType(summary, AssetSectionType::kEncodedMatrixTransfer);
   ASSERT_GE(matrixSection, 0);
   const auto mine = partsOfSection(parts, matrixSection);
   ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + 2 + order));  // head, ids, weights, shells
@@ -224,10 +230,7 @@ TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
   const AssetSummary summary = verified(texel.bytes);
   const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
   expectTiling(parts, texel.bytes.size());
-  int texelSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    if (summary.sections[i].type == static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelTransfer)) texelSection = static_cast<int>(i);
-  }
+  const int texelSection = sectionOfType(summary, AssetSectionType::kEncodedTexelTransfer);
   ASSERT_GE(texelSection, 0);
   const auto mine = partsOfSection(parts, texelSection);
   ASSERT_EQ(mine.size(), static_cast<std::size_t>(1 + texel.order));  // blob head, bands (q8: no clusters)
@@ -260,6 +263,28 @@ TEST(AssetParts, EncodedTexelTransferIsCutAtItsBandsAndMarkedTexel) {
   }
 }
 
+// Texel normals (format 1.6) travel like the atlas sections: one part of their own, marked
+// texel and without a pass, so the page fetches them with the geometry.
+TEST(AssetParts, TexelNormalsAreOneTexelPartWithoutAPass) {
+  const TexelTransferAsset texel = makeTexelTransferAsset(60, 3, 5);
+  BakedAsset asset;
+  ASSERT_TRUE(decodeAsset(texel.bytes, &asset).isOk());
+  asset.texelNormals.assign(2 * asset.texelCoverage.size(), 0);  // +z at every (sampled) texel
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(encodeAsset(asset, &bytes).isOk());
+  const AssetSummary summary = verified(bytes);
+  const std::vector<AssetPart> parts = cutAssetParts(bytes, summary);
+  expectTiling(parts, bytes.size());
+  const int normals = sectionOfType(summary, AssetSectionType::kTexelNormals);
+  ASSERT_GE(normals, 0);
+  const auto mine = partsOfSection(parts, normals);
+  ASSERT_EQ(mine.size(), 1u);
+  EXPECT_EQ(mine[0]->kind, AssetPartKind::kSection);
+  EXPECT_EQ(mine[0]->domain, TransferDomain::kTexel);
+  EXPECT_FALSE(mine[0]->hasPass);
+  EXPECT_GE(mine[0]->size, 4 * summary.texelCount);
+}
+
 // A TPFL visibility pass (format 1.5) is cut at its own bands (order 2n - 1, not the asset's
 // n) and its parts are marked visibility and texel, so a client without a TPFL shader can
 // leave them alone; the texel vector pass beside it keeps its plain listing.
@@ -268,12 +293,8 @@ TEST(AssetParts, EncodedVisibilityPassIsCutAtItsOwnBandsAndMarked) {
   const AssetSummary summary = verified(texel.bytes);
   const std::vector<AssetPart> parts = cutAssetParts(texel.bytes, summary);
   expectTiling(parts, texel.bytes.size());
-  int visibilitySection = -1, texelSection = -1;
-  for (std::size_t i = 0; i < summary.sections.size(); ++i) {
-    const auto type = static_cast<AssetSectionType>(summary.sections[i].type);
-    if (type == AssetSectionType::kEncodedTexelVisibility) visibilitySection = static_cast<int>(i);
-    if (type == AssetSectionType::kEncodedTexelTransfer) texelSection = static_cast<int>(i);
-  }
+  const int visibilitySection = sectionOfType(summary, AssetSectionType::kEncodedTexelVisibility);
+  const int texelSection = sectionOfType(summary, AssetSectionType::kEncodedTexelTransfer);
   ASSERT_GE(visibilitySection, 0);
   ASSERT_GE(texelSection, 0);
   const int m = 2 * texel.order - 1;

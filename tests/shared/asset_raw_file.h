@@ -1,6 +1,7 @@
 // Raw asset files for the asset tests: little-endian reads and writes, and a file split into
 // its header and sections and rebuilt with fresh offsets and checksums in the layout of
-// docs/asset-format.md, so a test can craft a file the writer would refuse to produce.
+// docs/asset-format.md, so a test can craft a file the writer would refuse to produce; and the
+// expectations the asset tests share (encodeOrDie, expectError).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "prt/asset.h"
@@ -90,6 +92,22 @@ inline Bytes build(const RawAsset& r) {
   wr32(b, asset_layout::kTableCrc, crc32c({b.data() + kAssetHeaderSize, tableBytes}));
   wr32(b, asset_layout::kHeaderCrc, crc32c({b.data(), asset_layout::kHeaderCrc}));
   return b;
+}
+
+// ---- Shared expectations -----------------------------------------------------------------
+
+// encodeAsset's bytes, failing the test (and returning them empty) when it refuses.
+inline Bytes encodeOrDie(const BakedAsset& a) {
+  Bytes out;
+  const Status s = encodeAsset(a, &out);
+  EXPECT_TRUE(s.isOk()) << s.toString();
+  return out;
+}
+
+// `s` has `code` and a message containing `fragment`.
+inline void expectError(const Status& s, StatusCode code, const std::string& fragment) {
+  EXPECT_EQ(s.code(), code) << s.toString();
+  EXPECT_NE(s.message().find(fragment), std::string::npos) << "message '" << s.message() << "' lacks '" << fragment << "'";
 }
 
 inline RawSection* findSection(RawAsset& r, std::uint32_t type) {

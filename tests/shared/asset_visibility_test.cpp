@@ -70,18 +70,6 @@ void encodeVisibility(BakedAsset* a, const char* setting) {
   ASSERT_TRUE(encodeTransfer(v.coeffs, v.order, 1, settings, &v.encoded).isOk());
 }
 
-Bytes encodeOrDie(const BakedAsset& a) {
-  Bytes out;
-  const Status s = encodeAsset(a, &out);
-  EXPECT_TRUE(s.isOk()) << s.toString();
-  return out;
-}
-
-void expectError(const Status& s, StatusCode code, const std::string& fragment) {
-  EXPECT_EQ(s.code(), code) << s.toString();
-  EXPECT_NE(s.message().find(fragment), std::string::npos) << "message '" << s.message() << "' lacks '" << fragment << "'";
-}
-
 void expectRefused(const BakedAsset& a, StatusCode code, const std::string& fragment) {
   expectError(checkAsset(a), code, fragment);
   Bytes out;
@@ -102,7 +90,7 @@ TEST(AssetVisibility, FloatAndEncodedVisibilityPassesRoundTrip) {
   AssetSummary summary, peeked;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
   ASSERT_TRUE(peekAssetHeader(file, &peeked).isOk());
-  EXPECT_EQ(summary.versionMinor, 5);
+  EXPECT_EQ(summary.versionMinor, 6);
   for (const AssetSummary* s : {&summary, &peeked}) {
     ASSERT_EQ(s->passes.size(), 2u);
     const AssetPassInfo& v = s->passes[1];

@@ -18,7 +18,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { makeChecks, startServer, openPage, capture, windowLuminance, runCase } from './browser_harness.mjs';
-import { gltfText, rgbPngDataUri } from './floor_scene_gltf.mjs';
+import { gltfText, stripeQuadGltf, stripeSlope } from './floor_scene_gltf.mjs';
 import { merge, quad as lightmapQuad, texturedSceneGltf } from '../cli/texture_sets_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir] = process.argv.slice(2);
@@ -69,21 +69,10 @@ function seamSceneGltf() {
   return gltfText([floor, cube]);
 }
 
-// The normal-map scene: the quad [-1, 1]^2 at y = 0 over the whole atlas (u along +x, v along
-// +z), its normal map the same 64 x 64 grid of stripes leaning along x: tangent-space normal
-// normalize(s(u), 0, 1) with s(u) = 0.6 sin(8 pi u) (up to 31 degrees), +x of tangent space
-// along +u = world +x.
-const slope = (u) => 0.6 * Math.sin(8 * Math.PI * u);
-function stripeQuadGltf(withMap) {
-  const part = quad([0, 0, 0], [0, 0, 1], [1, 0, 0], 1, 1, [0, ATLAS, 0, ATLAS]);
-  const rgb = new Uint8Array(3 * ATLAS * ATLAS);
-  for (let y = 0; y < ATLAS; y++)
-    for (let i = 0; i < ATLAS; i++) {
-      const s = slope((i + 0.5) / ATLAS), length = Math.hypot(s, 1);
-      rgb.set([s / length, 0, 1 / length].map((c) => Math.round((c + 1) * 127.5)), 3 * (y * ATLAS + i));
-    }
-  return gltfText([{ ...part, color: [0.8, 0.8, 0.8, 1], ...(withMap ? { normalMap: rgbPngDataUri(ATLAS, ATLAS, rgb) } : {}) }]);
-}
+// The normal-map scene (stripeQuadGltf): the quad [-1, 1]^2 at y = 0 over the whole 64 x 64
+// atlas, its normal map stripes leaning along x (tangent-space normal normalize(s(u), 0, 1),
+// s = stripeSlope, up to 31 degrees).
+const slope = stripeSlope;
 
 function bake(name, gltf, extra = []) {
   const scene = path.join(workDir, `${name}.gltf`);
@@ -205,8 +194,8 @@ const cases = {
   },
 
   async texel_normal_map_moving_light(browser) {
-    bake('stripes', stripeQuadGltf(true));
-    bake('stripes-flat', stripeQuadGltf(false));
+    bake('stripes', stripeQuadGltf(ATLAS, true));
+    bake('stripes-flat', stripeQuadGltf(ATLAS, false));
     const server = await startServer(prtServe, root, webDist);
     try {
       // Per texel in UV space: the shadowed pass's radiance (luminance) under one sphere light

@@ -6,13 +6,15 @@
 // texel passes only must render (and equal the full asset's texel picture). TPFL glossy: the
 // visibility pass streams in bands, the GPU's per-fragment glossy term equals prt-bake shade
 // --texels --pass glossy at the sampled texels, and an orbit changes the glossy objects' texels
-// and pixels while the matte floor's stay.
+// and pixels while the matte floor's stay; on a normal-mapped glossy quad the GPU's glossy term
+// reflects about the asset's texel normals as prt-bake shade does.
 // Usage: node browser_texel_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR PRT_CORE_NODE_JS ENV_EXR
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase } from './browser_harness.mjs';
+import { stripeQuadGltf } from './floor_scene_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, coreJs, envExr] = process.argv.slice(2);
 const checks = makeChecks();
@@ -74,6 +76,59 @@ function maxChannelDifference(a, b) {
   for (let i = 0; i < a.data.length; i += 4)
     for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
   return m;
+}
+
+// prt-bake shade's TPFL glossy term alone at every sampled texel of `assetPath` under the forest
+// map from `eye` (it reflects about the asset's texel normals when it has them).
+function glossyReference(assetPath, eye) {
+  return JSON.parse(execFileSync(prtBake, ['shade', assetPath, '--texels', '--light', envExr, '--pass', 'glossy', '--glossy-only',
+    '--view', eye.join(','), '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
+}
+
+// The page's shadowed glossy term read back in UV space (atlas 0) against `reference`
+// (glossyReference) at every texel a triangle covers. Tolerance per channel value: 3e-3 of the
+// peak + 3e-3 of the value + 2 g dp, with dp the distance between the fragment's shading point
+// (read back) and the baker's sample, and g the largest slope |dL| / |dp| to the four
+// neighbouring texels of `slopeFrom` (default the reference itself). Matte texels (k_s = 0)
+// must be exactly 0. `against` (optional, texels as the reference's) replaces the GPU values,
+// so the same measure can be applied to another CPU answer.
+async function compareGlossy(page, reference, { slopeFrom = reference, against = null } = {}) {
+  const gpu = await readAtlas(page, 'shadowed');
+  const at = await readAtlas(page, 'shadowed', 0, true);
+  let peak = 0;
+  for (const t of reference.texels) peak = Math.max(peak, ...t.radiance);
+  let compared = 0, glossy = 0, sloped = 0, worstDp = 0, worstRelative = 0, worstAbsolute = 0, bad = 0, firstBad = '';
+  const slopeTexels = new Map(slopeFrom.texels.map((t) => [t.y * gpu.width + t.x, t]));
+  const alternative = against && new Map(against.texels.map((t) => [t.y * gpu.width + t.x, t]));
+  for (const t of reference.texels) {
+    const i = 4 * (t.y * gpu.width + t.x);
+    if (gpu.rgba[i + 3] !== 1) continue;
+    const dp = Math.hypot(at.rgba[i] - t.position[0], at.rgba[i + 1] - t.position[1], at.rgba[i + 2] - t.position[2]);
+    worstDp = Math.max(worstDp, dp);
+    compared++;
+    if (t.radiance.some((r) => r !== 0)) glossy++;
+    const own = slopeTexels.get(t.y * gpu.width + t.x);
+    for (let c = 0; c < 3; c++) {
+      const want = t.radiance[c], got = alternative ? alternative.get(t.y * gpu.width + t.x).radiance[c] : gpu.rgba[i + c];
+      const error = Math.abs(got - want);
+      worstAbsolute = Math.max(worstAbsolute, error / peak);
+      if (Math.abs(want) > 0.01 * peak) worstRelative = Math.max(worstRelative, error / Math.abs(want));
+      const base = 3e-3 * Math.abs(want) + 3e-3 * peak;
+      let slope = 0;
+      for (const [dx, dy] of [[1, 0], [-1, 0], [0, 1], [0, -1]]) {
+        const n = slopeTexels.get((t.y + dy) * gpu.width + t.x + dx);
+        const d = n && own && Math.hypot(n.position[0] - own.position[0], n.position[1] - own.position[1], n.position[2] - own.position[2]);
+        if (d > 0) slope = Math.max(slope, Math.abs(n.radiance[c] - own.radiance[c]) / d);
+      }
+      if (error > base) sloped++;
+      // k_s = 0 (the matte room and boxes): exactly 0, whatever the visibility holds.
+      if (!(want === 0 ? got === 0 : error <= base + 2 * slope * dp)) {
+        if (!bad) firstBad = `texel (${t.x}, ${t.y}) channel ${c}: GPU ${got}, baker ${want}, shading point ${dp.toExponential(2)} from the sample, slope ${slope.toFixed(3)}`;
+        bad++;
+      }
+    }
+  }
+  return { compared, glossy, sloped, worstDp, worstRelative, worstAbsolute, bad, firstBad, peak };
 }
 
 const cases = {
@@ -226,40 +281,8 @@ const cases = {
       check(state.bands === 5 && state.lights === 0, `visibility bands ${state.bands} (want 5), ${state.lights} lights (want none: the baker's forest alone)`);
       check(/TPFL glossy, visibility order 5/.test(state.stats), `stats line: ${state.stats}`);
       const t0 = Date.now();
-      const reference = JSON.parse(execFileSync(prtBake, ['shade', asset, '--texels', '--light', envExr, '--pass', 'glossy', '--glossy-only',
-        '--view', state.eye.join(','), '--json'], { encoding: 'utf8', maxBuffer: 1 << 30 }));
-      const gpu = await readAtlas(page, 'shadowed');
-      const at = await readAtlas(page, 'shadowed', 0, true);
-      let peak = 0;
-      for (const t of reference.texels) peak = Math.max(peak, ...t.radiance);
-      let compared = 0, glossy = 0, sloped = 0, worstDp = 0, worstRelative = 0, worstAbsolute = 0, bad = 0, firstBad = '';
-      const byTexel = new Map(reference.texels.map((t) => [t.y * gpu.width + t.x, t]));
-      for (const t of reference.texels) {
-        const i = 4 * (t.y * gpu.width + t.x);
-        if (gpu.rgba[i + 3] !== 1) continue;
-        const dp = Math.hypot(at.rgba[i] - t.position[0], at.rgba[i + 1] - t.position[1], at.rgba[i + 2] - t.position[2]);
-        worstDp = Math.max(worstDp, dp);
-        compared++;
-        if (t.radiance.some((r) => r !== 0)) glossy++;
-        for (let c = 0; c < 3; c++) {
-          const want = t.radiance[c], got = gpu.rgba[i + c], error = Math.abs(got - want);
-          worstAbsolute = Math.max(worstAbsolute, error / peak);
-          if (Math.abs(want) > 0.01 * peak) worstRelative = Math.max(worstRelative, error / Math.abs(want));
-          const base = 3e-3 * Math.abs(want) + 3e-3 * peak;
-          let slope = 0;
-          for (const [dx, dy] of [[1, 0], [-1, 0], [0, 1], [0, -1]]) {
-            const n = byTexel.get((t.y + dy) * gpu.width + t.x + dx);
-            const d = n && Math.hypot(n.position[0] - t.position[0], n.position[1] - t.position[1], n.position[2] - t.position[2]);
-            if (d > 0) slope = Math.max(slope, Math.abs(n.radiance[c] - want) / d);
-          }
-          if (error > base) sloped++;
-          // k_s = 0 (the matte room and boxes): exactly 0, whatever the visibility holds.
-          if (!(want === 0 ? got === 0 : error <= base + 2 * slope * dp)) {
-            if (!bad) firstBad = `texel (${t.x}, ${t.y}) channel ${c}: GPU ${got}, baker ${want}, shading point ${dp.toExponential(2)} from the sample, slope ${slope.toFixed(3)}`;
-            bad++;
-          }
-        }
-      }
+      const reference = glossyReference(asset, state.eye);
+      const { compared, glossy, sloped, worstDp, worstRelative, worstAbsolute, bad, firstBad, peak } = await compareGlossy(page, reference);
       console.log(`TPFL glossy: ${compared} of ${reference.texels.length} texels compared (${glossy} glossy; ${sloped} channel values needed the slope term, shading point up to ${(1e3 * worstDp).toFixed(2)} mm from the sample), worst relative ${worstRelative.toExponential(2)}, ` +
         `worst absolute ${worstAbsolute.toExponential(2)} of the peak ${peak.toFixed(3)} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
       check(glossy > 1000, `only ${glossy} glossy texels compared`);
@@ -267,6 +290,64 @@ const cases = {
       check(worstDp < 2e-3, `a fragment shaded ${worstDp} m from its texel's sample (more than a tenth of a texel)`);
       check(bad === 0, `TPFL glossy: ${bad} channel values beyond the tolerance (${firstBad})`);
       check(peak > 0.05, `the glossy reference is dark (peak ${peak})`);
+      check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // (f) Normal maps in the glossy term: a gold metal quad (roughness 0.3) with a striped normal
+  // map (the normal tilted up to 31 degrees along x, stripeQuadGltf), baked with --texel-glossy:
+  // the asset carries texel normals (format 1.6), and the page's glossy term, read back in UV
+  // space under the forest map, must equal prt-bake shade's, which reflects about them, within
+  // texel_glossy_matches_baker's tolerance. The quad baked without the map has the same
+  // visibility (the bump does not move the horizon) and no texel normals: its reference is what
+  // a client reflecting about the interpolated normal computes, and the same measure must
+  // refuse it at most glossy texels, so this case would fail such a client.
+  async texel_glossy_normal_map(browser) {
+    const gold = { color: [1.0, 0.78, 0.34, 1], metallic: 1, roughness: 0.3 };
+    const bakeQuad = (name, withMap) => {
+      const scene = path.join(workDir, `${name}.gltf`);
+      fs.writeFileSync(scene, stripeQuadGltf(64, withMap, gold));
+      const out = path.join(root, `${name}.prt`);
+      execFileSync(prtBake, [scene, '-o', out, '--texels', '--texture-size', '64', '--samples', '256', '--order', '3',
+        '--passes', 'shadowed', '--texel-glossy', '--texture-sets', 'scene', '--unwrap', 'never', '--name', name, '--quiet']);
+      return { out, info: JSON.parse(execFileSync(prtBake, ['info', out, '--json'], { encoding: 'utf8' })) };
+    };
+    const mapped = bakeQuad('stripes-gold', true), flat = bakeQuad('stripes-gold-flat', false);
+    check(mapped.info.version === '1.6' && mapped.info.texel_normals?.bytes === 4 * 64 * 64,
+      `the normal-mapped bake has no texel normals section: ${JSON.stringify(mapped.info.texel_normals)}`);
+    check(flat.info.texel_normals === null, `the bake without a normal map has texel normals: ${JSON.stringify(flat.info.texel_normals)}`);
+    const server = await startServer(prtServe, root, webDist);
+    try {
+      const entry = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes.find((e) => e.name === 'stripes-gold');
+      const normalsPart = (entry?.parts ?? []).filter((p) => p.domain === 'texel' && p.pass === undefined && p.size >= 4 * 64 * 64);
+      check(normalsPart.length >= 1, 'the catalogue lists no texel part large enough for the texel normals');
+      const { page, consoleErrors } = await openPage(browser, `${server.base}/${FURNACE}&scene=stripes-gold&source=texel`, { waitReady: false });
+      await waitAll(page);
+      await page.evaluate(() => window.prtApp.set({ environment: 'forest', envRotation: [0, 0], intensity: 1, mode: 'shadowed', glossy: { shadowed: 'glossy' } }));
+      // Up from the framing's grazing view: there the order-3 lobe of the sharp gold reflects the
+      // forest's dark ground and rings below 0; from above it reflects the sky.
+      await page.evaluate(() => window.prtApp.orbit(0, 0.6));
+      await capture(page, {});
+      const state = await page.evaluate(() => ({ error: window.prtApp.error, glossyError: window.prtApp.texelGlossyError, eye: window.prtApp.eye,
+        bands: window.prtApp.texelGlossyBands }));
+      check(state.error === null && state.glossyError === '', `page error: ${state.error} / ${state.glossyError}`);
+      check(state.bands === 5, `visibility bands ${state.bands} (want 5)`);
+      const reference = glossyReference(mapped.out, state.eye);
+      const interpolated = glossyReference(flat.out, state.eye);
+      check(reference.texels.every((t) => t.shading_normal), 'prt-bake shade prints no shading_normal for the normal-mapped asset');
+      // The position dependence alone (no stripes) sets the slope term: the stripes' own texel
+      // to texel change would otherwise excuse any normal.
+      const gpu = await compareGlossy(page, reference, { slopeFrom: interpolated });
+      const cpu = await compareGlossy(page, reference, { slopeFrom: interpolated, against: interpolated });
+      console.log(`TPFL glossy with texel normals from (${state.eye.map((x) => x.toFixed(2)).join(', ')}): ${gpu.compared} texels (${gpu.glossy} glossy), GPU worst relative ${gpu.worstRelative.toExponential(2)}, ` +
+        `worst absolute ${gpu.worstAbsolute.toExponential(2)} of the peak ${gpu.peak.toFixed(3)}, ${gpu.bad} beyond the tolerance; ` +
+        `the interpolated normal: worst absolute ${cpu.worstAbsolute.toExponential(2)}, ${cpu.bad} of ${3 * cpu.glossy} channel values beyond it`);
+      check(gpu.glossy > 3000, `only ${gpu.glossy} glossy texels compared`);
+      check(gpu.bad === 0, `TPFL glossy with texel normals: ${gpu.bad} channel values beyond the tolerance (${gpu.firstBad})`);
+      check(cpu.bad > 0.5 * 3 * cpu.glossy, `the interpolated normal's answer misses the mapped one at only ${cpu.bad} of ${3 * cpu.glossy} channel values: the test could not tell the two apart`);
+      check(gpu.peak > 0.05, `the glossy reference is dark (peak ${gpu.peak})`);
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
     } finally {
       server.child.kill('SIGTERM');

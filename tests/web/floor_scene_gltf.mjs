@@ -74,8 +74,9 @@ export function rgbPngDataUri(width, height, rgb) {
 
 // One node and mesh per part, all in one base64 buffer. A part is {positions, normals,
 // indices, color} (flat arrays, counter-clockwise front faces, linear RGBA base colour) with
-// optional `uv` (flat u, v per vertex: TEXCOORD_0, glTF's v down the image) and `normalMap`
-// (a PNG data URI used as the material's normalTexture over TEXCOORD_0).
+// optional `uv` (flat u, v per vertex: TEXCOORD_0, glTF's v down the image), `normalMap`
+// (a PNG data URI used as the material's normalTexture over TEXCOORD_0) and `metallic`,
+// `roughness` (glTF's defaults, 1 and 1, when absent).
 export function gltfText(parts) {
   const chunks = [], bufferViews = [], accessors = [], meshes = [], materials = [], images = [], textures = [];
   let offset = 0;
@@ -101,6 +102,8 @@ export function gltfText(parts) {
     }
     meshes.push({ primitives: [{ attributes, indices, material: m }] });
     const material = { pbrMetallicRoughness: { baseColorFactor: part.color } };
+    if (part.metallic !== undefined) material.pbrMetallicRoughness.metallicFactor = part.metallic;
+    if (part.roughness !== undefined) material.pbrMetallicRoughness.roughnessFactor = part.roughness;
     if (part.normalMap) {
       images.push({ uri: part.normalMap });
       textures.push({ source: images.length - 1 });
@@ -121,4 +124,28 @@ export function gltfText(parts) {
     bufferViews,
     accessors,
   });
+}
+
+// The stripes' slope at u: the tangent-space normal of stripeQuadGltf's map is
+// normalize(stripeSlope(u), 0, 1), up to 31 degrees from the surface normal.
+export const stripeSlope = (u) => 0.6 * Math.sin(8 * Math.PI * u);
+
+// The normal-map scene of the transfer-texture tests: the quad [-1, 1]^2 at y = 0 facing +y
+// over the whole atlas (u along +x, v along +z, TEXCOORD_0), with (withMap) an atlas x atlas
+// normal map of stripes leaning along x (stripeSlope; +x of tangent space along +u = world +x).
+// `material`: {color, metallic, roughness} of the quad (default a grey matte 0.8).
+export function stripeQuadGltf(atlas, withMap, material = { color: [0.8, 0.8, 0.8, 1] }) {
+  const part = { positions: [], normals: [], uv: [], indices: [0, 1, 2, 0, 2, 3] };
+  for (const [sa, sb] of [[-1, -1], [1, -1], [1, 1], [-1, 1]]) {  // counter-clockwise seen from +y
+    part.positions.push(sb, 0, sa);
+    part.normals.push(0, 1, 0);
+    part.uv.push((sb + 1) / 2, (sa + 1) / 2);
+  }
+  const rgb = new Uint8Array(3 * atlas * atlas);
+  for (let y = 0; y < atlas; y++)
+    for (let i = 0; i < atlas; i++) {
+      const s = stripeSlope((i + 0.5) / atlas), length = Math.hypot(s, 1);
+      rgb.set([s / length, 0, 1 / length].map((c) => Math.round((c + 1) * 127.5)), 3 * (y * atlas + i));
+    }
+  return gltfText([{ ...part, ...material, ...(withMap ? { normalMap: rgbPngDataUri(atlas, atlas, rgb) } : {}) }]);
 }

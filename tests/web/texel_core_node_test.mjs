@@ -8,13 +8,14 @@
 // TPFL glossy (the bake carries a visibility pass): texel_prt.frag's glossy arithmetic run on
 // the CPU from the packed textures (tpflGlossyCpu) equals prt::tpflGlossyExitRadiance on the
 // same texels, and prt-bake shade --texels --pass glossy; its SH, lobe and Schlick functions are
-// glossy.vert's text.
+// glossy.vert's text. Texel normals decode into the RGBA16F textures the glossy term reads.
 // Usage: node texel_core_node_test.mjs PRT_CORE_NODE_JS NATIVE_PRT_BAKE WORK_DIR
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { stripeQuadGltf } from './floor_scene_gltf.mjs';
 
 const [coreJs, prtBake, workDir] = process.argv.slice(2);
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -218,6 +219,56 @@ for (const kind of ['shadowed', 'interreflected']) {
     'vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on)']) {
     const a = fn(shaderText('glossy.vert'), signature), b = fn(shaderText('texel_prt.frag'), signature);
     check(a !== null && a === b, `${signature} differs between glossy.vert and texel_prt.frag`);
+  }
+}
+
+// ---- texel normals (asset format 1.6) as the client uploads them ----
+// A normal-mapped quad (stripes tilting the normal up to 31 degrees along x) baked with
+// --texels: every covered texel's RGBA16F texel holds the unit normal the octahedral code
+// decodes to (decoded here from docs/asset-format.md's formula, independently of the C++),
+// each component the correctly rounded half of it within one float rounding, w = 1; empty
+// texels hold 0 in all four lanes; a code count that disagrees with the atlases and an atlas
+// over MAX_TEXTURE_SIZE are refused by name.
+{
+  const scene = path.join(workDir, 'stripes.gltf'), asset = path.join(workDir, 'stripes.prt');
+  fs.writeFileSync(scene, stripeQuadGltf(32, true));
+  execFileSync(prtBake, [scene, '-o', asset, '--texels', '--texture-size', '32', '--samples', '16', '--order', '2', '--passes', 'shadowed',
+    '--texture-sets', 'scene', '--unwrap', 'never', '--quiet']);
+  const bytes = fs.readFileSync(asset);
+  const r = core.texelNormalsPackCheck(bytes, 16384, 0);
+  if (check(typeof r === 'object', `texelNormalsPackCheck: ${r}`)) {
+    const decode = (x, y) => {
+      const u = Math.max(x / 32767, -1), v = Math.max(y / 32767, -1);
+      let n = [u, v, 1 - Math.abs(u) - Math.abs(v)];
+      if (n[2] < 0) n = [(1 - Math.abs(v)) * (u >= 0 ? 1 : -1), (1 - Math.abs(u)) * (v >= 0 ? 1 : -1), n[2]];
+      const l = Math.hypot(...n);
+      return n.map((c) => c / l);
+    };
+    const a = r.atlases[0];
+    check(r.atlases.length === 1 && a.width === 32 && a.height === 32 && a.halves.length === 4 * 32 * 32, `texel normals texture ${a.width}x${a.height}`);
+    let covered = 0, worst = 0, emptyBad = 0, wBad = 0, tilted = 0;
+    for (let t = 0; t < 32 * 32; t++) {
+      const lanes = [0, 1, 2, 3].map((k) => halfValue(a.halves[4 * t + k]));
+      if (r.coverage[t] === 0) {
+        if (lanes.some((x) => x !== 0)) emptyBad++;
+        continue;
+      }
+      covered++;
+      if (lanes[3] !== 1) wBad++;
+      const n = decode(r.codes[2 * t], r.codes[2 * t + 1]);
+      // float32 decoding then rounding to half: within half an ulp of the half plus a float's rounding.
+      for (let k = 0; k < 3; k++) worst = Math.max(worst, Math.abs(lanes[k] - nearestHalf(n[k])) / Math.max(Math.abs(n[k]), 2 ** -14));
+      if (Math.abs(n[0]) > 0.1) tilted++;
+    }
+    console.log(`texel normals: ${covered} covered texels (${tilted} tilted > 5.7 degrees), worst half lane ${worst.toExponential(2)} relative from the rounded decode`);
+    check(covered === 32 * 32, `only ${covered} texels covered`);
+    check(tilted > 0.5 * covered, `only ${tilted} texels carry the stripes' tilt`);
+    check(worst <= 2 ** -10, `a normal lane differs from the correctly rounded half of its decode by ${worst} (relative)`);
+    check(emptyBad === 0 && wBad === 0, `${emptyBad} empty texels not all 0, ${wBad} covered texels with w != 1`);
+    const short = core.texelNormalsPackCheck(bytes, 16384, 2);
+    check(typeof short === 'string' && /2046 codes and 1024 coverage values for 1024 texels/.test(short), `a short code list: ${short}`);
+    const small = core.texelNormalsPackCheck(bytes, 16, 0);
+    check(typeof small === 'string' && /atlas 0 is 32x32 texels; this device's MAX_TEXTURE_SIZE is 16/.test(small), `a small device: ${small}`);
   }
 }
 

@@ -15,9 +15,12 @@
 // transfer textures"), when uGlossy: the texel's visibility vector v (uVisibility, the same
 // layer layout, one channel, read bilinearly), the per-frame product matrix P_c(L) (uProduct,
 // texel_glossy.h: row i of channel c at row c n^2 + i, 4 columns a texel), T_c = P_c v, and
-// L_c = k_s,c sum_i g_l(i)(s) y_i(R) T_c,i with R = reflect(-view, n) of the interpolated
-// vertex normal (the asset has no normal maps yet): prt::tpflGlossyExitRadiance, emulated by
-// tpflGlossyCpu. shA .. schlick are glossy.vert's text (texel_core_node_test checks it).
+// L_c = k_s,c sum_i g_l(i)(s) y_i(R) T_c,i with R = reflect(-view, n) and Schlick's n.v of the
+// shading normal n: the asset's texel normal (uNormals, bilinear, made unit) where normal maps
+// turned it (uShadingNormals), else the interpolated vertex normal: prt::tpflGlossyExitRadiance,
+// emulated by tpflGlossyCpu. The diffuse transfer needs no normal here: the baker folded the
+// mapped normal's cosine into it. shA .. schlick are glossy.vert's text (texel_core_node_test
+// checks it).
 precision highp sampler2D;
 precision highp float;
 precision highp int;
@@ -46,6 +49,8 @@ uniform int uVisibilityLayers;  // layers of v read: ceil(min(m, transfer order)
 uniform int uBands;             // the product's bands n (lighting and output), <= 8
 uniform int uFresnel;           // 0: k_s = f0
 uniform vec3 uEye;              // world space
+uniform sampler2D uNormals;     // RGBA16F per atlas: unit shading normal, w = 1; all 0 at empty texels
+uniform bool uShadingNormals;   // the asset has texel normals (format 1.6): reflect about them
 // Real SH by Lisle & Huang's recurrence, constants as prt/sh_basis.cpp (glossy_texture.h).
 uniform float uShY00;
 uniform float uShK1;
@@ -118,6 +123,12 @@ vec3 glossyTerm(vec2 uv) {
   if (!(distance > 0.0)) return vec3(0.0);
   vec3 toEye = d * (1.0 / distance);
   vec3 n = normalize(vNormal);
+  if (uShadingNormals) {
+    // w is the share of the bilinear taps that hold a normal: at a chart's outer gutter edge
+    // the taps may reach empty texels (all 0), which only shorten the sum.
+    vec4 mapped = textureLod(uNormals, uv, 0.0);
+    if (mapped.w > 0.0 && dot(mapped.xyz, mapped.xyz) > 1e-12) n = normalize(mapped.xyz);
+  }
   vec3 ks = schlick(vSpecular.rgb, vSpecularF90, dot(n, toEye), uFresnel == 1);
   // A matte surface (f0 = f90 = 0: the room's walls) has k_s = 0 at every angle: its glossy
   // term is exactly 0, so skip the n^2 x m^2 product (the bulk of a texel frame's cost).

@@ -422,6 +422,10 @@ Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
     release();
     return s;
   }
+  if (Status s = texels_.setShadingNormals(asset.texelNormals, asset.texelCoverage); !s.isOk()) {
+    release();
+    return s;
+  }
   return Status::ok();
 }
 
@@ -476,6 +480,11 @@ Status GlRenderer::upload(const BakedAsset& asset) {
     setPassTexture(k, t, asset.shOrder);
   }
   if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
+    release();
+    return s;
+  }
+  // The glossy term's shading normals come with the geometry (the page fetches them with it).
+  if (Status s = texels_.setShadingNormals(asset.texelNormals, asset.texelCoverage); !s.isOk()) {
     release();
     return s;
   }

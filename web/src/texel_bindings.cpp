@@ -28,6 +28,20 @@ val copyOut(const std::vector<T>& data) {
   return val(emscripten::typed_memory_view(data.size(), data.data())).call<val>("slice");
 }
 
+// Packed atlas textures as JS: [{width, height, layers, halves: Uint16Array}].
+val atlasTextures(const std::vector<prt::web::TexelAtlasTexture>& textures) {
+  val list = val::array();
+  for (const prt::web::TexelAtlasTexture& t : textures) {
+    val a = val::object();
+    a.set("width", t.width);
+    a.set("height", t.height);
+    a.set("layers", t.layers);
+    a.set("halves", copyOut(t.halves));
+    list.call<void>("push", a);
+  }
+  return list;
+}
+
 // Texel pass `kind` (by name; "visibility": the TPFL visibility pass) of the asset in `bytes`, decoded from its first `bands` bands (0:
 // all) as the streaming client decodes it, and packed by packTexelTransfer against the given
 // device limits: {order, channels, layersPerChannel, floats: the decoded pass (Float32Array),
@@ -59,16 +73,28 @@ val texelPackCheck(const val& bytes, const std::string& kind, int bands, int max
   out.set("channels", packed.channels);
   out.set("layersPerChannel", packed.layersPerChannel);
   out.set("floats", copyOut(pass.coeffs));
-  val list = val::array();
-  for (const prt::web::TexelAtlasTexture& t : packed.atlases) {
-    val a = val::object();
-    a.set("width", t.width);
-    a.set("height", t.height);
-    a.set("layers", t.layers);
-    a.set("halves", copyOut(t.halves));
-    list.call<void>("push", a);
+  out.set("atlases", atlasTextures(packed.atlases));
+  return out;
+}
+
+// The asset's texel normals as the client uploads them (packTexelNormals), with what they came
+// from: {codes: Int16Array (2 per texel), coverage: Uint8Array, atlases: [{width, height, layers (1),
+// halves: Uint16Array (RGBA per texel)}]}, or a string naming the error. `maxSize` as the
+// device's MAX_TEXTURE_SIZE; `dropCodes` > 0 removes that many codes first (a refusal test).
+val texelNormalsPackCheck(const val& bytes, int maxSize, int dropCodes) {
+  prt::BakedAsset atlases;
+  if (prt::Status s = prt::decodeAssetAtlases(bytesFrom(bytes), &atlases); !s.isOk()) return val(s.toString());
+  if (atlases.texelNormals.empty()) return val(std::string("the asset has no texel normals"));
+  std::vector<std::int16_t> codes = atlases.texelNormals;
+  codes.resize(codes.size() - std::min(codes.size(), static_cast<std::size_t>(std::max(dropCodes, 0))));
+  std::vector<prt::web::TexelAtlasTexture> packed;
+  if (prt::Status s = prt::web::packTexelNormals(codes, atlases.texelCoverage, atlases.atlases, maxSize, &packed); !s.isOk()) {
+    return val(s.toString());
   }
-  out.set("atlases", list);
+  val out = val::object();
+  out.set("codes", copyOut(atlases.texelNormals));
+  out.set("coverage", copyOut(atlases.texelCoverage));
+  out.set("atlases", atlasTextures(packed));
   return out;
 }
 
@@ -203,4 +229,5 @@ EMSCRIPTEN_BINDINGS(prt_texel_core) {
   emscripten::function("halvesToFloats", &halvesToFloats);
   emscripten::function("texelOnlyAsset", &texelOnlyAsset);
   emscripten::function("tpflTexelCheck", &tpflTexelCheck);
+  emscripten::function("texelNormalsPackCheck", &texelNormalsPackCheck);
 }

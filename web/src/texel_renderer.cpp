@@ -34,6 +34,8 @@ Status TexelRenderer::link(const char* fs, Program* out) {
   out->fresnel = glGetUniformLocation(p, "uFresnel");
   out->eye = glGetUniformLocation(p, "uEye");
   out->writePosition = glGetUniformLocation(p, "uWritePosition");
+  out->normals = glGetUniformLocation(p, "uNormals");
+  out->shadingNormals = glGetUniformLocation(p, "uShadingNormals");
   out->shY00 = glGetUniformLocation(p, "uShY00");
   out->shK1 = glGetUniformLocation(p, "uShK1");
   out->shA = glGetUniformLocation(p, "uShA");
@@ -57,6 +59,8 @@ void TexelRenderer::releaseGeometry() {
   if (specular_) glDeleteBuffers(1, &specular_);
   if (productTexture_) glDeleteTextures(1, &productTexture_);
   specular_ = productTexture_ = 0;
+  if (!normals_.empty()) glDeleteTextures(static_cast<GLsizei>(normals_.size()), normals_.data());
+  normals_.clear();
   product_ = {};
   if (atlasUv_) glDeleteBuffers(1, &atlasUv_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
@@ -216,6 +220,38 @@ Status TexelRenderer::setProductLighting(std::span<const Rgb> lighting, int band
   return glErrorStatus("the TPFL product matrix", "uploading the product matrix");
 }
 
+Status TexelRenderer::setShadingNormals(std::span<const std::int16_t> codes, std::span<const std::uint8_t> coverage) {
+  if (codes.empty()) {
+    if (!normals_.empty()) glDeleteTextures(static_cast<GLsizei>(normals_.size()), normals_.data());
+    normals_.clear();
+    return Status::ok();
+  }
+  if (atlases_.empty()) return Status::error(StatusCode::kInvalidArgument, "setShadingNormals: the scene has no atlases");
+  GLint maxSize = 2048;  // the WebGL2 minimum
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  std::vector<TexelAtlasTexture> packed;
+  if (Status s = packTexelNormals(codes, coverage, atlases_, maxSize, &packed); !s.isOk()) return s;
+  std::vector<GLuint> names(packed.size(), 0);
+  glGenTextures(static_cast<GLsizei>(names.size()), names.data());
+  for (std::size_t a = 0; a < packed.size(); ++a) {
+    glBindTexture(GL_TEXTURE_2D, names[a]);
+    // Bilinear like the transfer (the baker dilated the normals into the gutters too).
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, packed[a].width, packed[a].height, 0, GL_RGBA, GL_HALF_FLOAT, packed[a].halves.data());
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  if (Status s = glErrorStatus("this scene's texel normals", "uploading the texel normals"); !s.isOk()) {
+    glDeleteTextures(static_cast<GLsizei>(names.size()), names.data());
+    return s;
+  }
+  if (!normals_.empty()) glDeleteTextures(static_cast<GLsizei>(normals_.size()), normals_.data());
+  normals_ = std::move(names);
+  return Status::ok();
+}
+
 int TexelRenderer::passOrder(int kind) const {
   if (kind < 0 || kind > 2) return 0;
   return passes_[static_cast<std::size_t>(kind)].order;
@@ -240,6 +276,8 @@ void TexelRenderer::useShading(const Pass& p, const TexelShading& shading, int a
   glUniform1i(shading_.glossy, glossy ? 1 : 0);
   glUniform1i(shading_.visibility, 1);
   glUniform1i(shading_.product, 2);
+  glUniform1i(shading_.normals, 3);
+  glUniform1i(shading_.shadingNormals, glossy && !normals_.empty() ? 1 : 0);
   if (glossy) {
     // v past the product's transfer order cannot reach its first n bands (docs/triple-product.md).
     glUniform1i(shading_.visibilityLayers, texelsForOrder(std::min(visibility_.order, product_.transferOrder)));
@@ -257,8 +295,11 @@ void TexelRenderer::useShading(const Pass& p, const TexelShading& shading, int a
   glActiveTexture(GL_TEXTURE0);
 }
 
-// Binds atlas `a`'s arrays: the diffuse pass's on unit 0, the visibility's on unit 1.
+// Binds atlas `a`'s arrays: the diffuse pass's on unit 0, the visibility's on unit 1, and its
+// shading normals on unit 3.
 void TexelRenderer::bindAtlas(const Pass& p, std::size_t a) const {
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, normals_.empty() ? 0 : normals_[a]);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, visibility_.order > 0 ? visibility_.textures[a] : 0);
   glActiveTexture(GL_TEXTURE0);
@@ -266,9 +307,9 @@ void TexelRenderer::bindAtlas(const Pass& p, std::size_t a) const {
 }
 
 void TexelRenderer::unbindTextures() const {
-  for (GLenum unit : {GL_TEXTURE2, GL_TEXTURE1, GL_TEXTURE0}) {
+  for (GLenum unit : {GL_TEXTURE3, GL_TEXTURE2, GL_TEXTURE1, GL_TEXTURE0}) {
     glActiveTexture(unit);
-    glBindTexture(unit == GL_TEXTURE2 ? GL_TEXTURE_2D : GL_TEXTURE_2D_ARRAY, 0);
+    glBindTexture(unit == GL_TEXTURE2 || unit == GL_TEXTURE3 ? GL_TEXTURE_2D : GL_TEXTURE_2D_ARRAY, 0);
   }
 }
 

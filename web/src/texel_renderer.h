@@ -4,13 +4,15 @@
 // (shaders/texel_prt.vert, texel_prt.frag) with the same Lighting block as the vertex path,
 // and the atlas read-back in UV space for tests; and the glossy term by TPFL (the visibility
 // pass as one more set of texture arrays, the per-frame product matrix P(L) as a small RGBA32F
-// texture, texel_glossy.h). Owned by GlRenderer, which holds the geometry buffers this class
+// texture, texel_glossy.h), reflecting about the asset's texel normals where normal maps turned
+// them (one RGBA16F texture per atlas). Owned by GlRenderer, which holds the geometry buffers this class
 // draws from.
 #pragma once
 
 #include <GLES3/gl3.h>
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -43,6 +45,13 @@ class TexelRenderer {
                    std::span<const TextureAtlas> atlases);
   // Forgets the geometry and deletes every texel pass's textures.
   void releaseGeometry();
+  // Uploads the asset's texel normals (BakedAsset::texelNormals with its texelCoverage) as one
+  // RGBA16F texture per atlas (packTexelNormals), which the glossy term then reflects about
+  // instead of the interpolated vertex normal; empty codes drop them. Needs geometry; nothing
+  // changes on error (a count that disagrees with the atlases, a side over MAX_TEXTURE_SIZE).
+  Status setShadingNormals(std::span<const std::int16_t> codes, std::span<const std::uint8_t> coverage);
+  // Whether the glossy term has stored shading normals.
+  bool hasShadingNormals() const { return !normals_.empty(); }
   // Whether setGeometry gave atlases (the scene has transfer textures).
   bool hasAtlases() const { return !atlases_.empty(); }
   const std::vector<TextureAtlas>& atlases() const { return atlases_; }
@@ -87,7 +96,7 @@ class TexelRenderer {
     GLint viewProjection = -1, atlasSpace = -1, transfer = -1, layersPerChannel = -1, channels = -1, activeLayers = -1;
     GLint exposure = -1, atlasSize = -1;
     GLint diffuse = -1, glossy = -1, visibility = -1, product = -1, visibilityLayers = -1, bands = -1, fresnel = -1, eye = -1;
-    GLint writePosition = -1;
+    GLint writePosition = -1, normals = -1, shadingNormals = -1;
     GLint shY00 = -1, shK1 = -1, shA = -1, shB = -1;
   };
   struct Pass {
@@ -113,6 +122,7 @@ class TexelRenderer {
   Pass visibility_;              // the TPFL visibility vectors, 1 channel
   GLuint specular_ = 0;          // (f0 r, g, b, s, f90) per vertex, attributes 5 and 6
   GLuint productTexture_ = 0;    // P_c(L), RGBA32F
+  std::vector<GLuint> normals_;  // per atlas, RGBA16F TEXTURE_2D shading normals; empty without
   TpflProductTexture product_;   // its CPU side (the sizes; the floats until the next upload)
   ShTripleProduct tensor_;       // C restricted to the product's bands and transfer order
 };

@@ -38,4 +38,14 @@ struct TexelTextures {
 Status packTexelTransfer(const TransferPass& pass, int order, std::span<const TextureAtlas> atlases, int maxSize, int maxLayers,
                          TexelTextures* out);
 
+// Decodes the asset's texel normals (2 octahedral snorm16 codes per texel, texels atlas after
+// atlas: BakedAsset::texelNormals) into one RGBA16F TEXTURE_2D image per atlas (layers 1, rows
+// as above): unit x, y, z and w = 1 per covered texel, all four 0 where `coverage` says empty,
+// so texel_prt.frag can tell a bilinear read that reached no normal. Decoded here rather than
+// uploaded as codes: WebGL2 has no filterable 16-bit snorm format without EXT_texture_norm16,
+// and bilinear filtering of octahedral codes is wrong across the fold. Errors, *out untouched:
+// counts that disagree with the atlases or the coverage, an atlas side over `maxSize`.
+Status packTexelNormals(std::span<const std::int16_t> codes, std::span<const std::uint8_t> coverage,
+                        std::span<const TextureAtlas> atlases, int maxSize, std::vector<TexelAtlasTexture>* out);
+
 }  // namespace prt::web
