@@ -10,6 +10,7 @@ import { LightsPanel } from './lights_panel.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
 import { streamAsset, PASS_NAMES } from './stream_loader.js';
 import { installTestHook } from './test_hook.js';
+import { encodePermalink, decodePermalink } from './permalink.js';
 
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
 const PROJECTIONS = { analytic: 2, gpu: 0, cpu: 1 };
@@ -76,6 +77,8 @@ const hook = installTestHook({
   selectEnvironment,
   applyState,
   applyLightSettings,
+  currentView,
+  permalink,
   scale: () => sceneRadius,
   refreshGui: () => { if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay()); },
 });
@@ -203,13 +206,15 @@ function defaultLights() {
   return [{ shape: 'sphere', position: c.map((x, k) => x + offset[k]), radius: 0.07 * r, color: [1, 0.92, 0.8], intensity: 40 }];
 }
 
-function notify(message) {
+// Shows a non-fatal message for 8 s, or with `sticky` until it is clicked (a link's bad
+// values: the page may take longer than 8 s to show the scene they are about).
+function notify(message, { sticky = false } = {}) {
   hook.notice = message;
   noticeBox.textContent = message;
   noticeBox.hidden = false;
   console.warn(`prt: ${message}`);
   clearTimeout(notify.timer);
-  notify.timer = setTimeout(() => { noticeBox.hidden = true; }, 8000);
+  if (!sticky) notify.timer = setTimeout(() => { noticeBox.hidden = true; }, 8000);
 }
 
 function toggleHelp(show = helpBox.hidden) {
@@ -259,10 +264,110 @@ async function loadScene(name) {
   hook.ready = true;
 }
 
+// ---- permalinks (permalink.js; docs/web-client.md, "Permalinks") ------------------------
+// What a link holds: the page's view now (the camera from the client).
+function currentView() {
+  // Mesh lights from OBJ files name a mesh only this page has (its file is not on the
+  // server), so links leave them out; the torus is built in and stays.
+  const lights = lightSet.snapshot().filter((l) => l.shape !== 'mesh' || l.mesh === 'torus');
+  return {
+    scene: state.scene,
+    camera: Array.from(app.cameraPose()),
+    environment: state.environment,
+    environmentOn: lightSettings.environmentOn,
+    envYaw: state.envYaw,
+    envPitch: state.envPitch,
+    intensity: state.intensity,
+    color: state.color,
+    exposure: state.exposure,
+    mode: state.mode,
+    order: state.order,
+    source: state.source,
+    glossyMix: { ...state.glossyMix },
+    projection: lightSettings.projection,
+    cubeSize: lightSettings.cubeSize,
+    lights,
+  };
+}
+
+// The page's URL with the current view in its fragment (the query kept: ?cpca still applies).
+function permalink() {
+  const view = currentView();
+  const href = `${location.origin}${location.pathname}${location.search}#${encodePermalink(view)}`;
+  return { href, droppedLights: lightSet.lights.length - view.lights.length };
+}
+
+// The panel's "copy link": the link goes to the clipboard and the address bar. The clipboard
+// needs a secure context (HTTPS or localhost); elsewhere the address bar is the way.
+async function copyLink() {
+  const { href, droppedLights } = permalink();
+  history.replaceState(null, '', href);
+  hook.link = href;
+  const dropped = droppedLights ? ` (without ${droppedLights} OBJ mesh light${droppedLights === 1 ? '' : 's'}: their files are not on the server)` : '';
+  try {
+    await navigator.clipboard.writeText(href);
+    notify(`Link copied${dropped}.`);
+  } catch {
+    notify(`The browser refused the clipboard: copy the link from the address bar${dropped}.`);
+  }
+}
+
+// The fragment's view, read against what this server and module offer; fields needed before
+// the scene loads (scene, source, mode: the displayed pass streams first) go to state now,
+// `before` keeps the source they replaced in case the scene turns out to lack it.
+function readLinkView() {
+  const { view, problems } = decodePermalink(location.hash, {
+    scenes: scenes.filter((s) => s.usable).map((s) => s.name),
+    environments: environmentNames(),
+    modes: client.modeNames,
+    maxOrder: client.maxOrder,
+    projections: Object.keys(PROJECTIONS),
+  });
+  const before = { source: state.source };
+  for (const key of ['scene', 'source', 'mode']) if (key in view) state[key] = view[key];
+  return { view, problems, before };
+}
+
+// Applies the rest of a link's view once its scene is loaded; a value the scene cannot
+// take joins `problems`, keeps the default, and the notice lists them all.
+function applyLinkView({ view, problems, before }) {
+  const { TransferDomain } = client;
+  for (const key of ['envYaw', 'envPitch', 'intensity', 'color', 'exposure']) if (key in view) state[key] = view[key];
+  if ('glossyMix' in view) Object.assign(state.glossyMix, view.glossyMix);
+  if ('environment' in view) selectEnvironment(view.environment);
+  if ('environmentOn' in view) lightSettings.environmentOn = view.environmentOn;
+  if ('projection' in view) lightSettings.projection = view.projection;
+  if ('cubeSize' in view) lightSettings.cubeSize = view.cubeSize;
+  if ('source' in view && !app.hasSource(TransferDomain[view.source])) {
+    problems.push(`source=${view.source}: scene '${state.scene}' has no ${view.source} passes`);
+    state.source = before.source;
+  }
+  if ('order' in view) {
+    if (view.order <= app.bakedOrder()) state.order = view.order;
+    else problems.push(`order=${view.order} is above scene '${state.scene}''s baked order ${app.bakedOrder()}`);
+  }
+  if ('camera' in view && !app.setCameraPose(view.camera)) problems.push(`camera=${view.camera.join(',')} was refused`);
+  if ('lights' in view) {
+    try {
+      lightSet.set(view.lights);
+    } catch (e) {
+      problems.push(`lights: ${e.message}`);
+    }
+  }
+  applyState();
+  const projectionError = applyLightSettings();
+  if (projectionError && 'projection' in view) problems.push(`projection=${view.projection}: ${projectionError}`);
+  if (problems.length) {
+    hook.linkProblems = problems.slice();
+    notify(`This link has values the page cannot use; defaults shown instead: ${problems.join('; ')}. (Click to close.)`, { sticky: true });
+  }
+}
+
 function buildGui() {
   gui = new GUI({ title: 'PRT' });
   if (window.innerWidth < 600) gui.close();
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
+  gui.add({ copyLink }, 'copyLink').name('copy link');  // first: what people look for when sharing
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
@@ -449,6 +554,7 @@ async function main() {
   lightDrag = new LightDrag(canvas, app, lightSet, () => 4 * sceneRadius);
   document.getElementById('help-button').addEventListener('click', () => toggleHelp());
   document.getElementById('help-close').addEventListener('click', () => toggleHelp(false));
+  noticeBox.addEventListener('click', () => { noticeBox.hidden = true; });
   setupInput();
   requestAnimationFrame(frame);
   try {
@@ -460,17 +566,19 @@ async function main() {
       const broken = scenes.filter((s) => !s.usable).map((s) => `${s.name}: ${s.error}`).join('\n');
       throw new Error(`The server has no usable scene.${broken ? `\n${broken}` : ''}`);
     }
-    if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     try {
       environments = (await fetchJson(`/api/lights?order=${client.maxOrder}`, 'environment list')).lights || [];
     } catch (e) {
       console.warn(`prt: ${e.message}; using the white furnace`);
       environments = [];
     }
+    const link = readLinkView();
+    if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     await loadScene(state.scene);
     selectEnvironment(state.environment || (environments.find((l) => l.usable) || { name: 'white furnace' }).name);
     applyState();
     applyLightSettings();
+    applyLinkView(link);
     buildGui();
   } catch (e) {
     fail(e.message);

@@ -456,6 +456,16 @@ void ClientApp::setMode(ShadingMode m) {
 void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
+std::vector<float> ClientApp::cameraPose() const {
+  const OrbitCamera::Pose p = camera_.pose();
+  return {p.target.x, p.target.y, p.target.z, p.yaw, p.pitch, p.distance};
+}
+
+bool ClientApp::setCameraPose(const std::vector<float>& pose) {
+  if (pose.size() != 6) return false;
+  return camera_.setPose({glm::vec3(pose[0], pose[1], pose[2]), pose[3], pose[4], pose[5]});
+}
+
 void ClientApp::frameScene() {
   camera_.frame(toGlm((boundsMin_ + boundsMax_) * 0.5f), 0.5f * length(boundsMax_ - boundsMin_), camera_.aspect());
 }

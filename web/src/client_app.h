@@ -152,6 +152,11 @@ class ClientApp {
   void zoom(float factor) { camera_.zoom(factor); }      // > 1 moves away
   // Frames the scene's bounding sphere (the centre and half diagonal of its bounds).
   void frameScene();
+  // [targetX, targetY, targetZ, yaw, pitch, distance] (OrbitCamera::Pose), for permalinks.
+  std::vector<float> cameraPose() const;
+  // Sets what cameraPose() gives (pitch and distance clamped); false, nothing changed, when
+  // `pose` is not six finite numbers.
+  bool setCameraPose(const std::vector<float>& pose);
   // That sphere, in world units (radius 1 about the origin before a scene is loaded).
   float sceneRadius() const { return camera_.sceneRadius(); }
   Vec3 sceneCenter() const { return toVec3(camera_.sceneCenter()); }

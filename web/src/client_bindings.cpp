@@ -89,6 +89,12 @@ val sceneCenter(const ClientApp& app) {
   return val::array(std::vector<float>{c.x, c.y, c.z});
 }
 
+val cameraPose(const ClientApp& app) { return val::array(app.cameraPose()); }
+bool setCameraPose(ClientApp& app, const val& pose) {
+  if (!pose.isArray()) return false;
+  return app.setCameraPose(emscripten::convertJSArrayToNumberVector<float>(pose));
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_client) {
@@ -166,6 +172,8 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("pan", &ClientApp::pan)
       .function("zoom", &ClientApp::zoom)
       .function("frameScene", &ClientApp::frameScene)
+      .function("cameraPose", &cameraPose)
+      .function("setCameraPose", &setCameraPose)
       .function("sceneRadius", &ClientApp::sceneRadius)
       .function("sceneCenter", &sceneCenter)
       .function("viewProjection", &viewProjection)
