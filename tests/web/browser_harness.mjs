@@ -1,7 +1,8 @@
 // What the browser tests share: Debian's headless Chromium (SwiftShader WebGL2) driven by
 // playwright-core, a real prt-serve on a free loopback port, pixel read-back and the
 // check/report bookkeeping. Used by browser_test.mjs and browser_lights_test.mjs.
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
+import fs from 'node:fs';
 import net from 'node:net';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -120,10 +121,39 @@ export function windowLuminance(img, p, radius = 4) {
   return sum / n;
 }
 
+// The largest difference of one RGB channel value between two captures (alpha ignored).
+export function maxChannelDifference(a, b) {
+  let m = 0;
+  for (let i = 0; i < a.data.length; i += 4)
+    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
+  return m;
+}
+
 export function meanAbsDifference(a, b) {
   let d = 0;
   for (let i = 0; i < a.data.length; i += 4) d += Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2]);
   return d / (a.data.length / 4) / 3;
+}
+
+// Exits with status 1 naming the first of `inputs` ([what, path] pairs) that is missing.
+export function requireInputs(inputs) {
+  for (const [what, p] of inputs) {
+    if (!p || !fs.existsSync(p)) {
+      console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
+      process.exit(1);
+    }
+  }
+}
+
+// A fresh WORK_DIR/root holding the default room baked at 256 samples, order 5 (room.prt)
+// and the environment map `envExr` as forest.exr; returns the root.
+export function bakeDefaultRoom(prtBake, workDir, envExr) {
+  const root = path.join(workDir, 'root');
+  fs.rmSync(workDir, { recursive: true, force: true });
+  fs.mkdirSync(root, { recursive: true });
+  execFileSync(prtBake, ['--default', '-o', path.join(root, 'room.prt'), '--samples', '256', '--order', '5', '--quiet']);
+  fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
+  return root;
 }
 
 // Runs cases[caseName](browser) with a fresh browser, prints the verdict and exits 1 on failure.

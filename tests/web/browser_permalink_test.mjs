@@ -3,26 +3,14 @@
 // "copy link" button, opens as the same view and the same pixels; junk links open the
 // default view with a notice naming each bad value, and no console error.
 // Usage: node browser_permalink_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR ENV_EXR
-import { execFileSync } from 'node:child_process';
-import fs from 'node:fs';
-import path from 'node:path';
-import { makeChecks, startServer as startServerAt, openPage, settle, capture, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer as startServerAt, openPage, settle, capture, runCase, requireInputs, bakeDefaultRoom,
+  maxChannelDifference } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
 const checks = makeChecks();
 const { check } = checks;
-for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]) {
-  if (!fs.existsSync(p)) {
-    console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
-    process.exit(1);
-  }
-}
-
-const root = path.join(workDir, 'root');
-fs.rmSync(workDir, { recursive: true, force: true });
-fs.mkdirSync(root, { recursive: true });
-execFileSync(prtBake, ['--default', '-o', path.join(root, 'room.prt'), '--samples', '256', '--order', '5', '--quiet']);
-fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
+requireInputs([['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]);
+const root = bakeDefaultRoom(prtBake, workDir, envExr);
 
 const view = (page) => page.evaluate(() => window.prtApp.view);
 // Field-by-field equality, naming the first field that differs.
@@ -34,16 +22,6 @@ function sameView(a, b, what) {
   }
   return true;
 }
-function pixelDifference(a, b) {
-  let max = 0, differing = 0;
-  for (let i = 0; i < a.data.length; i++) {
-    const d = Math.abs(a.data[i] - b.data[i]);
-    max = Math.max(max, d);
-    if (d) differing++;
-  }
-  return { max, differing };
-}
-
 const cases = {
   async permalink_round_trip(browser) {
     const server = await startServerAt(prtServe, root, webDist);
@@ -80,8 +58,8 @@ const cases = {
       const restored = await view(second.page);
       sameView(changed, restored, 'the link\'s view');
       const after = await capture(second.page);
-      const diff = pixelDifference(before, after);
-      check(diff.max === 0, `the link's picture differs: ${diff.differing} channel values, by up to ${diff.max}/255`);
+      const diff = maxChannelDifference(before, after);
+      check(diff === 0, `the link's picture differs from the original by up to ${diff}/255`);
       check(await second.page.evaluate(() => window.prtApp.linkProblems.length === 0 && document.getElementById('notice').hidden),
             `a good link gave a notice: ${await second.page.evaluate(() => window.prtApp.notice)}`);
       // The panel shows the link's values (it is built from them).
@@ -121,8 +99,8 @@ const cases = {
         }
         sameView(defaults, await view(page), `${fragment} falls back to the defaults`);
         const pixels = await capture(page);
-        const diff = pixelDifference(defaultPixels, pixels);
-        check(diff.max === 0, `${fragment}: the fallback picture differs from the default one (${diff.differing} values, up to ${diff.max}/255)`);
+        const diff = maxChannelDifference(defaultPixels, pixels);
+        check(diff === 0, `${fragment}: the fallback picture differs from the default one by up to ${diff}/255`);
         check(consoleErrors.length === 0, `${fragment}: console errors: ${consoleErrors.join(' | ')}`);
         await page.close();
       }

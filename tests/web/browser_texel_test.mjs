@@ -12,7 +12,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
-import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase, maxChannelDifference } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, coreJs, envExr] = process.argv.slice(2);
 const checks = makeChecks();
@@ -67,13 +67,6 @@ function litStats(img) {
       if (l > 40) lit++;
     }
   return { litFraction: lit / (img.width * img.height), mean: sum / (img.width * img.height) };
-}
-
-function maxChannelDifference(a, b) {
-  let m = 0;
-  for (let i = 0; i < a.data.length; i += 4)
-    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
-  return m;
 }
 
 const cases = {
