@@ -71,17 +71,21 @@ export async function openPage(browser, url, { waitReady = true, viewport = { wi
   await page.goto(url);
   if (waitReady) {
     // A scene streamed in parts is ready at its first band: wait for every part too.
+    // And for the background image, which is fetched after the scene (docs/web-client.md, "Background").
     await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2 &&
-      !(window.prtApp.bytesReceived < window.prtApp.bytesTotal))),
+      !(window.prtApp.bytesReceived < window.prtApp.bytesTotal) && !window.prtApp.backgroundLoading)),
       null, { timeout: 90000 });
   }
   return { page, consoleErrors };
 }
 
-// Waits for a few frames after the last change, then returns the canvas as RGBA bytes.
+// Waits for a few frames after the last change, and for a background image being fetched:
+// once the scene has streamed (before that the page does not fetch it, and the stream may
+// be held back on purpose).
 export async function settle(page) {
   const before = await page.evaluate(() => window.prtApp.frames);
-  await page.waitForFunction((n) => window.prtApp.frames > n + 2, before, { timeout: 30000 });
+  await page.waitForFunction((n) => window.prtApp.frames > n + 2 &&
+    !(window.prtApp.backgroundLoading && !(window.prtApp.bytesReceived < window.prtApp.bytesTotal)), before, { timeout: 30000 });
 }
 
 // Applies `settings` with prtApp.set, renders a few frames, returns the canvas pixels.

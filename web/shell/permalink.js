@@ -13,6 +13,7 @@ export const PERMALINK_VERSION = 1;
 const PASSES = ['unshadowed', 'shadowed', 'interreflected'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 const SOURCES = ['vertex', 'texel'];
+const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];
 // The panel's ranges: a link can say nothing the panel could not.
 export const RANGES = { envYaw: [-Math.PI, Math.PI], envPitch: [-1.5, 1.5], intensity: [0, 10], exposure: [-8, 8], cubeSize: [8, 512] };
 
@@ -28,7 +29,8 @@ export function float32Text(x) {
 }
 
 // The fragment (without '#') for `view`: {scene, camera: [tx, ty, tz, yaw, pitch, distance],
-// environment, envYaw, envPitch, intensity, color ('#rrggbb'), exposure, mode, order, source,
+// environment, envYaw, envPitch, intensity, color ('#rrggbb'), exposure, background,
+// backgroundColor ('#rrggbb'), mode, order, source,
 // glossyMix: {pass: mix}, lights: [light descriptions], projection, cubeSize, environmentOn}.
 // Doubles are written as JavaScript's shortest round-trip text, so they read back exactly.
 export function encodePermalink(view) {
@@ -43,6 +45,8 @@ export function encodePermalink(view) {
   p.set('intensity', String(view.intensity));
   p.set('color', view.color.replace(/^#/, '').toLowerCase());
   p.set('exposure', String(view.exposure));
+  p.set('bg', view.background);
+  p.set('bgColor', view.backgroundColor.replace(/^#/, '').toLowerCase());
   p.set('mode', view.mode);
   p.set('order', String(view.order));
   p.set('source', view.source);
@@ -90,7 +94,7 @@ export function decodePermalink(fragment, known) {
   } catch (e) {
     return { view, problems: [`the link's view cannot be read (${e.message})`] };
   }
-  const keys = ['v', 'scene', 'camera', 'env', 'envOn', 'yaw', 'pitch', 'intensity', 'color', 'exposure', 'mode', 'order', 'source',
+  const keys = ['v', 'scene', 'camera', 'env', 'envOn', 'yaw', 'pitch', 'intensity', 'color', 'exposure', 'bg', 'bgColor', 'mode', 'order', 'source',
     'glossy', 'projection', 'cube', 'lights'];
   for (const key of p.keys()) if (!keys.includes(key)) problems.push(`'${key}' is not a view setting`);
   if (p.has('v') && p.get('v') !== String(PERMALINK_VERSION)) {
@@ -117,10 +121,12 @@ export function decodePermalink(fragment, known) {
   }
   const numbers = [['yaw', 'envYaw'], ['pitch', 'envPitch'], ['intensity', 'intensity'], ['exposure', 'exposure']];
   for (const [key, field] of numbers) if (get(key) !== null) view[field] = number(get(key), key, problems, RANGES[field]);
-  if (get('color') !== null) {
-    if (/^[0-9a-f]{6}$/i.test(get('color'))) view.color = `#${get('color').toLowerCase()}`;
-    else problems.push(`color=${describe(get('color'))} must be six hex digits (rrggbb)`);
+  for (const [key, field] of [['color', 'color'], ['bgColor', 'backgroundColor']]) {
+    if (get(key) === null) continue;
+    if (/^[0-9a-f]{6}$/i.test(get(key))) view[field] = `#${get(key).toLowerCase()}`;
+    else problems.push(`${key}=${describe(get(key))} must be six hex digits (rrggbb)`);
   }
+  if (get('bg') !== null) view.background = oneOf(get('bg'), 'bg', BACKGROUNDS, problems);
   if (get('mode') !== null) view.mode = oneOf(get('mode'), 'mode', known.modes, problems);
   if (get('order') !== null) {
     const order = Number(get('order'));

@@ -7,8 +7,9 @@ import { normaliseLights } from './lights.js';
 import { randomLights } from './random_lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
-export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'color', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'color', 'background', 'backgroundColor', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
 const SOURCES = ['vertex', 'texel'];
+const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // GlRenderer's GlossyWork (web/src/gl_renderer.h) by name, for timeGlossy.
 const GLOSSY_WORK = { table: 1, relight: 2, view: 3 };
@@ -35,6 +36,10 @@ export function installTestHook(page) {
     error: null,
     notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
     link: null,  // the last link "copy link" made
+    // The image background: {environment, width, height} of the map image the client draws
+    // (null: none, e.g. still loading, or a map without one), and whether a fetch is under way.
+    backgroundImage: null,
+    backgroundLoading: false,
     linkProblems: [],  // why values of the opening link were not used (permalink.js)
     paused: false,  // true stops the page's own frame loop (benchmarks with several pages open)
     stats: page.stats,
@@ -266,6 +271,12 @@ export function installTestHook(page) {
           throw new Error(`set: source '${options.source}': this scene has no ${options.source} passes`);
         }
       }
+      if ('background' in options && !(typeof options.background === 'boolean' || BACKGROUNDS.includes(options.background))) {
+        throw new Error(`set: background must be one of ${BACKGROUNDS.join(', ')} (or true: blurred, false: none), got ${JSON.stringify(options.background)}`);
+      }
+      if ('backgroundColor' in options && !(typeof options.backgroundColor === 'string' && /^#[0-9a-f]{6}$/i.test(options.backgroundColor))) {
+        throw new Error(`set: backgroundColor must be '#rrggbb', got ${JSON.stringify(options.backgroundColor)}`);
+      }
       if ('color' in options && !(typeof options.color === 'string' && /^#[0-9a-f]{6}$/i.test(options.color))) {
         throw new Error(`set: color must be '#rrggbb', got ${JSON.stringify(options.color)}`);
       }
@@ -279,7 +290,9 @@ export function installTestHook(page) {
         if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
         normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
       }
-      for (const key of ['mode', 'order', 'exposure', 'intensity', 'color', 'background', 'source']) if (key in options) state[key] = options[key];
+      for (const key of ['mode', 'order', 'exposure', 'intensity', 'color', 'backgroundColor', 'source']) if (key in options) state[key] = options[key];
+      // true and false are what background took before it had four choices: the SH view, or nothing.
+      if ('background' in options) state.background = options.background === true ? 'blurred' : options.background === false ? 'none' : options.background;
       if ('glossy' in options) Object.assign(state.glossyMix, options.glossy);
       if ('envRotation' in options) {
         const r = options.envRotation;
