@@ -85,7 +85,6 @@ const cases = {
         // Well-formed JSON but not a light: refused by the page's light checks.
         [`#lights=${encodeURIComponent(JSON.stringify([{ shape: 'cube', position: [0, 0, 0] }]))}&source=texel`,
           [/lights\[0\]\.shape must be one of/, /source=texel: scene '[^']+' has no texel passes/]],
-        ['#v=7&scene=room', [/version 1/]],
         ['#%E0%A4%A&&&===', [/is not a view setting/]],
       ];
       for (const [fragment, patterns] of junkLinks) {
