@@ -18,6 +18,7 @@ double estimateRemainingSeconds(double elapsedSeconds, std::size_t done, std::si
 
 std::string formatDuration(double seconds) {
   if (seconds < 0 || !std::isfinite(seconds)) return "--:--";
+  if (seconds >= 100.0 * 3600.0) return ">99h";  // an estimate this long is news enough
   const auto total = static_cast<long long>(std::llround(seconds));
   char s[32];
   if (total < 3600) std::snprintf(s, sizeof s, "%lld:%02lld", total / 60, total % 60);
@@ -27,15 +28,18 @@ std::string formatDuration(double seconds) {
 
 std::string formatProgressLine(const BakeProgress& p, double elapsedSeconds) {
   const double fraction = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
-  const int width = 30, filled = static_cast<int>(fraction * width);
+  // 10 cells and fixed-width fields keep the line at 79 columns (a wider one wraps on an
+  // 80-column terminal, and '\r' then redraws only its last row) and as long as the last
+  // one, so a redraw leaves nothing of it behind.
+  const int width = 10, filled = static_cast<int>(fraction * width);
   std::string bar(static_cast<std::size_t>(std::clamp(filled, 0, width)), '#');
   bar.resize(width, '.');
-  char rate[32] = "  (no rays)   ";  // bounce passes gather cached hits and cast nothing
+  char rate[32] = "   (no rays)   ";  // bounce passes gather cached hits and cast nothing
   if (p.rays > 0) {
     std::snprintf(rate, sizeof rate, "%7.2f Mrays/s", elapsedSeconds > 0 ? static_cast<double>(p.rays) / elapsedSeconds * 1e-6 : 0.0);
   }
   char line[160];
-  std::snprintf(line, sizeof line, "%-9s [%s] %5.1f%%  %s  elapsed %s  left %s ", p.pass, bar.c_str(), 100.0 * fraction, rate,
+  std::snprintf(line, sizeof line, "%-9s [%s] %5.1f%% %s  %8s elapsed  %8s left ", p.pass, bar.c_str(), 100.0 * fraction, rate,
                 formatDuration(elapsedSeconds).c_str(), formatDuration(estimateRemainingSeconds(elapsedSeconds, p.done, p.total)).c_str());
   return line;
 }

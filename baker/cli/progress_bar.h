@@ -16,8 +16,8 @@ namespace prt::bake {
 // before the first unit is done. docs/baker.md, "Progress".
 double estimateRemainingSeconds(double elapsedSeconds, std::size_t done, std::size_t total);
 
-// "m:ss" below an hour, "h:mm:ss" from an hour on (seconds rounded to the nearest), "--:--"
-// for a negative (unknown) duration.
+// "m:ss" below an hour, "h:mm:ss" from an hour on (seconds rounded to the nearest), ">99h"
+// from 100 hours on, "--:--" for a negative (unknown) duration.
 std::string formatDuration(double seconds);
 
 // The bar's text for `p` after `elapsedSeconds` of its pass, without the leading '\r':

@@ -34,6 +34,8 @@ TEST(ProgressFormat, Durations) {
   EXPECT_EQ(formatDuration(3599.4), "59:59");
   EXPECT_EQ(formatDuration(3600.0), "1:00:00");
   EXPECT_EQ(formatDuration(90061.0), "25:01:01");
+  EXPECT_EQ(formatDuration(359999.0), "99:59:59");
+  EXPECT_EQ(formatDuration(360000.0), ">99h");
   EXPECT_EQ(formatDuration(-1.0), "--:--");
   EXPECT_EQ(formatDuration(std::numeric_limits<double>::infinity()), "--:--");
 }
@@ -43,13 +45,20 @@ TEST(ProgressFormat, LineShowsElapsedAndRemaining) {
   EXPECT_NE(line.find("direct    ["), std::string::npos) << line;
   EXPECT_NE(line.find(" 25.0%"), std::string::npos) << line;
   EXPECT_NE(line.find("0.40 Mrays/s"), std::string::npos) << line;
-  EXPECT_NE(line.find("elapsed 0:10"), std::string::npos) << line;
-  EXPECT_NE(line.find("left 0:30"), std::string::npos) << line;
-  // 30 cells, a quarter of them filled (7, rounded down).
-  EXPECT_NE(line.find("[#######.......................]"), std::string::npos) << line;
+  EXPECT_NE(line.find("    0:10 elapsed"), std::string::npos) << line;
+  EXPECT_NE(line.find("    0:30 left"), std::string::npos) << line;
+  // 10 cells, a quarter of them filled (2, rounded down).
+  EXPECT_NE(line.find("[##........]"), std::string::npos) << line;
   const std::string bounce = formatProgressLine({"bounce 1", 0, 1000, 0}, 0.2);
   EXPECT_NE(bounce.find("(no rays)"), std::string::npos) << bounce;
-  EXPECT_NE(bounce.find("left --:--"), std::string::npos) << bounce;
+  EXPECT_NE(bounce.find("   --:-- left"), std::string::npos) << bounce;
+  // Fits an 80-column terminal even with hour-long passes and a high ray rate, and keeps one
+  // length, so a redraw over a longer line leaves nothing behind.
+  const std::string longest = formatProgressLine({"glossy b8", 1, 1000000, 9000000000000ull}, 359000.0);
+  EXPECT_NE(longest.find("99:43:20 elapsed      >99h left"), std::string::npos) << longest;
+  EXPECT_LE(longest.size(), 79u) << longest;
+  EXPECT_EQ(line.size(), longest.size()) << line << "\n" << longest;
+  EXPECT_EQ(bounce.size(), longest.size()) << bounce << "\n" << longest;
 }
 
 TEST(RateDistortionAxes, SpanEveryPointAndTheThreshold) {
