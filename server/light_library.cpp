@@ -14,6 +14,26 @@ namespace {
 
 constexpr std::string_view kExtensions[] = {".exr", ".hdr"};
 constexpr int kPreviewWidth = 256;
+// The background texture's width (2:1, so 1024 x 512, 2 MiB as RGB9E5): about 0.35 degrees a
+// texel, a few screen pixels at the page's 0.8 rad field of view on a laptop screen;
+// 2048 would be 8 MiB for a sharper sky on large screens, after the scene.
+constexpr int kBackgroundWidth = 1024;
+
+// A derived image (immutable, cached for a year): `bytes` at a URL under `prefix` named by
+// their hash, so a changed map gets a new URL; sets *path to that URL.
+std::shared_ptr<Resource> derivedImage(std::string bytes, const char* contentType, const std::string& prefix, const char* suffix,
+                                       std::string* path) {
+  auto r = std::make_shared<Resource>();
+  r->contentType = contentType;
+  r->cacheControl = "public, max-age=31536000, immutable";
+  const std::string tag = hashHex(xxh64({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}));
+  Variant v;
+  v.body = memoryBody(std::move(bytes));
+  v.etag = etagFor(tag, Encoding::kIdentity);
+  r->variants.push_back(std::move(v));
+  *path = prefix + tag + suffix;
+  return r;
+}
 
 std::string stemOf(const std::string& rel) {
   std::string name = rel.substr(rel.rfind('/') == std::string::npos ? 0 : rel.rfind('/') + 1);
@@ -110,6 +130,7 @@ void LightLibrary::refreshLocked() {
   previews_.clear();
   for (const auto& l : lights_) {
     if (l->previewResource) previews_.emplace(l->previewPath, l->previewResource);
+    if (l->backgroundResource) previews_.emplace(l->backgroundPath, l->backgroundResource);
   }
 }
 
@@ -136,18 +157,24 @@ void LightLibrary::ensureProjected(Light& light, int order) {
     light.layout = *layout;
     std::string png;
     if (makePreviewPng(image, kPreviewWidth, &png).isOk()) {
-      auto r = std::make_shared<Resource>();
-      r->contentType = "image/png";
-      r->cacheControl = "public, max-age=31536000, immutable";
-      const std::string tag = hashHex(xxh64({reinterpret_cast<const std::uint8_t*>(png.data()), png.size()}));
-      Variant v;
-      v.body = memoryBody(std::move(png));
-      v.etag = etagFor(tag, Encoding::kIdentity);
-      r->variants.push_back(std::move(v));
+      std::string path;
+      auto r = derivedImage(std::move(png), "image/png", "/api/lights/preview/", ".png", &path);
       std::lock_guard lock(mutex_);
-      light.previewPath = "/api/lights/preview/" + tag + ".png";
+      light.previewPath = path;
       light.previewResource = r;
       previews_.emplace(light.previewPath, r);
+    }
+    std::string texture;
+    int tw = 0, th = 0;
+    if (light.layout == EnvLayout::kEquirect && makeBackgroundRgb9e5(image, kBackgroundWidth, &texture, &tw, &th).isOk()) {
+      std::string path;
+      auto r = derivedImage(std::move(texture), "application/octet-stream", "/api/lights/background/", ".rgb9e5", &path);
+      std::lock_guard lock(mutex_);
+      light.backgroundPath = path;
+      light.backgroundResource = r;
+      light.backgroundWidth = tw;
+      light.backgroundHeight = th;
+      previews_.emplace(light.backgroundPath, r);
     }
   }
   std::vector<Rgb> coeffs;
@@ -234,6 +261,10 @@ std::shared_ptr<const Resource> LightLibrary::makeDocument(int order, const std:
     j += ",\"format\":" + jsonString(l.format) + ",\"width\":" + std::to_string(l.width) +
          ",\"height\":" + std::to_string(l.height) + ",\"layout\":" + jsonString(layoutName(l.layout));
     if (!l.previewPath.empty()) j += ",\"preview\":" + jsonString(l.previewPath);
+    if (!l.backgroundPath.empty()) {
+      j += ",\"background\":{\"url\":" + jsonString(l.backgroundPath) + ",\"format\":\"rgb9e5\",\"width\":" +
+           std::to_string(l.backgroundWidth) + ",\"height\":" + std::to_string(l.backgroundHeight) + "}";
+    }
     j += ",\"coefficients\":[";
     const std::vector<Rgb>& c = l.coefficients.at(order);
     for (std::size_t k = 0; k < c.size(); ++k) {

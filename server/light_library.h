@@ -54,7 +54,8 @@ class LightLibrary {
   // still waiting, unrun. Call before the I/O context their sessions belong to is gone.
   void stop();
 
-  // The preview PNG at decoded URL path `path` ("/api/lights/preview/<hash>.png"), or null.
+  // The derived image at decoded URL path `path`: a preview PNG ("/api/lights/preview/<hash>.png")
+  // or a background texture ("/api/lights/background/<hash>.rgb9e5"); null when none is.
   std::shared_ptr<const Resource> preview(std::string_view path);
 
   // How many maps the root holds, usable or not.
@@ -73,6 +74,10 @@ class LightLibrary {
     std::map<int, std::vector<Rgb>> coefficients;  // by order
     std::string previewPath;
     std::shared_ptr<const Resource> previewResource;
+    // The background texture (equirect maps only: the page samples it as one).
+    std::string backgroundPath;
+    std::shared_ptr<const Resource> backgroundResource;
+    int backgroundWidth = 0, backgroundHeight = 0;
   };
 
   // The message a response may carry for `detail` (no server paths); the detail is logged.
@@ -89,7 +94,7 @@ class LightLibrary {
   std::vector<std::shared_ptr<Light>> lights_;
   std::uint64_t generation_ = 0;  // counts listing changes: a document made from an older one is not cached
   std::map<int, std::shared_ptr<const Resource>> documents_;
-  std::map<std::string, std::shared_ptr<const Resource>, std::less<>> previews_;
+  std::map<std::string, std::shared_ptr<const Resource>, std::less<>> previews_;  // and backgrounds
   std::chrono::steady_clock::time_point nextCheck_{};
   std::deque<int> queue_;                           // orders to make, oldest request first
   std::map<int, std::vector<DocumentCallback>> waiting_;  // by order

@@ -12,6 +12,7 @@ namespace {
 
 constexpr std::string_view kAssetPrefix = "/assets/";
 constexpr std::string_view kPreviewPrefix = "/api/lights/preview/";
+constexpr std::string_view kBackgroundPrefix = "/api/lights/background/";
 
 }  // namespace
 
@@ -49,6 +50,10 @@ Answer Router::route(const RequestHead& request) {
   if (path.starts_with(kPreviewPrefix)) {
     if (auto r = lights_.preview(path)) return respond(request, *r);
     return errorReply(version, http::status::not_found, "no such preview", true);
+  }
+  if (path.starts_with(kBackgroundPrefix)) {
+    if (auto r = lights_.preview(path)) return respond(request, *r);
+    return errorReply(version, http::status::not_found, "no such background texture", true);
   }
   if (path.starts_with("/api/") || path == "/api") {
     return errorReply(version, http::status::not_found, "no such API endpoint (try /api/scenes or /api/lights)", true);

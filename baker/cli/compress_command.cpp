@@ -12,6 +12,7 @@
 #include "native/cli_args.h"
 #include "native/exit_status.h"
 #include "baker/cli/compress_lightings.h"
+#include "baker/cli/rate_distortion_svg.h"
 #include "baker/texture/asset_texels.h"
 #include "native/file_io.h"
 #include "native/json_text.h"
@@ -36,7 +37,8 @@ constexpr double kRelativeErrorFloor = 0.01;
 constexpr FlagSpec kFlags[] = {{"--json", false},     {"--settings", true}, {"--quality", true},
                                {"--pass", true},      {"--env-dir", true},  {"--max-clusters", true},
                                {"--per-lighting", false}, {"--save-blobs", true}, {"--views", true},
-                               {"--lightings", true}, {"--texels", false}, {"--matrix-metric", true}};
+                               {"--lightings", true}, {"--texels", false}, {"--matrix-metric", true},
+                               {"--svg", true}};
 
 struct Options {
   std::string asset;
@@ -53,6 +55,7 @@ struct Options {
   bool json = false;
   bool perLighting = false;
   std::string saveBlobs;  // directory for each setting's blob, or empty
+  std::string svg;        // the rate-distortion plot's path, or empty
 };
 
 Status usage(std::string message) { return usageError(std::move(message)); }
@@ -121,6 +124,10 @@ Status parseOptions(std::span<const std::string> args, Options* o) {
   if (const std::string* d = p.value("--save-blobs")) {
     if (d->empty()) return usage("--save-blobs needs a directory");
     o->saveBlobs = *d;
+  }
+  if (const std::string* f = p.value("--svg")) {
+    if (f->empty()) return usage("--svg needs a file name");
+    o->svg = *f;
   }
   return Status::ok();
 }
@@ -284,6 +291,23 @@ std::string formatTable(const Options& o, const TransferPass& pass, int order, s
   return s;
 }
 
+// The rate-distortion plot of the encoded rows (bake::rateDistortionSvg); rows that could
+// not be encoded are listed under it with the reason.
+std::string formatSvg(const Options& o, const TransferPass& pass, std::size_t vertices, const std::vector<Row>& rows) {
+  bake::RdPlot plot;
+  plot.title = o.asset + ": " + (o.texels ? "texel " : "") + transferKindName(pass.kind) + (o.glossy ? " glossy matrix" : "") +
+               " transfer";
+  plot.unit = o.texels ? "texel" : "vertex";
+  for (const Row& r : rows) {
+    if (!r.error.empty()) {
+      plot.notEncoded.push_back(r.setting + ": " + r.error);
+      continue;
+    }
+    plot.points.push_back({r.setting, static_cast<double>(r.bytes) / static_cast<double>(vertices), r.psnrWorst});
+  }
+  return bake::rateDistortionSvg(plot);
+}
+
 }  // namespace
 
 const char* compressReportHelpText() {
@@ -321,6 +345,9 @@ const char* compressReportHelpText() {
          "  --save-blobs DIR    also write each setting's transfer blob to DIR/SETTING.prtt\n"
          "                      (DIR must exist; for benchmarks of the decoder)\n"
          "  --json              one JSON object instead of a table\n"
+         "  --svg FILE          also write the rate-distortion plot (raw bytes per vertex, log\n"
+         "                      scale, against worst-lighting PSNR; the 40 dB line) to FILE, an\n"
+         "                      SVG any browser shows; replaced atomically\n"
          "  -h, --help          show this help\n"
          "\n"
          "A CPCA target a setting cannot reach makes that row say why (JSON: \"error\") and the\n"
@@ -337,6 +364,11 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   }
   Options o;
   if (Status s = parseOptions(args, &o); !s.isOk()) return reportFailure(err, "compress-report", s);
+  if (!o.svg.empty()) {
+    // A bad --svg fails before the encoding work, not after it.
+    const std::string inputs[] = {o.asset};
+    if (Status s = checkOutputPath(o.svg, inputs); !s.isOk()) return reportFailure(err, "compress-report", s);
+  }
 
   std::vector<std::uint8_t> bytes;
   if (Status s = readFileBytes(o.asset, kMaxAssetFileBytes, &bytes); !s.isOk()) return reportFailure(err, "compress-report", s);
@@ -485,6 +517,14 @@ int runCompressReportCommand(std::span<const std::string> args, std::FILE* out, 
   }
   const std::string text = o.json ? formatJson(o, *pass, order, vertices, samples.size(), names, rows)
                                   : formatTable(o, *pass, order, vertices, samples.size(), names, rows);
+  if (!o.svg.empty()) {
+    const std::string svg = formatSvg(o, *pass, vertices, rows);
+    const std::string inputs[] = {o.asset};
+    const auto* data = reinterpret_cast<const std::uint8_t*>(svg.data());
+    if (Status s = writeFileAtomically(o.svg, std::span<const std::uint8_t>(data, svg.size()), inputs); !s.isOk()) {
+      return reportFailure(err, "compress-report", s);
+    }
+  }
   std::fputs(text.c_str(), out);
   return kExitOk;
 }

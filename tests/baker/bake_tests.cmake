@@ -33,3 +33,10 @@ target_include_directories(prt_normal_map_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR
 target_link_libraries(prt_normal_map_tests PRIVATE prt_transfer prt_stb GTest::gtest_main)
 target_compile_options(prt_normal_map_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME normal_map_tests COMMAND prt_normal_map_tests)
+
+# prt-bake's progress bar (elapsed time, the remaining-time estimate) and the
+# rate-distortion plot's axes (compress-report --svg): formatting and arithmetic.
+add_executable(prt_bake_cli_output_tests ${CMAKE_CURRENT_LIST_DIR}/cli_output_test.cpp)
+target_link_libraries(prt_bake_cli_output_tests PRIVATE prt_bake_cli GTest::gtest_main)
+target_compile_options(prt_bake_cli_output_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME bake_cli_output_tests COMMAND prt_bake_cli_output_tests)

@@ -620,6 +620,74 @@ const cases = {
     }
   },
 
+  compress_svg() {
+    // compress-report --svg: a well-formed SVG (parsed by a real XML parser, Python's
+    // ElementTree) with one mark per setting, each where the report's numbers put it on the
+    // plot's own tick marks (log x: bytes per vertex; linear y: dB), and the 40 dB line.
+    const { out: asset } = bakeDefault('room.prta', ['--bounces', '1']);
+    const svgPath = work('rd.svg');
+    const settings = ['f32', 'f16', 'q8', 'cpca8@0.05'];
+    const report = json(expectExit(['compress-report', asset, '--json', '--lightings', '4', '--settings', settings.join(','),
+                                    '--svg', svgPath], 0));
+    if (!report || !check(fs.existsSync(svgPath), '--svg wrote no file')) return;
+    check(!fs.readdirSync(workDir).some((f) => f.includes('.prt-partial-')), `temporaries left: ${fs.readdirSync(workDir)}`);
+    const parse = spawnSync('/usr/bin/python3', ['-c', `
+import json, sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+def walk(e):
+    return {'tag': e.tag.split('}')[-1], 'ns': e.tag.split('}')[0][1:] if '}' in e.tag else '',
+            'attrs': dict(e.attrib), 'text': ''.join(e.itertext()), 'children': [walk(c) for c in e]}
+print(json.dumps(walk(root)))
+`, svgPath], { encoding: 'utf8' });
+    if (!check(parse.status === 0, `the SVG does not parse as XML: ${parse.stderr}`)) return;
+    const root = JSON.parse(parse.stdout);
+    check(root.tag === 'svg' && root.ns === 'http://www.w3.org/2000/svg', `root element ${root.ns} ${root.tag}`);
+    const all = [];
+    const flatten = (e) => { all.push(e); e.children.forEach(flatten); };
+    flatten(root);
+    const cls = (e) => (e.attrs.class || '').split(' ');
+    check(!all.some((e) => e.tag === 'script' || e.tag === 'image' || e.tag === 'foreignObject' ||
+                          Object.keys(e.attrs).some((k) => /href$/.test(k))), 'the SVG is not self-contained');
+    const ticks = (axis) => all.filter((e) => e.tag === 'g' && cls(e).includes('tick') && cls(e).includes(axis)).map((g) => {
+      const line = g.children.find((c) => c.tag === 'line');
+      return { value: Number(g.children.find((c) => c.tag === 'text').text), at: Number(axis === 'x' ? line.attrs.x1 : line.attrs.y1) };
+    });
+    // Each axis's map from value to position, from its outermost ticks; every tick must agree.
+    const axisMap = (list, f) => {
+      const a = list[0], b = list[list.length - 1];
+      const map = (v) => a.at + (f(v) - f(a.value)) / (f(b.value) - f(a.value)) * (b.at - a.at);
+      for (const t of list) check(Math.abs(map(t.value) - t.at) < 0.05, `tick ${t.value} at ${t.at}, the axis puts it at ${map(t.value)}`);
+      return map;
+    };
+    const xt = ticks('x'), yt = ticks('y');
+    if (!check(xt.length >= 3 && yt.length >= 3, `too few ticks: x ${xt.length}, y ${yt.length}`)) return;
+    const x = axisMap(xt, Math.log10), y = axisMap(yt, (v) => v);
+    const marks = all.filter((e) => e.tag === 'circle' && cls(e).includes('mark'));
+    check(marks.length === settings.length, `${marks.length} marks for ${settings.length} settings`);
+    const topTick = Math.min(...yt.map((t) => t.at));
+    for (const row of report.rows) {
+      const m = marks.filter((e) => e.attrs['data-setting'] === row.setting);
+      if (!check(m.length === 1, `${m.length} marks for ${row.setting}`)) continue;
+      const cx = Number(m[0].attrs.cx), cy = Number(m[0].attrs.cy);
+      check(Math.abs(cx - x(row.bytes_per_vertex)) < 0.5, `${row.setting}: mark at x ${cx}, ${row.bytes_per_vertex} B/vertex is at ${x(row.bytes_per_vertex)}`);
+      if (row.psnr_db === null) {  // exact (f32): in the band above the top tick
+        check(cy < topTick - 5, `${row.setting} is exact but its mark (y ${cy}) is not above the top tick (${topTick})`);
+      } else {
+        check(Math.abs(cy - y(row.psnr_db)) < 0.5, `${row.setting}: mark at y ${cy}, ${row.psnr_db} dB is at ${y(row.psnr_db)}`);
+      }
+      check(all.some((e) => e.tag === 'text' && cls(e).includes('mark-label') && e.text === row.setting), `no label for ${row.setting}`);
+    }
+    const threshold = all.find((e) => e.tag === 'line' && cls(e).includes('threshold'));
+    check(threshold && Math.abs(Number(threshold.attrs.y1) - y(40)) < 0.5, `the 40 dB line is at ${threshold?.attrs.y1}, 40 dB is at ${y(40)}`);
+    const texts = all.filter((e) => e.tag === 'text').map((e) => e.text).join('\n');
+    check(/bytes per vertex/.test(texts) && /PSNR \(dB\)/.test(texts) && /40 dB/.test(texts), `axis titles or the 40 dB label missing: ${texts}`);
+    // A bad --svg fails before any encoding, naming the path; the asset is never replaced.
+    fs.mkdirSync(work('dir'));
+    const r = expectExit(['compress-report', asset, '--settings', 'q8', '--svg', work('dir')], EXIT_INVALID_INPUT, /exists and is a directory/);
+    check(!/encoding/.test(r.stderr), `encoding started before the --svg check: ${r.stderr}`);
+    expectExit(['compress-report', asset, '--settings', 'q8', '--svg', asset], EXIT_INVALID_INPUT, /refusing to overwrite it/);
+    expectExit(['compress-report', asset, '--svg'], 2, /--svg/);
+  },
   output_safety() {
     // -o never destroys what is not a regular file, nor any input; the check runs before the
     // bake. Each refusal names the path.

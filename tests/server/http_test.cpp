@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "light_preview.h"
 #include "public_error.h"
 #include "serve_env.h"
 
@@ -544,6 +545,31 @@ TEST(Lights, PreviewImages) {
   EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
   EXPECT_TRUE(r.body.starts_with("\x89PNG\r\n\x1a\n"));
   EXPECT_EQ(fetch(s.port, "/api/lights/preview/0000000000000000.png").status, 404);
+}
+
+TEST(Lights, BackgroundTextures) {
+  // sky.hdr is 64 x 32, equirect: its background texture is the map at full size, RGB9E5.
+  SharedServer& s = sharedServer();
+  const Json doc = getJson(s.port, "/api/lights?order=2");
+  const Json* sky = findByFile(doc.at("lights"), "sky.hdr");
+  ASSERT_NE(sky, nullptr);
+  const Json& bg = sky->at("background");
+  EXPECT_EQ(bg.at("format").get<std::string>(), "rgb9e5");
+  EXPECT_EQ(bg.at("width").get<int>(), 64);
+  EXPECT_EQ(bg.at("height").get<int>(), 32);
+  const std::string url = bg.at("url").get<std::string>();
+  ASSERT_TRUE(url.starts_with("/api/lights/background/") && url.ends_with(".rgb9e5")) << url;
+  const HttpResponse r = fetch(s.port, url);
+  ASSERT_EQ(r.status, 200);
+  EXPECT_EQ(r.header("content-type"), "application/octet-stream");
+  EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+  ASSERT_EQ(r.body.size(), 64u * 32u * 4u);
+  // The map is a constant (0.5, 0.75, 1.0): every texel packs it exactly.
+  std::uint32_t first = 0;
+  for (int k = 0; k < 4; ++k) first |= static_cast<std::uint32_t>(static_cast<unsigned char>(r.body[k])) << (8 * k);
+  EXPECT_EQ(first, prt::serve::packRgb9e5({0.5f, 0.75f, 1.0f}));
+  for (std::size_t t = 4; t < r.body.size(); t += 4) ASSERT_EQ(r.body.compare(t, 4, r.body, 0, 4), 0) << "texel " << t / 4;
+  EXPECT_EQ(fetch(s.port, "/api/lights/background/0000000000000000.rgb9e5").status, 404);
 }
 
 TEST(Api, UnknownEndpointsAre404Json) {

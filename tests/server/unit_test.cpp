@@ -4,12 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "access_log.h"
 #include "content_hash.h"
+#include "light_preview.h"
 #include "mime_types.h"
 #include "negotiation.h"
 #include "options.h"
@@ -304,3 +308,73 @@ TEST(OsError, ReadAllAtReadsTheDescriptorAndNamesShortFiles) {
 
 }  // namespace
 }  // namespace prt::serve
+
+// GL's RGB9_E5 (EXT_texture_shared_exponent), decoded as the spec says.
+prt::Rgb unpackRgb9e5(std::uint32_t v) {
+  const double scale = std::ldexp(1.0, static_cast<int>(v >> 27) - 15 - 9);
+  return {static_cast<float>((v & 511u) * scale), static_cast<float>(((v >> 9) & 511u) * scale),
+          static_cast<float>(((v >> 18) & 511u) * scale)};
+}
+
+TEST(BackgroundTexture, Rgb9e5KnownValues) {
+  using prt::serve::packRgb9e5;
+  EXPECT_EQ(packRgb9e5({1.0f, 0.0f, 0.0f}), 256u | (16u << 27));  // 256 x 2^(16 - 15 - 9)
+  EXPECT_EQ(packRgb9e5({0.0f, 0.0f, 0.0f}), 0u);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(packRgb9e5({-1.0f, nan, 0.0f}), 0u);  // negatives and NaN are black
+  // Beyond the largest value (65408): every channel saturates.
+  EXPECT_EQ(packRgb9e5({1e9f, std::numeric_limits<float>::infinity(), 65408.0f}), 511u | (511u << 9) | (511u << 18) | (31u << 27));
+  // Rounding 511.9 / 256 up carries into a tenth bit: the next exponent, mantissa 256.
+  const prt::Rgb carried = unpackRgb9e5(packRgb9e5({511.9f / 256.0f, 0.0f, 0.0f}));
+  EXPECT_FLOAT_EQ(carried.r, 2.0f);
+}
+
+TEST(BackgroundTexture, Rgb9e5KeepsNineBitsOfTheLargestChannel) {
+  std::uint32_t seed = 12345;
+  const auto next = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24);
+  };
+  for (int i = 0; i < 10000; ++i) {
+    const float scale = std::ldexp(1.0f, static_cast<int>(next() * 30.0f) - 14);  // 2^-14 .. 2^15
+    const prt::Rgb in{next() * scale, next() * scale, next() * scale};
+    const prt::Rgb out = unpackRgb9e5(prt::serve::packRgb9e5(in));
+    const float largest = std::max({in.r, in.g, in.b});
+    // Half a step of the 9-bit mantissas at the shared exponent (2^-9 of the largest
+    // channel's power of two, at least 2^-24, the step at the smallest exponent), which
+    // rounding the largest channel up to 512 raises by one.
+    const float step = std::max(std::ldexp(1.0f, std::ilogb(largest) - 8), std::ldexp(1.0f, -24));
+    const bool carried = (prt::serve::packRgb9e5(in) >> 27) == static_cast<std::uint32_t>(std::ilogb(largest) + 17);
+    const float tolerance = (carried ? step : 0.5f * step) + 1e-12f;
+    EXPECT_NEAR(out.r, in.r, tolerance) << i;
+    EXPECT_NEAR(out.g, in.g, tolerance) << i;
+    EXPECT_NEAR(out.b, in.b, tolerance) << i;
+  }
+}
+
+TEST(BackgroundTexture, BoxFilteredAndPacked) {
+  prt::RgbImage image;
+  image.width = 8;
+  image.height = 4;
+  image.rgb.resize(8 * 4 * 3);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) image.rgb[(y * 8 + x) * 3 + c] = static_cast<float>(x + 8 * y) * (c + 1);
+  std::string bytes;
+  int w = 0, h = 0;
+  ASSERT_TRUE(prt::serve::makeBackgroundRgb9e5(image, 4, &bytes, &w, &h).isOk());
+  ASSERT_EQ(w, 4);
+  ASSERT_EQ(h, 2);
+  ASSERT_EQ(bytes.size(), 4u * 2u * 4u);
+  for (int t = 0; t < 8; ++t) {
+    std::uint32_t v = 0;
+    for (int k = 0; k < 4; ++k) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[t * 4 + k])) << (8 * k);  // little-endian
+    const int x = t % 4, y = t / 4;
+    // The mean of the 2 x 2 source block: (2x + 0.5) + 8 (2y + 0.5).
+    const double mean = 2 * x + 0.5 + 8 * (2 * y + 0.5);
+    const prt::Rgb p = unpackRgb9e5(v);
+    EXPECT_NEAR(p.r, mean, mean / 256) << t;
+    EXPECT_NEAR(p.b, 3 * mean, 3 * mean / 256) << t;
+  }
+  EXPECT_FALSE(prt::serve::makeBackgroundRgb9e5(prt::RgbImage{}, 4, &bytes, &w, &h).isOk());
+}

@@ -1,7 +1,8 @@
 // What the browser tests share: Debian's headless Chromium (SwiftShader WebGL2) driven by
 // playwright-core, a real prt-serve on a free loopback port, pixel read-back and the
 // check/report bookkeeping. Used by browser_test.mjs and browser_lights_test.mjs.
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
+import fs from 'node:fs';
 import net from 'node:net';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -70,17 +71,21 @@ export async function openPage(browser, url, { waitReady = true, viewport = { wi
   await page.goto(url);
   if (waitReady) {
     // A scene streamed in parts is ready at its first band: wait for every part too.
+    // And for the background image, which is fetched after the scene (docs/web-client.md, "Background").
     await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2 &&
-      !(window.prtApp.bytesReceived < window.prtApp.bytesTotal))),
+      !(window.prtApp.bytesReceived < window.prtApp.bytesTotal) && !window.prtApp.backgroundLoading)),
       null, { timeout: 90000 });
   }
   return { page, consoleErrors };
 }
 
-// Waits for a few frames after the last change, then returns the canvas as RGBA bytes.
+// Waits for a few frames after the last change, and for a background image being fetched:
+// once the scene has streamed (before that the page does not fetch it, and the stream may
+// be held back on purpose).
 export async function settle(page) {
   const before = await page.evaluate(() => window.prtApp.frames);
-  await page.waitForFunction((n) => window.prtApp.frames > n + 2, before, { timeout: 30000 });
+  await page.waitForFunction((n) => window.prtApp.frames > n + 2 &&
+    !(window.prtApp.backgroundLoading && !(window.prtApp.bytesReceived < window.prtApp.bytesTotal)), before, { timeout: 30000 });
 }
 
 // Applies `settings` with prtApp.set, renders a few frames, returns the canvas pixels.
@@ -120,10 +125,39 @@ export function windowLuminance(img, p, radius = 4) {
   return sum / n;
 }
 
+// The largest difference of one RGB channel value between two captures (alpha ignored).
+export function maxChannelDifference(a, b) {
+  let m = 0;
+  for (let i = 0; i < a.data.length; i += 4)
+    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
+  return m;
+}
+
 export function meanAbsDifference(a, b) {
   let d = 0;
   for (let i = 0; i < a.data.length; i += 4) d += Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2]);
   return d / (a.data.length / 4) / 3;
+}
+
+// Exits with status 1 naming the first of `inputs` ([what, path] pairs) that is missing.
+export function requireInputs(inputs) {
+  for (const [what, p] of inputs) {
+    if (!p || !fs.existsSync(p)) {
+      console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
+      process.exit(1);
+    }
+  }
+}
+
+// A fresh WORK_DIR/root holding the default room baked at 256 samples, order 5 (room.prt)
+// and the environment map `envExr` as forest.exr; returns the root.
+export function bakeDefaultRoom(prtBake, workDir, envExr) {
+  const root = path.join(workDir, 'root');
+  fs.rmSync(workDir, { recursive: true, force: true });
+  fs.mkdirSync(root, { recursive: true });
+  execFileSync(prtBake, ['--default', '-o', path.join(root, 'room.prt'), '--samples', '256', '--order', '5', '--quiet']);
+  fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
+  return root;
 }
 
 // Runs cases[caseName](browser) with a fresh browser, prints the verdict and exits 1 on failure.

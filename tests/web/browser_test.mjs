@@ -2,27 +2,17 @@
 // prt-serve on loopback serving a freshly baked default scene and a blender-data
 // environment. One ctest test per case (shared harness: browser_harness.mjs).
 // Usage: node browser_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR ENV_EXR
-import { execFileSync } from 'node:child_process';
-import fs from 'node:fs';
 import path from 'node:path';
-import { makeChecks, startServer as startServerAt, openPage, settle, capture, windowLuminance, meanAbsDifference, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer as startServerAt, openPage, settle, capture, windowLuminance, meanAbsDifference, runCase, requireInputs,
+  bakeDefaultRoom } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
 const checks = makeChecks();
 const { check } = checks;
-for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]) {
-  if (!fs.existsSync(p)) {
-    console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
-    process.exit(1);
-  }
-}
+requireInputs([['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]);
 
 // ---- fixtures: a root with a baked default scene and one environment map
-const root = path.join(workDir, 'root');
-fs.rmSync(workDir, { recursive: true, force: true });
-fs.mkdirSync(root, { recursive: true });
-execFileSync(prtBake, ['--default', '-o', path.join(root, 'room.prt'), '--samples', '256', '--order', '5', '--quiet']);
-fs.copyFileSync(envExr, path.join(root, 'forest.exr'));
+const root = bakeDefaultRoom(prtBake, workDir, envExr);
 
 const startServer = () => startServerAt(prtServe, root, webDist);
 

@@ -13,7 +13,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
-import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer, openPage, capture, luminance, windowLuminance, runCase, maxChannelDifference } from './browser_harness.mjs';
 import { stripeQuadGltf } from './floor_scene_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, coreJs, envExr] = process.argv.slice(2);
@@ -71,13 +71,6 @@ function litStats(img) {
   return { litFraction: lit / (img.width * img.height), mean: sum / (img.width * img.height) };
 }
 
-function maxChannelDifference(a, b) {
-  let m = 0;
-  for (let i = 0; i < a.data.length; i += 4)
-    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
-  return m;
-}
-
 // prt-bake shade's TPFL glossy term alone at every sampled texel of `assetPath` under the forest
 // map from `eye` (it reflects about the asset's texel normals when it has them).
 function glossyReference(assetPath, eye) {
@@ -130,7 +123,6 @@ async function compareGlossy(page, reference, { slopeFrom = reference, against =
   }
   return { compared, glossy, sloped, worstDp, worstRelative, worstAbsolute, bad, firstBad, peak };
 }
-
 const cases = {
   // (a) The GPU's per-fragment radiance at texel centres against the CPU reference, for the
   // interreflected (RGB) and the shadowed (scalar x albedo) pass under constant radiance 1.

@@ -14,6 +14,7 @@ const { normaliseLight, normaliseLights, packLights, boundingRadius, FLOATS_PER_
 const { randomLights, seededRandom } = await load('random_lights.js');
 const { raySphere, pickLight, rayHorizontalPlane, worldPerPixel, along } = await load('light_picking.js');
 const { streamAsset, checkParts } = await load('stream_loader.js');
+const { encodePermalink, decodePermalink, float32Text } = await load('permalink.js');
 
 const failures = [];
 let checks = 0;
@@ -321,6 +322,48 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
     message = e.message;
   }
   check(/Scene 'mixed' could not be loaded: .*index 5/.test(message), `geometry error: '${message}'`);
+}
+
+// ---- permalinks: a view round-trips exactly; each bad field is named and left out
+{
+  const known = { scenes: ['room', 'a&b #1'], environments: ['white furnace', 'forest'], modes: ['unshadowed', 'shadowed', 'interreflected', 'lambert'],
+    maxOrder: 8, projections: ['analytic', 'gpu', 'cpu'] };
+  const camera = [0.1, -2.5, 3.25, 7.123456, 0.35, 4.2].map(Math.fround);
+  const view = {
+    scene: 'a&b #1', camera, environment: 'forest', environmentOn: false, envYaw: -1.2345678901234, envPitch: 0.3, intensity: 2.5,
+    color: '#ffa07a', exposure: -1.7, background: 'colour', backgroundColor: '#102030', mode: 'shadowed', order: 4, source: 'texel',
+    glossyMix: { unshadowed: 'both', shadowed: 'glossy', interreflected: 'diffuse' }, projection: 'cpu', cubeSize: 128,
+    lights: [{ shape: 'sphere', position: [0.1, 1 / 3, -2], radius: 0.07, color: [1, 0.92, 0.8], intensity: 40 },
+      { shape: 'mesh', mesh: 'torus', position: [0, 1, 0], scale: 0.5, color: [1, 1, 1], intensity: 3 }],
+  };
+  const fragment = encodePermalink(view);
+  const back = decodePermalink(`#${fragment}`, known);
+  check(back.problems.length === 0, `round trip problems: ${back.problems.join('; ')}`);
+  const canonical = (v) => JSON.stringify(v, (k, x) => (x && typeof x === 'object' && !Array.isArray(x)
+    ? Object.fromEntries(Object.keys(x).sort().map((key) => [key, x[key]])) : x));
+  check(canonical(back.view) === canonical(view), `round trip: ${canonical(back.view)} vs ${canonical(view)}`);
+  // float32 values take their shortest text, and read back as the same float32.
+  check(float32Text(Math.fround(0.35)) === '0.35' && float32Text(Math.fround(7.123456)) === '7.123456', `float32Text: ${float32Text(Math.fround(0.35))}`);
+  for (const x of [Math.fround(Math.PI), Math.fround(1e-7), Math.fround(-123456.78), 0]) {
+    check(Math.fround(Number(float32Text(x))) === x, `float32Text(${x}) = ${float32Text(x)} does not read back`);
+  }
+  check(JSON.stringify(decodePermalink('', known)) === JSON.stringify({ view: {}, problems: [] }), 'an empty fragment');
+  // Junk: every bad field named, none of them in the view; the good one kept.
+  const junk = decodePermalink('#scene=nowhere&camera=1,2,x&env=mars&yaw=99&pitch=abc&color=red&mode=glow&order=0&source=pixel' +
+    '&glossy=both&projection=magic&cube=7&lights=%5B%7B&intensity=3&bogus=1&bg=sky&bgColor=12345', known);
+  for (const [key, pattern] of [['scene', /scene="nowhere" is not one of/], ['camera', /camera=.*six numbers/], ['env', /env="mars"/],
+    ['yaw', /yaw=99 is outside/], ['pitch', /pitch="abc" is not a number/], ['color', /color="red" must be six hex/],
+    ['mode', /mode="glow"/], ['order', /order="0" must be an integer 1\.\.8/], ['source', /source="pixel"/], ['glossy', /glossy="both" must be three/],
+    ['projection', /projection="magic"/], ['bg', /bg="sky" is not one of image/], ['bgColor', /bgColor="12345" must be six hex/], ['cube', /cube="7"/], ['lights', /lights is not JSON/], ['bogus', /'bogus' is not a view setting/]]) {
+    check(junk.problems.some((p) => pattern.test(p)), `junk ${key}: no problem matching ${pattern} in ${junk.problems.join('; ')}`);
+  }
+  check(JSON.stringify(junk.view) === JSON.stringify({ intensity: 3 }), `junk view keeps only the good field: ${JSON.stringify(junk.view)}`);
+  const future = decodePermalink('#v=2&scene=room', known);
+  check(Object.keys(future.view).length === 0 && /version 1/.test(future.problems[0]), `a version-2 link: ${JSON.stringify(future)}`);
+  const lightsObject = decodePermalink('#lights=%7B%7D', known);
+  check(!('lights' in lightsObject.view) && /JSON array/.test(lightsObject.problems[0]), `lights {}: ${JSON.stringify(lightsObject)}`);
+  const zeroDistance = decodePermalink('#camera=0,0,0,0,0,0', known);
+  check(!('camera' in zeroDistance.view) && /distance 0 must be > 0/.test(zeroDistance.problems[0]), `distance 0: ${JSON.stringify(zeroDistance)}`);
 }
 
 if (failures.length) {

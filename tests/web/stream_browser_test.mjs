@@ -6,7 +6,7 @@
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
-import { makeChecks, startServer as startServerAt, capture, luminance, meanAbsDifference, runCase } from './browser_harness.mjs';
+import { makeChecks, startServer as startServerAt, capture, luminance, meanAbsDifference, runCase, maxChannelDifference } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
 const checks = makeChecks();
@@ -56,13 +56,6 @@ function litStats(img) {
       if (l > 40) lit++;
     }
   return { litFraction: lit / n, mean: sum / n };
-}
-
-function maxChannelDifference(a, b) {
-  let m = 0;
-  for (let i = 0; i < a.data.length; i += 4)
-    for (let c = 0; c < 3; c++) m = Math.max(m, Math.abs(a.data[i + c] - b.data[i + c]));
-  return m;
 }
 
 const waitReady = (page) => page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && window.prtApp.frames > 2)),

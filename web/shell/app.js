@@ -10,6 +10,7 @@ import { LightsPanel } from './lights_panel.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
 import { streamAsset, PASS_NAMES } from './stream_loader.js';
 import { installTestHook } from './test_hook.js';
+import { encodePermalink, decodePermalink } from './permalink.js';
 
 const LIGHTING_MODELS = ['distant', 'local-sphere', 'local-sphere-paper'];  // prt::LightingModel
 const PROJECTIONS = { analytic: 2, gpu: 0, cpu: 1 };
@@ -31,7 +32,10 @@ const state = {
   envPitch: 0,
   intensity: 1,
   color: '#ffffff',
-  background: true,
+  // Behind the scene: 'image' (the map itself), 'blurred' (its SH, the light the scene gets),
+  // 'colour' (backgroundColor) or 'none' (docs/web-client.md, "Background").
+  background: 'image',
+  backgroundColor: '#1a1a1a',
   // CPCA-compressed passes: rendered straight from the clusters, or expanded on load.
   cpca: ['expand', 'expanded'].includes(params.get('cpca')) ? 'expanded' : 'direct',
   // Per pass, which terms are drawn: 'diffuse' (vector pass), 'glossy' (matrix pass) or 'both'.
@@ -41,6 +45,7 @@ const state = {
   source: params.get('source') === 'texel' ? 'texel' : 'vertex',
 };
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
+const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];  // BackgroundMode's names
 // The dynamic-light settings the Lights panel edits (docs/web-client.md).
 const lightSettings = { projection: 'analytic', cubeSize: 64, environmentOn: true };
 const stats = { frameMs: 0, bytesLoaded: 0, vertices: 0, order: 0 };
@@ -50,7 +55,8 @@ let app = null;
 // enums (client_bindings.cpp) ShadingMode (unshadowed, shadowed, interreflected: also the
 // pass kinds; lambert) and PassForm (absent, expanded, cpca); modeNames, ShadingMode's
 // value names (the transfer choices); formName(form): 'expanded', 'cpca' or null (absent).
-const client = { maxOrder: 1, ShadingMode: null, PassForm: null, GlossyMix: null, TransferDomain: null, modeNames: [], formName: () => null };
+const client = { maxOrder: 1, ShadingMode: null, PassForm: null, GlossyMix: null, TransferDomain: null, BackgroundMode: null, modeNames: [],
+  formName: () => null };
 // The names of an embind enum's values, in value order (the enum object also holds `values`).
 const enumNames = (e) => Object.keys(e).filter((k) => k !== 'values').sort((a, b) => e[a].value - e[b].value);
 let scenes = [];
@@ -76,6 +82,8 @@ const hook = installTestHook({
   selectEnvironment,
   applyState,
   applyLightSettings,
+  currentView,
+  permalink,
   scale: () => sceneRadius,
   refreshGui: () => { if (gui) gui.controllersRecursive().forEach((c) => c.updateDisplay()); },
 });
@@ -109,6 +117,7 @@ function environmentNames() {
 
 function selectEnvironment(name) {
   state.environment = name;
+  hook.backgroundImage = null;  // the client drops the previous map's image; applyState asks for this one's
   const light = environments.find((l) => l.name === name && l.usable);
   if (!light) {
     state.environment = 'white furnace';
@@ -118,6 +127,65 @@ function selectEnvironment(name) {
   const order = Math.round(Math.sqrt(light.coefficients.length));
   const error = app.setEnvironment(light.coefficients.flat(), order);
   if (error) fail(`Environment '${name}' is unusable: ${error}`);
+}
+
+// ---- the image background (docs/web-client.md, "Background") ---------------------------
+// Each map's RGB9E5 texture (/api/lights: background {url, width, height}), fetched once,
+// only after the scene has streamed completely: the first lit frame and the sharpening
+// bands never wait for the sky.
+const backgroundImages = new Map();  // environment name -> {width, height, texels: Uint32Array}
+let sceneStreamed = Promise.resolve();
+let sceneStreamedResolve = null;
+let backgroundFetches = 0;
+
+// A new promise for the scene now loading; the previous one resolves, so nothing waits on
+// a stream that a newer one replaced.
+function startSceneStream() {
+  const previous = sceneStreamedResolve;
+  sceneStreamed = new Promise((resolve) => { sceneStreamedResolve = resolve; });
+  if (previous) previous();
+}
+
+async function fetchBackground({ url, width, height }) {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`HTTP ${r.status} for ${url}`);
+  const bytes = await r.arrayBuffer();
+  if (bytes.byteLength !== width * height * 4) throw new Error(`${bytes.byteLength} bytes for ${width}x${height} RGB9E5 texels`);
+  return { width, height, texels: new Uint32Array(bytes) };  // little-endian, as every WebGL platform
+}
+
+// Gives the client the current map's image when the image background is on: at once from
+// the cache, else after the scene has streamed and the fetch is done (prtApp.backgroundLoading
+// meanwhile, with the blurred background standing in). Maps without an image (the white
+// furnace, angular and cross layouts) keep the blurred one.
+async function ensureBackground() {
+  const name = state.environment;
+  const light = environments.find((l) => l.name === name && l.usable);
+  if (!app || !light || !light.background || (hook.backgroundImage && hook.backgroundImage.environment === name)) return;
+  let image = backgroundImages.get(name);
+  if (!image) {
+    if (ensureBackground.pending === name) return;  // already on its way
+    ensureBackground.pending = name;
+    hook.backgroundLoading = ++backgroundFetches > 0;
+    try {
+      await sceneStreamed;
+      image = await fetchBackground(light.background);
+      backgroundImages.set(name, image);
+    } catch (e) {
+      notify(`The background image of '${name}' could not be loaded (${e.message}); showing the blurred environment.`);
+      return;
+    } finally {
+      ensureBackground.pending = null;
+      hook.backgroundLoading = --backgroundFetches > 0;
+    }
+    if (state.environment !== name || state.background !== 'image') return;  // changed meanwhile
+  }
+  const error = app.setBackgroundImage(image.width, image.height, image.texels);
+  if (error) {
+    notify(`The background image of '${name}' was refused (${error}); showing the blurred environment.`);
+    return;
+  }
+  hook.backgroundImage = { environment: name, width: image.width, height: image.height };
 }
 
 function applyState() {
@@ -131,7 +199,10 @@ function applyState() {
   const c = parseInt(state.color.slice(1), 16);
   const k = state.intensity;
   app.setLightColor(k * ((c >> 16) & 255) / 255, k * ((c >> 8) & 255) / 255, k * (c & 255) / 255);
-  app.setBackground(state.background);
+  app.setBackgroundMode(client.BackgroundMode[state.background]);
+  const b = parseInt(state.backgroundColor.slice(1), 16);
+  app.setBackgroundColour(((b >> 16) & 255) / 255, ((b >> 8) & 255) / 255, (b & 255) / 255);
+  if (state.background === 'image') ensureBackground();
   for (const name of PASS_NAMES) app.setGlossyMix(ShadingMode[name], client.GlossyMix[state.glossyMix[name]]);
   updateGlossyControl();
   updateSourceControl();
@@ -203,13 +274,15 @@ function defaultLights() {
   return [{ shape: 'sphere', position: c.map((x, k) => x + offset[k]), radius: 0.07 * r, color: [1, 0.92, 0.8], intensity: 40 }];
 }
 
-function notify(message) {
+// Shows a non-fatal message for 8 s, or with `sticky` until it is clicked (a link's bad
+// values: the page may take longer than 8 s to show the scene they are about).
+function notify(message, { sticky = false } = {}) {
   hook.notice = message;
   noticeBox.textContent = message;
   noticeBox.hidden = false;
   console.warn(`prt: ${message}`);
   clearTimeout(notify.timer);
-  notify.timer = setTimeout(() => { noticeBox.hidden = true; }, 8000);
+  if (!sticky) notify.timer = setTimeout(() => { noticeBox.hidden = true; }, 8000);
 }
 
 function toggleHelp(show = helpBox.hidden) {
@@ -229,6 +302,8 @@ async function loadScene(name) {
   hook.ready = false;
   app.setCpcaDirect(state.cpca === 'direct');
   app.setSource(client.TransferDomain[state.source]);  // so the displayed domain's pass streams first
+  startSceneStream();
+  const streamed = sceneStreamedResolve;
   if (entry.parts) {
     // Progressive: resolves at the first picture (band 0 of the displayed pass); the other
     // bands and passes keep arriving (stream_loader.js). prtApp gets the byte counters.
@@ -240,10 +315,15 @@ async function loadScene(name) {
         stats.bytesLoaded = hook.bytesReceived;
         progress(`Loading ${entry.name}: ${(hook.bytesReceived / 1e6).toFixed(1)} of ${(hook.bytesTotal / 1e6).toFixed(1)} MB`, hook.bytesReceived / hook.bytesTotal);
       },
-      onError: (e) => fail(e.message),
+      onError: (e) => {
+        streamed();  // the background need not wait for parts that will not come
+        fail(e.message);
+      },
+      onComplete: streamed,
     });
   } else {
     await downloadScene(entry);
+    streamed();
   }
   document.getElementById('loading').hidden = true;
   state.scene = name;
@@ -259,10 +339,112 @@ async function loadScene(name) {
   hook.ready = true;
 }
 
+// ---- permalinks (permalink.js; docs/web-client.md, "Permalinks") ------------------------
+// What a link holds: the page's view now (the camera from the client).
+function currentView() {
+  // Mesh lights from OBJ files name a mesh only this page has (its file is not on the
+  // server), so links leave them out; the torus is built in and stays.
+  const lights = lightSet.snapshot().filter((l) => l.shape !== 'mesh' || l.mesh === 'torus');
+  return {
+    scene: state.scene,
+    camera: Array.from(app.cameraPose()),
+    environment: state.environment,
+    environmentOn: lightSettings.environmentOn,
+    envYaw: state.envYaw,
+    envPitch: state.envPitch,
+    intensity: state.intensity,
+    color: state.color,
+    exposure: state.exposure,
+    background: state.background,
+    backgroundColor: state.backgroundColor,
+    mode: state.mode,
+    order: state.order,
+    source: state.source,
+    glossyMix: { ...state.glossyMix },
+    projection: lightSettings.projection,
+    cubeSize: lightSettings.cubeSize,
+    lights,
+  };
+}
+
+// The page's URL with the current view in its fragment (the query kept: ?cpca still applies).
+function permalink() {
+  const view = currentView();
+  const href = `${location.origin}${location.pathname}${location.search}#${encodePermalink(view)}`;
+  return { href, droppedLights: lightSet.lights.length - view.lights.length };
+}
+
+// The panel's "copy link": the link goes to the clipboard and the address bar. The clipboard
+// needs a secure context (HTTPS or localhost); elsewhere the address bar is the way.
+async function copyLink() {
+  const { href, droppedLights } = permalink();
+  history.replaceState(null, '', href);
+  hook.link = href;
+  const dropped = droppedLights ? ` (without ${droppedLights} OBJ mesh light${droppedLights === 1 ? '' : 's'}: their files are not on the server)` : '';
+  try {
+    await navigator.clipboard.writeText(href);
+    notify(`Link copied${dropped}.`);
+  } catch {
+    notify(`The browser refused the clipboard: copy the link from the address bar${dropped}.`);
+  }
+}
+
+// The fragment's view, read against what this server and module offer; fields needed before
+// the scene loads (scene, source, mode: the displayed pass streams first) go to state now,
+// `before` keeps the source they replaced in case the scene turns out to lack it.
+function readLinkView() {
+  const { view, problems } = decodePermalink(location.hash, {
+    scenes: scenes.filter((s) => s.usable).map((s) => s.name),
+    environments: environmentNames(),
+    modes: client.modeNames,
+    maxOrder: client.maxOrder,
+    projections: Object.keys(PROJECTIONS),
+  });
+  const before = { source: state.source };
+  for (const key of ['scene', 'source', 'mode']) if (key in view) state[key] = view[key];
+  return { view, problems, before };
+}
+
+// Applies the rest of a link's view once its scene is loaded; a value the scene cannot
+// take joins `problems`, keeps the default, and the notice lists them all.
+function applyLinkView({ view, problems, before }) {
+  const { TransferDomain } = client;
+  for (const key of ['envYaw', 'envPitch', 'intensity', 'color', 'exposure', 'background', 'backgroundColor']) if (key in view) state[key] = view[key];
+  if ('glossyMix' in view) Object.assign(state.glossyMix, view.glossyMix);
+  if ('environment' in view) selectEnvironment(view.environment);
+  if ('environmentOn' in view) lightSettings.environmentOn = view.environmentOn;
+  if ('projection' in view) lightSettings.projection = view.projection;
+  if ('cubeSize' in view) lightSettings.cubeSize = view.cubeSize;
+  if ('source' in view && !app.hasSource(TransferDomain[view.source])) {
+    problems.push(`source=${view.source}: scene '${state.scene}' has no ${view.source} passes`);
+    state.source = before.source;
+  }
+  if ('order' in view) {
+    if (view.order <= app.bakedOrder()) state.order = view.order;
+    else problems.push(`order=${view.order} is above scene '${state.scene}''s baked order ${app.bakedOrder()}`);
+  }
+  if ('camera' in view && !app.setCameraPose(view.camera)) problems.push(`camera=${view.camera.join(',')} was refused`);
+  if ('lights' in view) {
+    try {
+      lightSet.set(view.lights);
+    } catch (e) {
+      problems.push(`lights: ${e.message}`);
+    }
+  }
+  applyState();
+  const projectionError = applyLightSettings();
+  if (projectionError && 'projection' in view) problems.push(`projection=${view.projection}: ${projectionError}`);
+  if (problems.length) {
+    hook.linkProblems = problems.slice();
+    notify(`This link has values the page cannot use; defaults shown instead: ${problems.join('; ')}. (Click to close.)`, { sticky: true });
+  }
+}
+
 function buildGui() {
   gui = new GUI({ title: 'PRT' });
   if (window.innerWidth < 600) gui.close();
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
+  gui.add({ copyLink }, 'copyLink').name('copy link');  // first: what people look for when sharing
   gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
@@ -285,7 +467,8 @@ function buildGui() {
   gui.add(state, 'intensity', 0, 10, 0.01).name('env intensity').onChange(applyState);
   gui.addColor(state, 'color').name('env colour').onChange(applyState);
   gui.add(state, 'exposure', -8, 8, 0.1).name('exposure (EV)').onChange(applyState);
-  gui.add(state, 'background').name('background').onChange(applyState);
+  gui.add(state, 'background', BACKGROUNDS).name('background').onChange(applyState);
+  gui.addColor(state, 'backgroundColor').name('background colour').onChange(applyState);
   lightsPanel = new LightsPanel(gui, {
     lightSet,
     settings: lightSettings,
@@ -429,13 +612,14 @@ async function main() {
     fail(`The client's WebAssembly module could not be loaded: ${e.message || e}`);
     return;
   }
-  const { ShadingMode, PassForm, GlossyMix, TransferDomain } = Module;
+  const { ShadingMode, PassForm, GlossyMix, TransferDomain, BackgroundMode } = Module;
   Object.assign(client, {
     maxOrder: Module.kMaxClientOrder,
     ShadingMode,
     PassForm,
     GlossyMix,
     TransferDomain,
+    BackgroundMode,
     modeNames: enumNames(ShadingMode),
     formName: (form) => (form === PassForm.absent ? null : enumNames(PassForm).find((n) => PassForm[n] === form)),
   });
@@ -449,6 +633,7 @@ async function main() {
   lightDrag = new LightDrag(canvas, app, lightSet, () => 4 * sceneRadius);
   document.getElementById('help-button').addEventListener('click', () => toggleHelp());
   document.getElementById('help-close').addEventListener('click', () => toggleHelp(false));
+  noticeBox.addEventListener('click', () => { noticeBox.hidden = true; });
   setupInput();
   requestAnimationFrame(frame);
   try {
@@ -460,17 +645,19 @@ async function main() {
       const broken = scenes.filter((s) => !s.usable).map((s) => `${s.name}: ${s.error}`).join('\n');
       throw new Error(`The server has no usable scene.${broken ? `\n${broken}` : ''}`);
     }
-    if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     try {
       environments = (await fetchJson(`/api/lights?order=${client.maxOrder}`, 'environment list')).lights || [];
     } catch (e) {
       console.warn(`prt: ${e.message}; using the white furnace`);
       environments = [];
     }
+    const link = readLinkView();
+    if (!state.scene || !scenes.some((s) => s.name === state.scene)) state.scene = usable[0].name;
     await loadScene(state.scene);
     selectEnvironment(state.environment || (environments.find((l) => l.usable) || { name: 'white furnace' }).name);
     applyState();
     applyLightSettings();
+    applyLinkView(link);
     buildGui();
   } catch (e) {
     fail(e.message);

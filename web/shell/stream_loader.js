@@ -45,7 +45,8 @@ export function checkParts(parts, bytes) {
 // transferBytesTotal, updated per part; onProgress() is called after each. A failure before
 // the first picture rejects; one after it goes to onError(Error). Either way the message
 // names the scene and the problem (network, HTTP status, size, the decoder's own words).
-export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgress = () => {}, onError = () => {} } = {}) {
+// onComplete() runs once every part has been applied (not after a failure or a newer stream).
+export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgress = () => {}, onError = () => {}, onComplete = () => {} } = {}) {
   if (!kinds || PASS_NAMES.some((n) => !kinds[n])) throw new Error('streamAsset: kinds must give the client\'s pass kind for every pass name');
   if (!domains || !domains.vertex || !domains.texel) throw new Error('streamAsset: domains must give the client\'s vertex and texel domains');
   const fail = (message) => new Error(`Scene '${entry.name}' could not be loaded: ${message}`);
@@ -198,7 +199,10 @@ export function streamAsset(app, entry, { kinds, domains, progress = {}, onProgr
 
   return new Promise((resolve, reject) => {
     let first = false;
-    run(() => { first = true; resolve(); }).then(() => app.endStream(), (e) => {
+    run(() => { first = true; resolve(); }).then(() => {
+      app.endStream();
+      onComplete();
+    }, (e) => {
       failed = true;
       if (e instanceof Superseded) return;  // quietly: the newer stream owns the buffer and the page
       app.endStream();

@@ -7,8 +7,9 @@ import { normaliseLights } from './lights.js';
 import { randomLights } from './random_lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
-export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'background', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'color', 'background', 'backgroundColor', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
 const SOURCES = ['vertex', 'texel'];
+const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // GlRenderer's GlossyWork (web/src/gl_renderer.h) by name, for timeGlossy.
 const GLOSSY_WORK = { table: 1, relight: 2, view: 3 };
@@ -34,6 +35,12 @@ export function installTestHook(page) {
     frames: 0,
     error: null,
     notice: null,  // the last non-fatal message shown (bad OBJ file, refused value)
+    link: null,  // the last link "copy link" made
+    // The image background: {environment, width, height} of the map image the client draws
+    // (null: none, e.g. still loading, or a map without one), and whether a fetch is under way.
+    backgroundImage: null,
+    backgroundLoading: false,
+    linkProblems: [],  // why values of the opening link were not used (permalink.js)
     paused: false,  // true stops the page's own frame loop (benchmarks with several pages open)
     stats: page.stats,
     // Radiance SH the last frame used: the light cube's projection plus the environment when on.
@@ -142,6 +149,9 @@ export function installTestHook(page) {
       if (!page.lightSet) throw new Error('addMesh: no scene is loaded yet');
       return page.lightSet.addMesh(positions, indices);
     },
+    // The view a permalink holds now (app.js currentView: permalink.js's fields), and the link.
+    get view() { return ready() ? page.currentView() : null; },
+    permalink() { return ready() ? page.permalink().href : null; },
     // The last frame's eye position, world units ([x, y, z]; null before a scene is ready).
     get eye() { return ready() ? Array.from(page.app.rayFromScreen(0, 0)).slice(0, 3) : null; },
     // Orbits the camera about its target by (dx, dy) radians, as a drag does.
@@ -261,6 +271,15 @@ export function installTestHook(page) {
           throw new Error(`set: source '${options.source}': this scene has no ${options.source} passes`);
         }
       }
+      if ('background' in options && !(typeof options.background === 'boolean' || BACKGROUNDS.includes(options.background))) {
+        throw new Error(`set: background must be one of ${BACKGROUNDS.join(', ')} (or true: blurred, false: none), got ${JSON.stringify(options.background)}`);
+      }
+      if ('backgroundColor' in options && !(typeof options.backgroundColor === 'string' && /^#[0-9a-f]{6}$/i.test(options.backgroundColor))) {
+        throw new Error(`set: backgroundColor must be '#rrggbb', got ${JSON.stringify(options.backgroundColor)}`);
+      }
+      if ('color' in options && !(typeof options.color === 'string' && /^#[0-9a-f]{6}$/i.test(options.color))) {
+        throw new Error(`set: color must be '#rrggbb', got ${JSON.stringify(options.color)}`);
+      }
       const environments = page.environmentNames();
       if ('environment' in options && options.environment !== null && !environments.includes(options.environment)) {
         throw new Error(`set: environment must be null (off) or one of ${environments.map((n) => `'${n}'`).join(', ')}; got ${JSON.stringify(options.environment)}`);
@@ -271,7 +290,9 @@ export function installTestHook(page) {
         if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
         normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
       }
-      for (const key of ['mode', 'order', 'exposure', 'intensity', 'background', 'source']) if (key in options) state[key] = options[key];
+      for (const key of ['mode', 'order', 'exposure', 'intensity', 'color', 'backgroundColor', 'source']) if (key in options) state[key] = options[key];
+      // true and false are what background took before it had four choices: the SH view, or nothing.
+      if ('background' in options) state.background = options.background === true ? 'blurred' : options.background === false ? 'none' : options.background;
       if ('glossy' in options) Object.assign(state.glossyMix, options.glossy);
       if ('envRotation' in options) {
         const r = options.envRotation;

@@ -418,11 +418,13 @@ std::string ClientApp::setEnvironment(const std::vector<float>& flatRgb, int ord
   environmentOrder_ = std::min(order, kMaxClientOrder);
   environment_.assign(static_cast<std::size_t>(shCoeffCount(environmentOrder_)), Rgb{});
   for (std::size_t i = 0; i < environment_.size(); ++i) environment_[i] = {flatRgb[3 * i], flatRgb[3 * i + 1], flatRgb[3 * i + 2]};
+  (void)setBackgroundImage(0, 0, {});  // the previous map's image; the page uploads this one's
   updateLighting();
   return "";
 }
 
 void ClientApp::setWhiteFurnace(float intensity) {
+  (void)setBackgroundImage(0, 0, {});
   environmentOrder_ = 1;
   environment_.assign(1, Rgb{1, 1, 1} * (intensity * static_cast<float>(2.0 * std::sqrt(kPi))));
   updateLighting();
@@ -445,6 +447,23 @@ void ClientApp::setMode(ShadingMode m) {
 void ClientApp::setDisplayOrder(int order) { displayOrder_ = std::clamp(order, 1, std::max(1, std::min(asset_.shOrder, kMaxClientOrder))); }
 void ClientApp::setExposure(float ev) { exposure_ = std::exp2(std::clamp(ev, -20.0f, 20.0f)); }
 
+std::string ClientApp::setBackgroundImage(int width, int height, std::span<const std::uint32_t> texels) {
+  if (!ok()) return error_;
+  makeCurrent();
+  const Status s = renderer_.setBackgroundImage(width, height, texels);
+  return s.isOk() ? "" : s.message();
+}
+
+std::vector<float> ClientApp::cameraPose() const {
+  const OrbitCamera::Pose p = camera_.pose();
+  return {p.target.x, p.target.y, p.target.z, p.yaw, p.pitch, p.distance};
+}
+
+bool ClientApp::setCameraPose(const std::vector<float>& pose) {
+  if (pose.size() != 6) return false;
+  return camera_.setPose({glm::vec3(pose[0], pose[1], pose[2]), pose[3], pose[4], pose[5]});
+}
+
 void ClientApp::frameScene() {
   camera_.frame(toGlm((boundsMin_ + boundsMax_) * 0.5f), 0.5f * length(boundsMax_ - boundsMin_), camera_.aspect());
 }
@@ -457,6 +476,9 @@ void ClientApp::updateLighting() {
     if (ShRotation::make(environmentOrder_, r, &rot).isOk()) (void)rot.apply(environment_, lighting_);
   }
   for (Rgb& c : lighting_) c = {c.r * color_.r, c.g * color_.g, c.b * color_.b};
+  // glm is column-major: column j of environmentRotation_ is column j of r.
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) environmentRotation_[j][i] = r.m[i][j];
   packLighting(lighting_, displayOrder_, packed_);
 }
 
@@ -496,7 +518,10 @@ void ClientApp::render(int width, int height) {
   p.mode = mode_;
   p.displayOrder = displayOrder_;
   p.exposure = exposure_;
-  p.background = background_ && environmentEnabled_;
+  p.background = backgroundMode_ == BackgroundMode::kColour || environmentEnabled_ ? backgroundMode_ : BackgroundMode::kNone;
+  p.backgroundColour = backgroundColour_;
+  p.environmentRotation = environmentRotation_;
+  p.environmentTint = {color_.r, color_.g, color_.b};
   p.environment = packed_;
   p.mix = glossyMix(mode_);
   p.eye = camera_.eye();

@@ -146,7 +146,16 @@ class ClientApp {
   void setMode(ShadingMode mode);  // one whose pass is still streaming takes effect when it arrives
   void setDisplayOrder(int order);                 // clamped to [1, baked order]
   void setExposure(float ev);                      // exposure value, 2^ev
-  void setBackground(bool on) { background_ = on; }
+  // What is drawn behind the scene (gl_renderer.h BackgroundMode; docs/web-client.md,
+  // "Background"). Blurred and image need the environment on; colour is drawn either way.
+  void setBackgroundMode(BackgroundMode mode) { backgroundMode_ = mode; }
+  void setBackgroundColour(float r, float g, float b) { backgroundColour_ = {r, g, b}; }  // sRGB, 0..1
+  // The current environment's equirect map for the image background (GlRenderer::
+  // setBackgroundImage): "" or why it was refused. Empty `texels` removes it; choosing
+  // another environment (setEnvironment, setWhiteFurnace) removes it too, so a stale map
+  // never shows behind new lighting.
+  std::string setBackgroundImage(int width, int height, std::span<const std::uint32_t> texels);
+  bool hasBackgroundImage() const { return renderer_.hasBackgroundImage(); }
 
   // ---- the camera (orbit_camera.h) ----
   void orbit(float dxRadians, float dyRadians) { camera_.orbit(dxRadians, dyRadians); }
@@ -154,6 +163,11 @@ class ClientApp {
   void zoom(float factor) { camera_.zoom(factor); }      // > 1 moves away
   // Frames the scene's bounding sphere (the centre and half diagonal of its bounds).
   void frameScene();
+  // [targetX, targetY, targetZ, yaw, pitch, distance] (OrbitCamera::Pose), for permalinks.
+  std::vector<float> cameraPose() const;
+  // Sets what cameraPose() gives (pitch and distance clamped); false, nothing changed, when
+  // `pose` is not six finite numbers.
+  bool setCameraPose(const std::vector<float>& pose);
   // That sphere, in world units (radius 1 about the origin before a scene is loaded).
   float sceneRadius() const { return camera_.sceneRadius(); }
   Vec3 sceneCenter() const { return toVec3(camera_.sceneCenter()); }
@@ -279,7 +293,9 @@ class ClientApp {
   std::optional<ShadingMode> pendingMode_;  // a mode asked for whose pass is still streaming
   int displayOrder_ = kMaxClientOrder;
   float exposure_ = 1.0f;
-  bool background_ = true;
+  BackgroundMode backgroundMode_ = BackgroundMode::kImage;
+  glm::vec3 backgroundColour_{0.1f};
+  glm::mat3 environmentRotation_{1.0f};  // R of the last updateLighting, for the image background
 
   OrbitCamera camera_;
 };

@@ -92,6 +92,19 @@ val sceneCenter(const ClientApp& app) {
   return val::array(std::vector<float>{c.x, c.y, c.z});
 }
 
+// The image background's texels: a Uint32Array (or array) of width x height RGB9E5 values.
+std::string setBackgroundImage(ClientApp& app, int width, int height, const val& texels) {
+  if (texels.isNull() || texels.isUndefined()) return app.setBackgroundImage(0, 0, {});
+  const std::vector<std::uint32_t> data = emscripten::convertJSArrayToNumberVector<std::uint32_t>(texels);
+  return app.setBackgroundImage(width, height, data);
+}
+
+val cameraPose(const ClientApp& app) { return val::array(app.cameraPose()); }
+bool setCameraPose(ClientApp& app, const val& pose) {
+  if (!pose.isArray()) return false;
+  return app.setCameraPose(emscripten::convertJSArrayToNumberVector<float>(pose));
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(prt_client) {
@@ -113,6 +126,12 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .value("glossy", prt::web::GlossyMix::kGlossy)
       .value("both", prt::web::GlossyMix::kBoth);
   // Module.TransferDomain.vertex / texel: which passes are drawn (setSource, source, hasSource).
+  emscripten::enum_<prt::web::BackgroundMode>("BackgroundMode")
+      .value("none", prt::web::BackgroundMode::kNone)
+      .value("colour", prt::web::BackgroundMode::kColour)
+      .value("blurred", prt::web::BackgroundMode::kBlurred)
+      .value("image", prt::web::BackgroundMode::kImage);
+
   emscripten::enum_<prt::TransferDomain>("TransferDomain")
       .value("vertex", prt::TransferDomain::kVertex)
       .value("texel", prt::TransferDomain::kTexel);
@@ -164,11 +183,16 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("setMode", &ClientApp::setMode)
       .function("setDisplayOrder", &ClientApp::setDisplayOrder)
       .function("setExposure", &ClientApp::setExposure)
-      .function("setBackground", &ClientApp::setBackground)
+      .function("setBackgroundMode", &ClientApp::setBackgroundMode)
+      .function("setBackgroundColour", &ClientApp::setBackgroundColour)
+      .function("setBackgroundImage", &setBackgroundImage)
+      .function("hasBackgroundImage", &ClientApp::hasBackgroundImage)
       .function("orbit", &ClientApp::orbit)
       .function("pan", &ClientApp::pan)
       .function("zoom", &ClientApp::zoom)
       .function("frameScene", &ClientApp::frameScene)
+      .function("cameraPose", &cameraPose)
+      .function("setCameraPose", &setCameraPose)
       .function("sceneRadius", &ClientApp::sceneRadius)
       .function("sceneCenter", &sceneCenter)
       .function("viewProjection", &viewProjection)

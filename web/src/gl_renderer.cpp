@@ -59,6 +59,10 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->id = p;
   out->viewProjection = glGetUniformLocation(p, "uViewProjection");
   out->inverseViewProjection = glGetUniformLocation(p, "uInverseViewProjection");
+  out->backgroundMode = glGetUniformLocation(p, "uImage");
+  out->environmentImage = glGetUniformLocation(p, "uEnvironmentImage");
+  out->environmentRotation = glGetUniformLocation(p, "uEnvironmentRotation");
+  out->environmentTint = glGetUniformLocation(p, "uEnvironmentTint");
   out->lightR = glGetUniformLocation(p, "uLightR");
   out->lightG = glGetUniformLocation(p, "uLightG");
   out->lightB = glGetUniformLocation(p, "uLightB");
@@ -593,11 +597,45 @@ bool GlRenderer::shade(ShadingMode mode, int displayOrder) {
   return true;
 }
 
+Status GlRenderer::setBackgroundImage(int width, int height, std::span<const std::uint32_t> texels) {
+  if (texels.empty()) {
+    if (backgroundImage_) glDeleteTextures(1, &backgroundImage_);
+    backgroundImage_ = 0;
+    return Status::ok();
+  }
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  if (width < 1 || height < 1 || width > maxSize || height > maxSize) {
+    return Status::error(StatusCode::kInvalidArgument, "background image " + std::to_string(width) + "x" + std::to_string(height) +
+                                                           " is outside 1.." + std::to_string(maxSize) + " a side");
+  }
+  if (texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    return Status::error(StatusCode::kInvalidArgument, "background image: " + std::to_string(texels.size()) + " texels for " +
+                                                           std::to_string(width) + "x" + std::to_string(height));
+  }
+  if (!backgroundImage_) glGenTextures(1, &backgroundImage_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, backgroundImage_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  // RGB9_E5 is filterable in every WebGL2 (GLES 3.0 core), unlike 32-bit floats.
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB9_E5, width, height, 0, GL_RGB, GL_UNSIGNED_INT_5_9_9_9_REV, texels.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // no mipmaps: the map is magnified on screen
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // longitude wraps
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return Status::ok();
+}
+
 void GlRenderer::draw(int width, int height, const FrameParams& p) {
   glViewport(0, 0, width, height);
-  glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
+  if (p.background == BackgroundMode::kColour) {
+    glClearColor(p.backgroundColour.r, p.backgroundColour.g, p.backgroundColour.b, 1.0f);
+  } else {
+    glClearColor(0.02f, 0.02f, 0.025f, 1.0f);
+  }
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (p.background) {
+  if (p.background == BackgroundMode::kBlurred || p.background == BackgroundMode::kImage) {
+    const bool image = p.background == BackgroundMode::kImage && backgroundImage_;
     glDisable(GL_DEPTH_TEST);
     glUseProgram(background_.id);
     const glm::mat4 inv = glm::inverse(p.viewProjection);
@@ -606,6 +644,13 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glUniform4fv(background_.lightG, kLightingTexelsPerChannel, p.environment + kMaxClientCoeffs);
     glUniform4fv(background_.lightB, kLightingTexelsPerChannel, p.environment + 2 * kMaxClientCoeffs);
     glUniform1f(background_.exposure, p.exposure);
+    glUniform1i(background_.backgroundMode, image ? 1 : 0);
+    glUniform1i(background_.environmentImage, 0);
+    const glm::mat3 inverseRotation = glm::transpose(p.environmentRotation);  // the shader looks the map up at R^T d
+    glUniformMatrix3fv(background_.environmentRotation, 1, GL_FALSE, glm::value_ptr(inverseRotation));
+    glUniform3fv(background_.environmentTint, 1, glm::value_ptr(p.environmentTint));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, image ? backgroundImage_ : 0);
     glBindVertexArray(backgroundVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }

@@ -38,12 +38,26 @@ enum class PassForm { kAbsent = 0, kExpanded = 1, kCpca = 2 };
 // GlossyMix: diffuse, glossy, both. A term whose pass the asset lacks draws as zero.
 enum class GlossyMix { kDiffuse = 0, kGlossy = 1, kBoth = 2 };
 
+// What is drawn behind the scene (docs/web-client.md, "Background"). Bound to JS as the
+// embind enum BackgroundMode: none, colour, blurred, image.
+enum class BackgroundMode {
+  kNone = 0,     // the clear colour (near black)
+  kColour = 1,   // a plain colour, FrameParams::backgroundColour
+  kBlurred = 2,  // the SH lighting evaluated per pixel to order 4 (the light the scene gets)
+  kImage = 3,    // the environment map itself (setBackgroundImage); kBlurred until one is set
+};
+
 struct FrameParams {
   glm::mat4 viewProjection{1.0f};
   ShadingMode mode = ShadingMode::kInterreflected;
   int displayOrder = 5;        // <= the baked order
   float exposure = 1.0f;       // linear multiplier
-  bool background = true;      // draw the SH environment behind the scene
+  BackgroundMode background = BackgroundMode::kImage;
+  glm::vec3 backgroundColour{0.0f};  // kColour: display (sRGB) values in [0, 1], drawn as given
+  // kImage: the environment's rotation R (the lighting is the map rotated, f'(u) = f(R^T u))
+  // and its colour x intensity, as the SH lighting gets them.
+  glm::mat3 environmentRotation{1.0f};
+  glm::vec3 environmentTint{1.0f};
   // The environment alone (kPackedLightingFloats from packLighting) for the background. The PRT and
   // Lambert programs read the full lighting from the uniform block bound at
   // kLightingBlockBinding (lighting_block.h).
@@ -73,6 +87,12 @@ class GlRenderer {
   Status init();
   // Uploads geometry and every transfer pass of `asset`, replacing any previous scene.
   Status upload(const BakedAsset& asset);
+  // The equirect environment image the kImage background samples (three.js mapping,
+  // sh_project.h projectEquirect): width x height RGB9E5 texels, rows top first, as
+  // UNSIGNED_INT_5_9_9_9_REV. Empty `texels` removes it. Fails naming the problem (a size
+  // that does not match, over the GL limit) and keeps the previous image.
+  Status setBackgroundImage(int width, int height, std::span<const std::uint32_t> texels);
+  bool hasBackgroundImage() const { return backgroundImage_ != 0; }
   // Progressive loading: uploads the geometry of `asset` (its passes are ignored) and drops
   // every transfer pass; then uploadPass adds or replaces one pass, holding the first
   // `order` bands (order^2 coefficients per channel, <= the baked order). Until a pass is
@@ -147,6 +167,8 @@ class GlRenderer {
     GLint matrices = -1, rowTexels = -1, matrixTexels = -1, rows = -1, vectors = -1, bands = -1;
     GLint channel = -1, vertices = -1;
     GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
+    // background.frag
+    GLint backgroundMode = -1, environmentImage = -1, environmentRotation = -1, environmentTint = -1;
   };
   // A glossy matrix pass in its CPCA form (glossy_texture.h): matrices, weight levels, the
   // table and the transferred radiance (each captured into its buffer, copied into its
@@ -204,7 +226,7 @@ class GlRenderer {
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
   GLuint vao_ = 0, feedbackVao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, radianceBuffer_ = 0;
   GLuint glossyBuffer_ = 0;  // glossy radiance per vertex (attribute 5 of vao_)
-  GLuint backgroundVao_ = 0, feedback_ = 0;
+  GLuint backgroundVao_ = 0, feedback_ = 0, backgroundImage_ = 0;
   GLsizei vertexCount_ = 0;
   GLsizei indexCount_ = 0;
   int bakedOrder_ = 0;

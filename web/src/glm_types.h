@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>               // dot, cross, normalize, length
 #include <glm/gtc/matrix_transform.hpp>  // perspective, lookAt
 #include <glm/gtc/type_ptr.hpp>          // value_ptr
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>                  // inverse
 #include <glm/vec2.hpp>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace prt::web {
 
@@ -43,6 +44,16 @@ void OrbitCamera::pan(float dx, float dy) {
 }
 
 void OrbitCamera::zoom(float factor) { distance_ = std::clamp(distance_ * factor, radius_ * 0.05f, radius_ * 50.0f); }
+
+bool OrbitCamera::setPose(const Pose& p) {
+  const float values[] = {p.target.x, p.target.y, p.target.z, p.yaw, p.pitch, p.distance};
+  if (!std::all_of(std::begin(values), std::end(values), [](float v) { return std::isfinite(v); })) return false;
+  target_ = p.target;
+  yaw_ = p.yaw;
+  pitch_ = std::clamp(p.pitch, -kMaxPitch, kMaxPitch);
+  distance_ = std::clamp(p.distance, radius_ * 0.05f, radius_ * 50.0f);
+  return true;
+}
 
 glm::vec3 OrbitCamera::eyePosition() const {
   return target_ + glm::vec3{std::sin(yaw_) * std::cos(pitch_), std::sin(pitch_), std::cos(yaw_) * std::cos(pitch_)} * distance_;

@@ -34,6 +34,16 @@ class OrbitCamera {
   void pan(float dx, float dy);                  // moves the target; units of half the distance
   void zoom(float factor);                       // distance * factor (> 1 moves away), 0.05..50 radii
 
+  // The camera's free parameters: what a permalink stores to put the camera back.
+  struct Pose {
+    glm::vec3 target;
+    float yaw, pitch, distance;  // radians, radians, world units
+  };
+  Pose pose() const { return {target_, yaw_, pitch_, distance_}; }
+  // Puts the camera at `p`, pitch clamped to kMaxPitch and distance to zoom()'s range of the
+  // framed sphere; returns false, changing nothing, when a value is not finite.
+  bool setPose(const Pose& p);
+
   // The sphere given to the last frame() (radius 1 about the origin before any).
   glm::vec3 sceneCenter() const { return center_; }
   float sceneRadius() const { return radius_; }
