@@ -12,15 +12,19 @@ Status corrupt(const std::string& what) { return Status::error(StatusCode::kCorr
 
 std::size_t blocksOf(std::size_t count) { return (count + kBlockVertices - 1) / kBlockVertices; }
 
+// The direct shard's flags word.
+constexpr std::uint32_t kHasHits = 1, kGlossy = 2;
+
 }  // namespace
 
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   std::vector<std::uint8_t> out;
   ByteWriter w(&out);
-  w.u32(s.hasHits ? 1 : 0);
+  w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
   w.floats(s.unshadowed);
   w.floats(s.shadowed);
   w.u64(s.verticesOutsideLight);
+  if (s.glossy) w.floats(s.glossyShadowed);
   if (!s.hasHits) return out;
   for (const HitBlock& b : s.blocks) {
     for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
@@ -32,19 +36,28 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
       w.raw(&h.weight, sizeof h.weight);
     }
   }
+  if (s.glossy) {
+    for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
+  }
   return out;
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         DirectShard* out) {
+                         std::size_t glossyEntries, std::uint64_t samples, DirectShard* out) {
   ByteReader r(payload);
-  std::uint32_t hasHits = 0;
+  std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
-  if (!r.u32(&hasHits) || hasHits > 1 || !r.floats(floats, &out->unshadowed) || !r.floats(floats, &out->shadowed) ||
-      !r.u64(&out->verticesOutsideLight)) {
+  if (!r.u32(&flags)) return corrupt("the flags are cut short");
+  if ((flags & ~(kHasHits | kGlossy)) != 0) return corrupt("unknown flags " + std::to_string(flags));
+  if (!r.floats(floats, &out->unshadowed) || !r.floats(floats, &out->shadowed) || !r.u64(&out->verticesOutsideLight)) {
     return corrupt("the direct pass's transfer (" + std::to_string(floats) + " floats each) is cut short");
   }
-  out->hasHits = hasHits == 1;
+  out->hasHits = (flags & kHasHits) != 0;
+  out->glossy = (flags & kGlossy) != 0;
+  out->glossyShadowed.clear();
+  if (out->glossy && !r.floats(static_cast<std::uint64_t>(count) * glossyEntries, &out->glossyShadowed)) {
+    return corrupt("the glossy shadowed matrices (" + std::to_string(count * glossyEntries) + " floats) are cut short");
+  }
   out->blocks.clear();
   if (!out->hasHits) {
     if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
@@ -54,9 +67,11 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
   if (!r.u32s(count, &perVertex)) return corrupt("the per-vertex hit counts are cut short");
   std::uint64_t total = 0;
   for (std::uint32_t c : perVertex) total += c;
-  if (total != r.remaining() / 12 || r.remaining() % 12 != 0) {
+  // A glossy shard's hits also have their sample index (4 bytes each, after the records).
+  const std::uint64_t hitBytes = out->glossy ? 16 : 12;
+  if (total != r.remaining() / hitBytes || r.remaining() % hitBytes != 0) {
     return corrupt("the hit counts add up to " + std::to_string(total) + " hits, the file holds " +
-                   std::to_string(r.remaining()) + " bytes of them (12 a hit)");
+                   std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
   out->blocks.resize(blocksOf(count));
   for (std::size_t j = 0; j < out->blocks.size(); ++j) {
@@ -83,6 +98,15 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
       }
     }
   }
+  if (!out->glossy) return Status::ok();
+  for (HitBlock& b : out->blocks) {
+    if (!r.u32s(b.hits.size(), &b.hitSample)) return corrupt("the hits' sample indices are cut short");
+    for (std::uint32_t k : b.hitSample) {
+      if (k >= samples) {
+        return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samples));
+      }
+    }
+  }
   return Status::ok();
 }
 
@@ -91,16 +115,22 @@ std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
   ByteWriter w(&out);
   w.floats(s.bounce);
   w.doubles(s.blockEnergy);
+  w.floats(s.matrices);
   return out;
 }
 
-Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, BounceShard* out) {
+Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
+                         BounceShard* out) {
   ByteReader r(payload);
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * 3 * n2;
   if (!r.floats(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
     return corrupt("the bounce's transfer or block energies are cut short");
   }
-  if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the block energies");
+  out->matrices.clear();
+  if (matrices && !r.floats(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
+  if (r.remaining() != 0) {
+    return corrupt(std::to_string(r.remaining()) + " bytes after the " + (matrices ? "glossy matrices" : "block energies"));
+  }
   return Status::ok();
 }
 
@@ -113,11 +143,13 @@ std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
   w.u64(m.bounce.size());
   w.floats(m.bounce);
   w.floats(m.total);
+  w.u64(m.senderMatrices.size());
+  w.floats(m.senderMatrices);
   return out;
 }
 
 Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
-                        MergedPass* out) {
+                        std::uint64_t senderFloats, MergedPass* out) {
   ByteReader r(payload);
   std::uint32_t final = 0, energies = 0;
   std::uint64_t floats = 0;
@@ -130,6 +162,12 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
     return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
   }
   if (!r.floats(floats, &out->bounce) || !r.floats(floats, &out->total)) return corrupt("the bounce transfer is cut short");
+  std::uint64_t senders = 0;
+  if (!r.u64(&senders)) return corrupt("the glossy senders' matrix count is cut short");
+  if (senders != senderFloats) {
+    return corrupt("holds " + std::to_string(senders) + " floats of glossy senders' matrices, not " + std::to_string(senderFloats));
+  }
+  if (!r.floats(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
   if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
   out->final = final == 1;
   return Status::ok();
