@@ -4,12 +4,16 @@
 # after another, timing each step. The one-machine time against "critical path" (per pass the
 # slowest shard plus its merge, plus the asset merge) is the speed-up N machines could reach
 # with no queueing; "total" against the one-machine time is the overhead of sharding.
-# Usage: scripts/bench-scale-out.sh [--shards N] [SCENE|--default] [prt-bake options]
+# --json FILE also writes the numbers as one JSON object (docs/bench/scale-out.json holds runs).
+# Usage: scripts/bench-scale-out.sh [--shards N] [--json FILE] [SCENE|--default] [prt-bake options]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bake=${PRT_BAKE:-$root/build/native/baker/prt-bake}
-shards=4
-if [[ ${1:-} == --shards ]]; then shards=$2; shift 2; fi
+shards=4 json=""
+while [[ ${1:-} == --shards || ${1:-} == --json ]]; do
+  if [[ $1 == --shards ]]; then shards=$2; else json=$2; fi
+  shift 2
+done
 (($#)) || set -- --default
 work=$(mktemp -d "${TMPDIR:-/tmp}/prt-bench-scale-out-XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -27,7 +31,7 @@ t0=$(now)
 passes=$("$bake" plan "$@" -o "$work/p.plan" --shards "$shards" --json --quiet | sed -n 's/.*"passes": \([0-9]*\).*/\1/p')
 plan_s=$(since "$t0")
 total=$plan_s critical=$plan_s
-rows=""
+rows="" json_passes=""
 for ((k = 0; k < passes; k++)); do
   slowest=0 sum=0
   for ((i = 0; i < shards; i++)); do
@@ -43,6 +47,7 @@ for ((k = 0; k < passes; k++)); do
   total=$(calc "$total + $sum + $m")
   critical=$(calc "$critical + $slowest + $m")
   rows+=$(printf '| %d | %.2f | %.2f | %.2f |\n' "$k" "$sum" "$slowest" "$m")$'\n'
+  json_passes+=$(printf '%s{"pass": %d, "shards_s": %.3f, "slowest_s": %.3f, "merge_s": %.3f}' "${json_passes:+, }" "$k" "$sum" "$slowest" "$m")
 done
 t0=$(now)
 "$bake" merge --plan "$work/p.plan" -o "$work/sharded.prt" --quiet
@@ -51,6 +56,10 @@ total=$(calc "$total + $final")
 critical=$(calc "$critical + $final")
 cmp "$work/one.prt" "$work/sharded.prt" || { echo "bench-scale-out: the sharded asset differs" >&2; exit 1; }
 bytes=$(du -sb "$work" | cut -f1)
+# Bytes of each kind of work file (the assets excluded).
+kind_bytes() { find "$work" -name "$1" -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; }
+direct_bytes=$(kind_bytes 'p.plan.pass0.shard*') merged_bytes=$(kind_bytes 'p.plan.pass*.merged')
+bounce_bytes=$(calc "$(kind_bytes 'p.plan.pass*.shard*') - $direct_bytes")
 
 echo "prt-bake $* ; $shards shards, $passes passes planned; $(nproc) cores"
 echo
@@ -61,3 +70,10 @@ printf '\none machine: %.2f s; sharded, every step here in turn: %.2f s (%.2fx);
   "$one" "$total" "$(calc "$total / $one")" "$plan_s" "$final"
 printf 'critical path with %d machines (no queueing): %.2f s, a speed-up of %.2fx; work files %.1f MB; assets identical\n' \
   "$shards" "$critical" "$(calc "$one / $critical")" "$(calc "$bytes / 1000000")"
+printf 'work files: direct shards %.1f MB, bounce shards %.1f MB, merged passes %.1f MB\n' \
+  "$(calc "$direct_bytes / 1000000")" "$(calc "$bounce_bytes / 1000000")" "$(calc "$merged_bytes / 1000000")"
+if [[ -n $json ]]; then
+  printf '{"args": "%s", "shards": %d, "passes": %d, "cores": %d, "load": "%s", "one_machine_s": %.3f, "plan_s": %.3f, "asset_merge_s": %.3f, "sharded_total_s": %.3f, "critical_path_s": %.3f, "work_bytes": %d, "direct_shard_bytes": %d, "bounce_shard_bytes": %d, "merged_pass_bytes": %d, "identical": true, "pass_rows": [%s]}\n' \
+    "$*" "$shards" "$passes" "$(nproc)" "$(cut -d' ' -f1-3 /proc/loadavg)" "$one" "$plan_s" "$final" "$total" "$critical" \
+    "$bytes" "$direct_bytes" "$bounce_bytes" "$merged_bytes" "$json_passes" > "$json"
+fi

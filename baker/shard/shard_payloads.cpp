@@ -1,6 +1,7 @@
 #include "baker/shard/shard_payloads.h"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "baker/shard/byte_io.h"
@@ -14,6 +15,12 @@ std::size_t blocksOf(std::size_t count) { return (count + kBlockVertices - 1) / 
 
 // The direct shard's flags word.
 constexpr std::uint32_t kHasHits = 1, kGlossy = 2;
+
+// A hit record in the file (u32 triangle, u16 u, u16 v, f32 weight, little-endian) is Hit's
+// layout on this (little-endian) host, so blocks of them are copied whole.
+constexpr bool kHitLayoutIsTheFiles = sizeof(Hit) == 12 && offsetof(Hit, triangle) == 0 && offsetof(Hit, u) == 4 &&
+                                      offsetof(Hit, v) == 6 && offsetof(Hit, weight) == 8;
+static_assert(kHitLayoutIsTheFiles, "the shard file's hit records are copied as Hit structs");
 
 }  // namespace
 
@@ -29,13 +36,7 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   for (const HitBlock& b : s.blocks) {
     for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
   }
-  for (const HitBlock& b : s.blocks) {
-    for (const Hit& h : b.hits) {
-      w.u32(h.triangle);
-      w.u32(static_cast<std::uint32_t>(h.u) | static_cast<std::uint32_t>(h.v) << 16);
-      w.raw(&h.weight, sizeof h.weight);
-    }
-  }
+  for (const HitBlock& b : s.blocks) w.raw(b.hits.data(), b.hits.size() * sizeof(Hit));
   if (s.glossy) {
     for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
   }
@@ -43,7 +44,7 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samples, DirectShard* out) {
+                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out) {
   ByteReader r(payload);
   std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
@@ -73,6 +74,7 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
     return corrupt("the hit counts add up to " + std::to_string(total) + " hits, the file holds " +
                    std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
+  if (!readHits) return Status::ok();
   out->blocks.resize(blocksOf(count));
   for (std::size_t j = 0; j < out->blocks.size(); ++j) {
     HitBlock& b = out->blocks[j];
@@ -85,13 +87,9 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
       b.hitStart.push_back(static_cast<std::uint32_t>(hits));
     }
     b.hits.resize(static_cast<std::size_t>(hits));
-    for (Hit& h : b.hits) {
-      std::uint32_t uv = 0;
-      r.u32(&h.triangle);
-      r.u32(&uv);
-      r.raw(&h.weight, sizeof h.weight);
-      h.u = static_cast<std::uint16_t>(uv & 0xFFFFu);
-      h.v = static_cast<std::uint16_t>(uv >> 16);
+    // The records are Hit's own bytes (kHitLayoutIsTheFiles): one copy, then each is checked.
+    if (!r.raw(b.hits.data(), b.hits.size() * sizeof(Hit))) return corrupt("the hit records are cut short");
+    for (const Hit& h : b.hits) {
       if (h.triangle >= triangles || !std::isfinite(h.weight)) {
         return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
                        " or has a weight that is not finite");
@@ -142,7 +140,6 @@ std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
   w.doubles(m.energies);
   w.u64(m.bounce.size());
   w.floats(m.bounce);
-  w.floats(m.total);
   w.u64(m.senderMatrices.size());
   w.floats(m.senderMatrices);
   return out;
@@ -161,7 +158,7 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
   if (floats != expected && floats != 0) {
     return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
   }
-  if (!r.floats(floats, &out->bounce) || !r.floats(floats, &out->total)) return corrupt("the bounce transfer is cut short");
+  if (!r.floats(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
   std::uint64_t senders = 0;
   if (!r.u64(&senders)) return corrupt("the glossy senders' matrix count is cut short");
   if (senders != senderFloats) {

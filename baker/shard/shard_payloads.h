@@ -32,13 +32,14 @@ struct BounceShard {
   std::vector<float> matrices;      // glossy bounces: count x 3 n2^2 ([vertex][channel][dense]); else empty
 };
 
-// Pass b merged over every vertex: B^b, the running sum T_b = B^0 + ... + B^b, the energies
-// of bounces 0..b, whether the series stops here (bakeTransfer's rule), and the glossy
-// senders' matrices the next glossy bounce reads.
+// Pass b merged over every vertex: B^b, the energies of bounces 0..b, whether the series
+// stops here (bakeTransfer's rule), and the glossy senders' matrices the next glossy bounce
+// reads. No running sum: the asset merge sums B^0 + B^1 + ... from the shards (why: every
+// merge and bounce shard would read and write it again, and only the asset needs it).
 struct MergedPass {
   bool final = false;
-  std::vector<double> energies;     // b + 1
-  std::vector<float> bounce, total;  // vertices x 3 n2 each; empty without interreflection
+  std::vector<double> energies;  // b + 1
+  std::vector<float> bounce;     // vertices x 3 n2; empty without interreflection
   // M^b at the glossy senders, in sender order, when bounce b+1 is glossy: for b = 0 the
   // shadowed matrices (packed), for b >= 1 [sender][channel][dense n2 x n2]; else empty.
   std::vector<float> senderMatrices;
@@ -47,8 +48,10 @@ struct MergedPass {
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s);
 // `count` vertices at order^2 = n2 coefficients; hit triangles below `triangles`; a glossy
 // shard's matrices `glossyEntries` floats a vertex and its hits' sample indices below `samples`.
+// With `readHits` false the hit records' sizes are checked but they are not copied or
+// checked one by one (out->blocks stays empty): for readers that use the transfer only.
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samples, DirectShard* out);
+                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out);
 
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s);
 // `matrices`: a glossy bounce, whose M^b must follow (count x 3 n2^2 floats); else none may.

@@ -97,14 +97,15 @@ void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_
   }
 }
 
-Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShard* out) {
+// readHits: the bounce shards need the hit records; the merges only the transfer.
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, DirectShard* out) {
   const VertexRange range = ctx.plan->shards[shard];
   std::vector<std::uint8_t> bytes;
   std::span<const std::uint8_t> payload;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
                                    shard, range, &bytes, &payload));
   if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles,
-                                   glossyEntries(ctx), ctx.transfer->samples, out);
+                                   glossyEntries(ctx), ctx.transfer->samples, readHits, out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
   }
@@ -231,7 +232,7 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
   if (*skipped) return Status::ok();
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, &direct));
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &direct));
   BounceShard out;
   const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
   PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
@@ -253,7 +254,7 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     std::vector<float> shadowed;
     for (std::uint32_t i = 0; i < shards; ++i) {
       DirectShard d;
-      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
       shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
       if (keepSenders) {
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, d.glossyShadowed, glossyEntries(ctx), &merged.senderMatrices);
@@ -262,7 +263,6 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     double energy0 = 0.0;
     if (ctx.transfer->interreflection) {
       firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &merged.bounce, &energy0);
-      merged.total = merged.bounce;
     }
     merged.energies = {energy0};
   } else {
@@ -280,8 +280,6 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, b.matrices, 3 * n2 * n2, &merged.senderMatrices);
       }
     }
-    merged.total = std::move(previous.total);
-    for (std::size_t i = 0; i < merged.total.size(); ++i) merged.total[i] += merged.bounce[i];
     merged.energies = std::move(previous.energies);
     merged.energies.push_back(energy);
   }
@@ -311,7 +309,7 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   for (std::uint32_t i = 0; i < shards; ++i) {
     DirectShard d;
-    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
     out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
     out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
     out->glossyShadowed.insert(out->glossyShadowed.end(), d.glossyShadowed.begin(), d.glossyShadowed.end());
@@ -326,12 +324,21 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
         expandShadowedMatrices(out->glossyShadowed, o.order, matrixPackingFor(TransferKind::kShadowed, o.lighting.model));
   }
   const std::size_t fullEntries = matrixEntryCount(o.order, MatrixPacking::kFull);
-  // The bounce shards were merged already; they are checked again so a lost or damaged one is
-  // named (and the glossy bounces' matrices are summed only here).
+  // The interreflected transfer as bakeTransfer sums it: B^0 (firstBounce of the shadowed
+  // transfer), then each bounce's B^b in bounce order, element by element.
+  if (o.interreflection) {
+    double energy0 = 0.0;
+    firstBounce(*ctx.scene, o.order, out->shadowed, vertexAreas(*ctx.scene), &out->interreflected, &energy0);
+  }
+  const std::size_t stride = 3 * static_cast<std::size_t>(coefficients(ctx));
+  // The bounce shards were merged already; they are read again for the sums (which only the
+  // asset needs) and so that a lost or damaged one is named.
   for (std::uint32_t pass = 1; pass <= finalPass; ++pass) {
     for (std::uint32_t i = 0; i < shards; ++i) {
       BounceShard b;
       PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      float* total = &out->interreflected[ctx.plan->shards[i].begin * stride];
+      for (std::size_t e = 0; e < b.bounce.size(); ++e) total[e] += b.bounce[e];
       if (glossyBounce(o, pass)) {
         const VertexRange range = ctx.plan->shards[i];
         addBounceMatrices(b.matrices.data(), range.end - range.begin, o.order,
@@ -340,7 +347,6 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
     }
   }
   if (glossySeries) out->glossyBounces = std::min(o.glossyBounces, static_cast<int>(finalPass));
-  if (ctx.transfer->interreflection) out->interreflected = std::move(last.total);
   out->bounces = static_cast<int>(finalPass);
   out->bounceEnergy = ctx.transfer->interreflection ? last.energies : std::vector<double>{};
   return Status::ok();
