@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 
+#include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/glossy_lobe.h"
 #include "prt/sh_basis.h"
@@ -26,10 +27,6 @@ constexpr std::size_t kChunkRows = 512;
 // Hits of one vertex block whose rows a glossy gather holds at once (kGroupHits x 3 order^2
 // floats per thread: 2.4 MB at order 5).
 constexpr std::size_t kGroupHits = 8192;
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // packedIndex[i * n2 + j] = matrixEntryIndex(i, j, packing).
 std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
@@ -284,6 +281,24 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
     }
   });
   return {name, secondsSince(t0), 0};
+}
+
+GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
+                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                const std::vector<std::int32_t>* senderIndex) {
+  GlossyBounceJob job;
+  job.scene = &scene;
+  job.order = options.order;
+  job.bounce = bounce;
+  job.blocks = blocks;
+  job.dirs = &table.dirs;
+  job.sampleMajor = table.sampleMajor.data();
+  job.sampleWeight = static_cast<float>(table.dirs.weight);
+  job.diffusePrevious = diffusePrevious;
+  job.senderIndex = senderIndex;
+  job.threads = options.threads ? options.threads : defaultThreadCount();
+  job.options = &options;
+  return job;
 }
 
 std::vector<std::int32_t> glossySenderIndex(const Scene& scene, std::size_t* senders) {

@@ -108,6 +108,15 @@ struct GlossyBounceJob {
   const BakeOptions* options = nullptr;  // for progress
 };
 
+struct SampleTable;
+
+// A job of bounce `bounce` over `blocks` with what every caller sets alike: the scene, order,
+// samples (`table`: directions, [sample][coefficient] basis, weight), B^{b-1}, the senders,
+// threads and progress from `options`. The caller adds the matrices it reads and writes.
+GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
+                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                const std::vector<std::int32_t>* senderIndex);
+
 // Gathers bounce `job.bounce` for the job's blocks (deterministic whatever job.threads).
 // Returns the stats entry "glossy bounce N".
 PassStats gatherGlossyBounce(const GlossyBounceJob& job);

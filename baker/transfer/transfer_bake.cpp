@@ -115,23 +115,12 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
     const bool glossyThisBounce = glossyBounce && bounce <= o.glossyBounces;
     if (glossyThisBounce) {
-      GlossyBounceJob job;
-      job.scene = &scene;
-      job.order = o.order;
-      job.bounce = bounce;
-      job.blocks = blocks;
-      job.dirs = &table.dirs;
-      job.sampleMajor = table.sampleMajor.data();
-      job.sampleWeight = static_cast<float>(table.dirs.weight);
-      job.diffusePrevious = previous.data();
-      job.senderIndex = &senderIndex;
+      GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, blocks, previous.data(), &senderIndex);
       job.glossyPrevious = bounce == 1 ? out->glossyShadowed.data() : glossyPrevious.data();
       job.previousPacking = glossyPacking;
       job.glossyCurrent = bounce < o.glossyBounces ? glossyCurrent.data() : nullptr;
       job.interreflected = out->glossyInterreflected.data();
       job.diffuseFromGlossy = diffuseFromGlossy.data();
-      job.threads = threads;
-      job.options = &o;
       out->passes.push_back(gatherGlossyBounce(job));
       out->glossyBounces = bounce;
       if (bounce < o.glossyBounces) std::swap(glossyPrevious, glossyCurrent);

@@ -36,24 +36,13 @@ Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, s
   PRT_RETURN_IF_ERROR(makeSamples(o, &table));
   fromGlossy->assign((end - begin) * 3 * n2, 0.0f);
   glossy.bounce->assign((end - begin) * 3 * n2 * n2, 0.0f);
-  GlossyBounceJob job;
-  job.scene = &scene;
-  job.order = o.order;
-  job.bounce = bounce;
-  job.blocks = blocks;
+  GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, blocks, diffusePrevious.data(), &senderIndex);
   job.firstBlock = firstBlock;
-  job.dirs = &table.dirs;
-  job.sampleMajor = table.sampleMajor.data();
-  job.sampleWeight = static_cast<float>(table.dirs.weight);
-  job.diffusePrevious = diffusePrevious.data();
-  job.senderIndex = &senderIndex;
   job.glossyPrevious = glossy.previous.data();
   job.previousPacking = packing;
   job.previousBySender = true;
   job.bounceMatrices = glossy.bounce->data();
   job.diffuseFromGlossy = fromGlossy->data();
-  job.threads = o.threads ? o.threads : defaultThreadCount();
-  job.options = &o;
   *stats = gatherGlossyBounce(job);
   return Status::ok();
 }
