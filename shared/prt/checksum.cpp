@@ -34,7 +34,7 @@ constexpr Crc32cTables kTables = makeCrc32cTables();
 
 static_assert(kTables[0][1] == 0xF26B8303u, "CRC-32C table generation");
 
-#if PRT_CRC32C_SSE42
+#ifdef PRT_CRC32C_SSE42
 // SSE4.2's crc32 instruction computes this very CRC (same polynomial, reflected), several
 // times faster than the tables: the sharded bake's files are checked at hundreds of MB a
 // pass. Chosen at run time, so the build does not require the instruction.
@@ -63,7 +63,7 @@ const bool kHasSse42 = __builtin_cpu_supports("sse4.2");
 }  // namespace
 
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes, std::uint32_t crc) noexcept {
-#if PRT_CRC32C_SSE42
+#ifdef PRT_CRC32C_SSE42
   if (kHasSse42) return ~crc32cHardware(bytes.data(), bytes.size(), ~crc);
 #endif
   return crc32cTables(bytes, crc);
