@@ -11,6 +11,7 @@
 #include "baker/cli/progress_bar.h"
 #include "baker/cli/report_failure.h"
 #include "baker/scene/default_scene.h"
+#include "baker/scene/glossy_materials.h"
 #include "baker/scene/gltf_loader.h"
 #include "baker/shard/bake_plan.h"
 #include "baker/shard/sharded_bake.h"
@@ -32,8 +33,8 @@ constexpr const char* kPlanHelp =
     "'prt-bake bake-shard --plan PLAN --shard I --pass K' for every I and 'prt-bake merge --plan\n"
     "PLAN --pass K', and finally 'prt-bake merge --plan PLAN -o ASSET' (scripts/slurm-bake.sh does\n"
     "this on Slurm). The asset is byte for byte the one of 'prt-bake SCENE -o ASSET [options]'.\n"
-    "Bake options: those of 'prt-bake --default --help', except --texels, --texel-glossy and\n"
-    "--glossy (not sharded yet). --json prints the plan's passes and shards on stdout.\n";
+    "Bake options: those of 'prt-bake --default --help', except --texels and --texel-glossy\n"
+    "(not sharded yet). --json prints the plan's passes and shards on stdout.\n";
 
 constexpr const char* kShardHelp =
     "Usage: prt-bake bake-shard --plan PLAN --shard I --pass K [--threads N] [--quiet]\n"
@@ -58,9 +59,7 @@ int printHelp(std::FILE* out, const char* text) {
 }
 
 Status refuseUnsharded(const BakeCommandLine& c) {
-  const char* flag = c.bake.texels ? (c.bake.texels->visibilityOrder > 0 ? "--texel-glossy" : "--texels")
-                     : c.bake.transfer.glossy ? "--glossy"
-                                              : nullptr;
+  const char* flag = c.bake.texels ? (c.bake.texels->visibilityOrder > 0 ? "--texel-glossy" : "--texels") : nullptr;
   if (!flag) return Status::ok();
   return Status::error(StatusCode::kInvalidArgument, std::string("sharded bakes do not support ") + flag +
                                                          " yet (vertex passes only: docs/scale-out.md); bake it on one machine");
@@ -75,6 +74,14 @@ Status loadScene(const std::string& path, bool quiet, std::FILE* err, bake::Scen
   PRT_RETURN_IF_ERROR(bake::loadGltf(path, scene, &warnings));
   if (!quiet)
     for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
+  return Status::ok();
+}
+
+// The scene as bakeAsset bakes it: the glossy material split (--glossy) before the vertex
+// order, then *transfer as bakeAsset passes it to bakeTransfer.
+Status prepareScene(const bake::AssetBakeOptions& o, bake::Scene* scene, bake::BakeOptions* transfer) {
+  if (o.transfer.glossy) PRT_RETURN_IF_ERROR(bake::applyGlossyMaterials(o.glossyMaterials, scene));
+  bake::prepareVertexBake(o, scene, transfer);
   return Status::ok();
 }
 
@@ -102,7 +109,7 @@ Status loadPlan(const std::string& planPath, const ParsedArgs& p, bool quiet, st
     out->bake.bake.transfer.threads = static_cast<unsigned>(v);
   }
   PRT_RETURN_IF_ERROR(loadScene(out->plan.scenePath, quiet, err, &out->scene));
-  bake::prepareVertexBake(out->bake.bake, &out->scene, &out->transfer);
+  PRT_RETURN_IF_ERROR(prepareScene(out->bake.bake, &out->scene, &out->transfer));
   PRT_RETURN_IF_ERROR(bake::checkPlannedScene(out->plan, out->scene));
   return Status::ok();
 }
@@ -176,7 +183,7 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   bake::Scene scene;
   if (Status s = loadScene(plan.scenePath, c.quiet, err, &scene); !s.isOk()) return reportFailure(err, "plan", s);
   bake::BakeOptions transfer;
-  bake::prepareVertexBake(c.bake, &scene, &transfer);
+  if (Status s = prepareScene(c.bake, &scene, &transfer); !s.isOk()) return reportFailure(err, "plan", s);
   plan.bakeArgs = bakeArgs;
   plan.sceneHash = bake::sceneHash(scene);
   plan.vertices = scene.positions.size();

@@ -27,6 +27,9 @@ std::uint32_t sceneHash(const Scene& scene) {
   for (const Rgb& a : scene.albedo) w.floats(std::span<const float>({a.r, a.g, a.b}));
   w.u64(scene.indices.size());
   w.raw(scene.indices.data(), scene.indices.size() * sizeof(std::uint32_t));
+  // Glossy bakes only (the split fills them): a changed roughness or specular factor changes
+  // the matrices without touching the albedo.
+  for (const SpecularMaterial& m : scene.specular) w.floats(std::span<const float>({m.f0.r, m.f0.g, m.f0.b, m.f90, m.exponent}));
   return crc32c(bytes);
 }
 

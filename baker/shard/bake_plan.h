@@ -33,7 +33,8 @@ struct BakePlan {
   std::uint32_t id = 0;                // CRC-32C of the plan file (set by encode and decode)
 };
 
-// CRC-32C of the prepared scene's vertex count, positions, normals, albedo and indices.
+// CRC-32C of the prepared scene's vertex count, positions, normals, albedo, indices and, when
+// it has them (glossy bakes), its vertices' specular materials.
 std::uint32_t sceneHash(const Scene& scene);
 
 // `shards` contiguous ranges of whole 64-vertex blocks over `vertices` vertices, sizes

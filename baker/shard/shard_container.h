@@ -14,7 +14,8 @@ namespace prt::bake {
 
 enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass };
 
-inline constexpr std::uint32_t kShardFormatVersion = 1;
+// 2: glossy payloads, and merged passes without the running sum (docs/scale-out.md, "Files").
+inline constexpr std::uint32_t kShardFormatVersion = 2;
 inline constexpr std::size_t kShardHeaderBytes = 56;
 inline constexpr std::uint32_t kNoShard = 0xFFFFFFFFu;  // the header's shard field in plans and merged passes
 

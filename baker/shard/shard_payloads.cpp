@@ -1,6 +1,7 @@
 #include "baker/shard/shard_payloads.h"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "baker/shard/byte_io.h"
@@ -12,39 +13,52 @@ Status corrupt(const std::string& what) { return Status::error(StatusCode::kCorr
 
 std::size_t blocksOf(std::size_t count) { return (count + kBlockVertices - 1) / kBlockVertices; }
 
+// The direct shard's flags word.
+constexpr std::uint32_t kHasHits = 1, kGlossy = 2;
+
+// A hit record in the file (u32 triangle, u16 u, u16 v, f32 weight, little-endian) is Hit's
+// layout on this (little-endian) host, so blocks of them are copied whole.
+constexpr bool kHitLayoutIsTheFiles = sizeof(Hit) == 12 && offsetof(Hit, triangle) == 0 && offsetof(Hit, u) == 4 &&
+                                      offsetof(Hit, v) == 6 && offsetof(Hit, weight) == 8;
+static_assert(kHitLayoutIsTheFiles, "the shard file's hit records are copied as Hit structs");
+
 }  // namespace
 
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   std::vector<std::uint8_t> out;
   ByteWriter w(&out);
-  w.u32(s.hasHits ? 1 : 0);
+  w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
   w.floats(s.unshadowed);
   w.floats(s.shadowed);
   w.u64(s.verticesOutsideLight);
+  if (s.glossy) w.floats(s.glossyShadowed);
   if (!s.hasHits) return out;
   for (const HitBlock& b : s.blocks) {
     for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
   }
-  for (const HitBlock& b : s.blocks) {
-    for (const Hit& h : b.hits) {
-      w.u32(h.triangle);
-      w.u32(static_cast<std::uint32_t>(h.u) | static_cast<std::uint32_t>(h.v) << 16);
-      w.raw(&h.weight, sizeof h.weight);
-    }
+  for (const HitBlock& b : s.blocks) w.raw(b.hits.data(), b.hits.size() * sizeof(Hit));
+  if (s.glossy) {
+    for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
   }
   return out;
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         DirectShard* out) {
+                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out) {
   ByteReader r(payload);
-  std::uint32_t hasHits = 0;
+  std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
-  if (!r.u32(&hasHits) || hasHits > 1 || !r.floats(floats, &out->unshadowed) || !r.floats(floats, &out->shadowed) ||
-      !r.u64(&out->verticesOutsideLight)) {
+  if (!r.u32(&flags)) return corrupt("the flags are cut short");
+  if ((flags & ~(kHasHits | kGlossy)) != 0) return corrupt("unknown flags " + std::to_string(flags));
+  if (!r.floats(floats, &out->unshadowed) || !r.floats(floats, &out->shadowed) || !r.u64(&out->verticesOutsideLight)) {
     return corrupt("the direct pass's transfer (" + std::to_string(floats) + " floats each) is cut short");
   }
-  out->hasHits = hasHits == 1;
+  out->hasHits = (flags & kHasHits) != 0;
+  out->glossy = (flags & kGlossy) != 0;
+  out->glossyShadowed.clear();
+  if (out->glossy && !r.floats(static_cast<std::uint64_t>(count) * glossyEntries, &out->glossyShadowed)) {
+    return corrupt("the glossy shadowed matrices (" + std::to_string(count * glossyEntries) + " floats) are cut short");
+  }
   out->blocks.clear();
   if (!out->hasHits) {
     if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
@@ -54,10 +68,13 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
   if (!r.u32s(count, &perVertex)) return corrupt("the per-vertex hit counts are cut short");
   std::uint64_t total = 0;
   for (std::uint32_t c : perVertex) total += c;
-  if (total != r.remaining() / 12 || r.remaining() % 12 != 0) {
+  // A glossy shard's hits also have their sample index (4 bytes each, after the records).
+  const std::uint64_t hitBytes = out->glossy ? 16 : 12;
+  if (total != r.remaining() / hitBytes || r.remaining() % hitBytes != 0) {
     return corrupt("the hit counts add up to " + std::to_string(total) + " hits, the file holds " +
-                   std::to_string(r.remaining()) + " bytes of them (12 a hit)");
+                   std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
+  if (!readHits) return Status::ok();
   out->blocks.resize(blocksOf(count));
   for (std::size_t j = 0; j < out->blocks.size(); ++j) {
     HitBlock& b = out->blocks[j];
@@ -70,16 +87,21 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
       b.hitStart.push_back(static_cast<std::uint32_t>(hits));
     }
     b.hits.resize(static_cast<std::size_t>(hits));
-    for (Hit& h : b.hits) {
-      std::uint32_t uv = 0;
-      r.u32(&h.triangle);
-      r.u32(&uv);
-      r.raw(&h.weight, sizeof h.weight);
-      h.u = static_cast<std::uint16_t>(uv & 0xFFFFu);
-      h.v = static_cast<std::uint16_t>(uv >> 16);
+    // The records are Hit's own bytes (kHitLayoutIsTheFiles): one copy, then each is checked.
+    if (!r.raw(b.hits.data(), b.hits.size() * sizeof(Hit))) return corrupt("the hit records are cut short");
+    for (const Hit& h : b.hits) {
       if (h.triangle >= triangles || !std::isfinite(h.weight)) {
         return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
                        " or has a weight that is not finite");
+      }
+    }
+  }
+  if (!out->glossy) return Status::ok();
+  for (HitBlock& b : out->blocks) {
+    if (!r.u32s(b.hits.size(), &b.hitSample)) return corrupt("the hits' sample indices are cut short");
+    for (std::uint32_t k : b.hitSample) {
+      if (k >= samples) {
+        return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samples));
       }
     }
   }
@@ -91,16 +113,22 @@ std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
   ByteWriter w(&out);
   w.floats(s.bounce);
   w.doubles(s.blockEnergy);
+  w.floats(s.matrices);
   return out;
 }
 
-Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, BounceShard* out) {
+Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
+                         BounceShard* out) {
   ByteReader r(payload);
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * 3 * n2;
   if (!r.floats(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
     return corrupt("the bounce's transfer or block energies are cut short");
   }
-  if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the block energies");
+  out->matrices.clear();
+  if (matrices && !r.floats(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
+  if (r.remaining() != 0) {
+    return corrupt(std::to_string(r.remaining()) + " bytes after the " + (matrices ? "glossy matrices" : "block energies"));
+  }
   return Status::ok();
 }
 
@@ -112,12 +140,13 @@ std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
   w.doubles(m.energies);
   w.u64(m.bounce.size());
   w.floats(m.bounce);
-  w.floats(m.total);
+  w.u64(m.senderMatrices.size());
+  w.floats(m.senderMatrices);
   return out;
 }
 
 Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
-                        MergedPass* out) {
+                        std::uint64_t senderFloats, MergedPass* out) {
   ByteReader r(payload);
   std::uint32_t final = 0, energies = 0;
   std::uint64_t floats = 0;
@@ -129,7 +158,13 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
   if (floats != expected && floats != 0) {
     return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
   }
-  if (!r.floats(floats, &out->bounce) || !r.floats(floats, &out->total)) return corrupt("the bounce transfer is cut short");
+  if (!r.floats(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
+  std::uint64_t senders = 0;
+  if (!r.u64(&senders)) return corrupt("the glossy senders' matrix count is cut short");
+  if (senders != senderFloats) {
+    return corrupt("holds " + std::to_string(senders) + " floats of glossy senders' matrices, not " + std::to_string(senderFloats));
+  }
+  if (!r.floats(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
   if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
   out->final = final == 1;
   return Status::ok();

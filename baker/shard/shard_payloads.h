@@ -13,39 +13,55 @@
 
 namespace prt::bake {
 
-// Pass 0 of vertices [begin, end): the direct pass's scalar transfer and hit records.
+// Pass 0 of vertices [begin, end): the direct pass's scalar transfer, glossy shadowed
+// matrices and hit records.
 struct DirectShard {
   std::vector<float> unshadowed, shadowed;  // count x n2
   std::uint64_t verticesOutsideLight = 0;
   bool hasHits = false;                     // interreflection stored
-  std::vector<HitBlock> blocks;             // ceil(count / 64) when hasHits
+  bool glossy = false;                      // --glossy: matrices, and each hit's sample index
+  std::vector<float> glossyShadowed;        // glossy: count x the packing's entries
+  std::vector<HitBlock> blocks;             // ceil(count / 64) when hasHits (hitSample filled when glossy)
 };
 
-// Pass b >= 1 of vertices [begin, end): B^b there and each block's energy.
+// Pass b >= 1 of vertices [begin, end): B^b there, each block's energy and, for a glossy
+// bounce, M^b there.
 struct BounceShard {
   std::vector<float> bounce;        // count x 3 n2
   std::vector<double> blockEnergy;  // ceil(count / 64)
+  std::vector<float> matrices;      // glossy bounces: count x 3 n2^2 ([vertex][channel][dense]); else empty
 };
 
-// Pass b merged over every vertex: B^b, the running sum T_b = B^0 + ... + B^b, the energies
-// of bounces 0..b, and whether the series stops here (bakeTransfer's rule).
+// Pass b merged over every vertex: B^b, the energies of bounces 0..b, whether the series
+// stops here (bakeTransfer's rule), and the glossy senders' matrices the next glossy bounce
+// reads. No running sum: the asset merge sums B^0 + B^1 + ... from the shards (why: every
+// merge and bounce shard would read and write it again, and only the asset needs it).
 struct MergedPass {
   bool final = false;
-  std::vector<double> energies;     // b + 1
-  std::vector<float> bounce, total;  // vertices x 3 n2 each; empty without interreflection
+  std::vector<double> energies;  // b + 1
+  std::vector<float> bounce;     // vertices x 3 n2; empty without interreflection
+  // M^b at the glossy senders, in sender order, when bounce b+1 is glossy: for b = 0 the
+  // shadowed matrices (packed), for b >= 1 [sender][channel][dense n2 x n2]; else empty.
+  std::vector<float> senderMatrices;
 };
 
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s);
-// `count` vertices at order^2 = n2 coefficients; hit triangles below `triangles`.
+// `count` vertices at order^2 = n2 coefficients; hit triangles below `triangles`; a glossy
+// shard's matrices `glossyEntries` floats a vertex and its hits' sample indices below `samples`.
+// With `readHits` false the hit records' sizes are checked but they are not copied or
+// checked one by one (out->blocks stays empty): for readers that use the transfer only.
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         DirectShard* out);
+                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out);
 
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s);
-Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, BounceShard* out);
+// `matrices`: a glossy bounce, whose M^b must follow (count x 3 n2^2 floats); else none may.
+Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
+                         BounceShard* out);
 
 std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m);
-// Pass `pass` over `vertices` vertices (floats expected: vertices x 3 n2, or none).
+// Pass `pass` over `vertices` vertices (floats expected: vertices x 3 n2, or none) with
+// exactly `senderFloats` floats of the senders' matrices.
 Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
-                        MergedPass* out);
+                        std::uint64_t senderFloats, MergedPass* out);
 
 }  // namespace prt::bake

@@ -1,5 +1,6 @@
 #include "baker/shard/sharded_bake.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <span>
 #include <vector>
@@ -7,6 +8,7 @@
 #include "baker/shard/shard_container.h"
 #include "baker/shard/shard_payloads.h"
 #include "baker/transfer/diffuse_bounce.h"
+#include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/transfer_range.h"
 #include "native/file_io.h"
 #include "prt/sh_basis.h"
@@ -64,18 +66,52 @@ Status writePlanFile(const std::string& path, const ShardHeader& h, const std::v
 
 int coefficients(const ShardContext& ctx) { return shCoeffCount(ctx.transfer->order); }
 
-Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShard* out) {
+// Floats of one vertex's glossy shadowed matrix (the packing bakeTransfer stores).
+std::size_t glossyEntries(const ShardContext& ctx) {
+  return matrixEntryCount(ctx.transfer->order, matrixPackingFor(TransferKind::kShadowed, ctx.transfer->lighting.model));
+}
+
+// Whether bounce `pass` gathers glossy matrices too (bakeTransfer's glossyThisBounce).
+bool glossyBounce(const BakeOptions& o, std::uint32_t pass) {
+  return o.glossy && o.interreflection && pass >= 1 && static_cast<int>(pass) <= o.glossyBounces;
+}
+
+// Floats of the glossy senders' matrices merged pass `pass` carries: what bounce pass+1 reads
+// when it is glossy (the shadowed matrices after pass 0, M^pass after a bounce), else none.
+std::uint64_t senderFloats(const ShardContext& ctx, std::uint32_t pass) {
+  if (!glossyBounce(*ctx.transfer, pass + 1)) return 0;
+  std::size_t senders = 0;
+  glossySenderIndex(*ctx.scene, &senders);
+  const std::uint64_t n2 = static_cast<std::uint64_t>(coefficients(ctx));
+  return senders * (pass == 0 ? glossyEntries(ctx) : 3 * n2 * n2);
+}
+
+// Appends the rows of `perVertex` (floats a vertex, for the vertices from `begin`) that
+// belong to glossy senders: shards in range order give the senders in sender order.
+void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_t begin, const std::vector<float>& rows,
+                      std::size_t perVertex, std::vector<float>* out) {
+  for (std::size_t local = 0; local * perVertex < rows.size(); ++local) {
+    if (senderIndex[begin + local] < 0) continue;
+    const auto first = rows.begin() + static_cast<std::ptrdiff_t>(local * perVertex);
+    out->insert(out->end(), first, first + static_cast<std::ptrdiff_t>(perVertex));
+  }
+}
+
+// readHits: the bounce shards need the hit records; the merges only the transfer.
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, DirectShard* out) {
   const VertexRange range = ctx.plan->shards[shard];
   std::vector<std::uint8_t> bytes;
   std::span<const std::uint8_t> payload;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
                                    shard, range, &bytes, &payload));
-  if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles, out); !s.isOk()) {
+  if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles,
+                                   glossyEntries(ctx), ctx.transfer->samples, readHits, out);
+      !s.isOk()) {
     return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
   }
-  if (out->hasHits != ctx.transfer->interreflection) {
+  if (out->hasHits != ctx.transfer->interreflection || out->glossy != ctx.transfer->glossy) {
     return Status::error(StatusCode::kCorrupt, shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) +
-                                                   "') does not match the plan's interreflection setting");
+                                                   "') does not match the plan's interreflection or glossy setting");
   }
   return Status::ok();
 }
@@ -86,7 +122,8 @@ Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_
   std::span<const std::uint8_t> payload;
   const std::string path = shardPath(ctx.planPath, pass, shard);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &bytes, &payload));
-  if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), out); !s.isOk()) {
+  if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), glossyBounce(*ctx.transfer, pass), out);
+      !s.isOk()) {
     return Status::error(s.code(), shardLabel(pass, shard) + " ('" + path + "') is corrupt: " + s.message());
   }
   return Status::ok();
@@ -98,7 +135,8 @@ Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* o
   const std::string path = mergedPassPath(ctx.planPath, pass);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
                                    {0, ctx.plan->vertices}, &bytes, &payload));
-  if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), out); !s.isOk()) {
+  if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), senderFloats(ctx, pass), out);
+      !s.isOk()) {
     return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
   }
   if (ctx.transfer->interreflection && out->bounce.empty()) {
@@ -179,8 +217,14 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   if (pass == 0) {
     DirectRange r;
     PRT_RETURN_IF_ERROR(bakeDirectRange(*ctx.scene, *ctx.transfer, range.begin, range.end, &r));
-    DirectShard s{std::move(r.unshadowed), std::move(r.shadowed), r.verticesOutsideLight, ctx.transfer->interreflection,
-                  std::move(r.blocks)};
+    DirectShard s;
+    s.unshadowed = std::move(r.unshadowed);
+    s.shadowed = std::move(r.shadowed);
+    s.verticesOutsideLight = r.verticesOutsideLight;
+    s.hasHits = ctx.transfer->interreflection;
+    s.glossy = ctx.transfer->glossy;
+    s.glossyShadowed = std::move(r.glossyShadowed);
+    s.blocks = std::move(r.blocks);
     *stats = r.stats;
     return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeDirectShard(s));
   }
@@ -188,10 +232,12 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
   if (*skipped) return Status::ok();
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, &direct));
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &direct));
   BounceShard out;
+  const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
   PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
-                                        direct.blocks, previous.bounce, &out.bounce, &out.blockEnergy, stats));
+                                        direct.blocks, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
+                                        &out.bounce, &out.blockEnergy, stats));
   return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeBounceShard(out));
 }
 
@@ -200,17 +246,23 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   *skipped = false;
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   MergedPass merged;
+  // The glossy senders' part of this pass, which the next (glossy) bounce reads.
+  const bool keepSenders = senderFloats(ctx, pass) > 0;
+  std::size_t senders = 0;
+  const std::vector<std::int32_t> senderIndex = keepSenders ? glossySenderIndex(*ctx.scene, &senders) : std::vector<std::int32_t>{};
   if (pass == 0) {
     std::vector<float> shadowed;
     for (std::uint32_t i = 0; i < shards; ++i) {
       DirectShard d;
-      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
       shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
+      if (keepSenders) {
+        appendSenderRows(senderIndex, ctx.plan->shards[i].begin, d.glossyShadowed, glossyEntries(ctx), &merged.senderMatrices);
+      }
     }
     double energy0 = 0.0;
     if (ctx.transfer->interreflection) {
       firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &merged.bounce, &energy0);
-      merged.total = merged.bounce;
     }
     merged.energies = {energy0};
   } else {
@@ -223,9 +275,11 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
       PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
       for (double e : b.blockEnergy) energy += e;  // block order, as bakeTransfer sums them
       merged.bounce.insert(merged.bounce.end(), b.bounce.begin(), b.bounce.end());
+      if (keepSenders) {
+        const std::size_t n2 = static_cast<std::size_t>(coefficients(ctx));
+        appendSenderRows(senderIndex, ctx.plan->shards[i].begin, b.matrices, 3 * n2 * n2, &merged.senderMatrices);
+      }
     }
-    merged.total = std::move(previous.total);
-    for (std::size_t i = 0; i < merged.total.size(); ++i) merged.total[i] += merged.bounce[i];
     merged.energies = std::move(previous.energies);
     merged.energies.push_back(energy);
   }
@@ -255,19 +309,44 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   for (std::uint32_t i = 0; i < shards; ++i) {
     DirectShard d;
-    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, &d));
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
     out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
     out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
+    out->glossyShadowed.insert(out->glossyShadowed.end(), d.glossyShadowed.begin(), d.glossyShadowed.end());
     out->verticesOutsideLight += d.verticesOutsideLight;
   }
-  // The bounce shards were merged already; they are checked again so a lost or damaged one is named.
+  // The glossy interreflected series, summed as bakeTransfer sums it: the shadowed matrices,
+  // then each glossy bounce's M^b in bounce order.
+  const BakeOptions& o = *ctx.transfer;
+  const bool glossySeries = o.glossy && o.interreflection && o.glossyBounces > 0;
+  if (glossySeries) {
+    out->glossyInterreflected =
+        expandShadowedMatrices(out->glossyShadowed, o.order, matrixPackingFor(TransferKind::kShadowed, o.lighting.model));
+  }
+  const std::size_t fullEntries = matrixEntryCount(o.order, MatrixPacking::kFull);
+  // The interreflected transfer as bakeTransfer sums it: B^0 (firstBounce of the shadowed
+  // transfer), then each bounce's B^b in bounce order, element by element.
+  if (o.interreflection) {
+    double energy0 = 0.0;
+    firstBounce(*ctx.scene, o.order, out->shadowed, vertexAreas(*ctx.scene), &out->interreflected, &energy0);
+  }
+  const std::size_t stride = 3 * static_cast<std::size_t>(coefficients(ctx));
+  // The bounce shards were merged already; they are read again for the sums (which only the
+  // asset needs) and so that a lost or damaged one is named.
   for (std::uint32_t pass = 1; pass <= finalPass; ++pass) {
     for (std::uint32_t i = 0; i < shards; ++i) {
       BounceShard b;
       PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      float* total = &out->interreflected[ctx.plan->shards[i].begin * stride];
+      for (std::size_t e = 0; e < b.bounce.size(); ++e) total[e] += b.bounce[e];
+      if (glossyBounce(o, pass)) {
+        const VertexRange range = ctx.plan->shards[i];
+        addBounceMatrices(b.matrices.data(), range.end - range.begin, o.order,
+                          &out->glossyInterreflected[range.begin * 3 * fullEntries]);
+      }
     }
   }
-  if (ctx.transfer->interreflection) out->interreflected = std::move(last.total);
+  if (glossySeries) out->glossyBounces = std::min(o.glossyBounces, static_cast<int>(finalPass));
   out->bounces = static_cast<int>(finalPass);
   out->bounceEnergy = ctx.transfer->interreflection ? last.energies : std::vector<double>{};
   return Status::ok();

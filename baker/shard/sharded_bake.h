@@ -19,7 +19,7 @@ namespace prt::bake {
 struct ShardContext {
   const BakePlan* plan = nullptr;
   std::string planPath;
-  const Scene* scene = nullptr;            // prepared as bakeAsset prepares it (prepareVertexBake)
+  const Scene* scene = nullptr;            // prepared as bakeAsset prepares it (glossy split, prepareVertexBake)
   const BakeOptions* transfer = nullptr;   // as prepareVertexBake returns them
 };
 

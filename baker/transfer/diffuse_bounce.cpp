@@ -62,7 +62,7 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
         }
       }
       if (job.fromGlossy) {
-        const float* fromGlossy = &job.fromGlossy[v * stride];
+        const float* fromGlossy = &job.fromGlossy[(v - rangeBegin) * stride];
         for (std::size_t i = 0; i < stride; ++i) gathered[i] += fromGlossy[i];
       }
       const float rho[3] = {scene.albedo[v].r, scene.albedo[v].g, scene.albedo[v].b};

@@ -31,7 +31,7 @@ struct DiffuseBounceJob {
   std::size_t firstBlock = 0;            // blocks[j] is the direct pass's block firstBlock + j
   std::span<const HitBlock> blocks;
   const float* previous = nullptr;    // B^{b-1} of every vertex, [vertex][channel][coefficient]
-  const float* fromGlossy = nullptr;  // nullptr, or per vertex the light glossy senders add (glossy_bake.h)
+  const float* fromGlossy = nullptr;  // nullptr, or per vertex of the blocks (as current) the light glossy senders add (glossy_bake.h)
   std::span<const double> vertexArea;
   float* current = nullptr;       // B^b of the blocks' vertices, from the first block's first vertex
   double* blockEnergy = nullptr;  // one per block: its vertices' area x DC term, all channels

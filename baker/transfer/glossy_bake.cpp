@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 
+#include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/glossy_lobe.h"
 #include "prt/sh_basis.h"
@@ -26,10 +27,6 @@ constexpr std::size_t kChunkRows = 512;
 // Hits of one vertex block whose rows a glossy gather holds at once (kGroupHits x 3 order^2
 // floats per thread: 2.4 MB at order 5).
 constexpr std::size_t kGroupHits = 8192;
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // packedIndex[i * n2 + j] = matrixEntryIndex(i, j, packing).
 std::vector<std::uint32_t> packedIndexTable(int n2, MatrixPacking packing) {
@@ -112,7 +109,9 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
   const std::size_t vertexCount = scene.positions.size();
   const int order = job.order;
   const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order)), row3 = 3 * n2, full = n2 * n2;
-  const std::size_t blockCount = job.blocks->size();
+  const std::size_t blockCount = job.blocks.size();
+  const std::size_t rangeBegin = job.firstBlock * kBlockVertices;
+  const std::size_t rangeEnd = std::min(vertexCount, (job.firstBlock + blockCount) * kBlockVertices);
   const std::vector<std::int32_t>& senderIndex = *job.senderIndex;
   const bool firstBounce = job.bounce == 1;
   // The senders' previous bounce as dense row-major matrices, indexed by sender: for bounce 1
@@ -126,7 +125,8 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
     dense0.resize(count * full);
     for (std::size_t v = 0; v < vertexCount; ++v) {
       if (senderIndex[v] < 0) continue;
-      const float* src = job.glossyPrevious + v * stride;
+      const std::size_t at = job.previousBySender ? static_cast<std::size_t>(senderIndex[v]) : v;
+      const float* src = job.glossyPrevious + at * stride;
       float* dst = &dense0[static_cast<std::size_t>(senderIndex[v]) * full];
       for (std::size_t q = 0; q < n2; ++q)
         for (std::size_t j = 0; j < n2; ++j) dst[q * n2 + j] = src[matrixEntryIndex(q, j, job.previousPacking)];
@@ -174,8 +174,8 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 
   parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
     Scratch& s = scratch[thread];
-    const HitBlock& rec = (*job.blocks)[block];
-    const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    const HitBlock& rec = job.blocks[block];
+    const std::size_t begin = (job.firstBlock + block) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
     const std::size_t blockVertices = end - begin;
     const std::size_t vertexDense = n2 * row3;
     std::fill(s.dense.begin(), s.dense.begin() + static_cast<std::ptrdiff_t>(blockVertices * vertexDense), 0.0f);
@@ -254,20 +254,22 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
       }
     }
     if (job.diffuseFromGlossy) {
-      std::memcpy(job.diffuseFromGlossy + begin * row3, s.diffuse.data(), blockVertices * row3 * sizeof(float));
+      std::memcpy(job.diffuseFromGlossy + (begin - rangeBegin) * row3, s.diffuse.data(), blockVertices * row3 * sizeof(float));
     }
     for (std::size_t v = begin; v < end; ++v) {
       const float* gathered = &s.dense[(v - begin) * vertexDense];
-      float* dst = job.interreflected + v * 3 * full;
+      float* dst = job.interreflected ? job.interreflected + (v - rangeBegin) * 3 * full : nullptr;
       float* keep = (job.glossyCurrent && senderIndex[v] >= 0)
                         ? job.glossyCurrent + static_cast<std::size_t>(senderIndex[v]) * 3 * full
                         : nullptr;
+      float* mine = job.bounceMatrices ? job.bounceMatrices + (v - rangeBegin) * 3 * full : nullptr;
       for (std::size_t c = 0; c < 3; ++c) {
         for (std::size_t i = 0; i < n2; ++i) {
           for (std::size_t j = 0; j < n2; ++j) {
             const float value = gathered[i * row3 + c * n2 + j];
-            dst[c * full + fullIndex[i * n2 + j]] += value;
+            if (dst) dst[c * full + fullIndex[i * n2 + j]] += value;
             if (keep) keep[c * full + i * n2 + j] = value;  // dense, for the next bounce
+            if (mine) mine[c * full + i * n2 + j] = value;
           }
         }
       }
@@ -275,10 +277,70 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
     const std::size_t d = done.fetch_add(end - begin) + (end - begin);
     if (job.options && job.options->progress) {
       std::lock_guard<std::mutex> lock(progressMutex);
-      job.options->progress({name.c_str(), d, vertexCount, 0});
+      job.options->progress({name.c_str(), d, rangeEnd - rangeBegin, 0});
     }
   });
   return {name, secondsSince(t0), 0};
+}
+
+GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
+                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                const std::vector<std::int32_t>* senderIndex) {
+  GlossyBounceJob job;
+  job.scene = &scene;
+  job.order = options.order;
+  job.bounce = bounce;
+  job.blocks = blocks;
+  job.dirs = &table.dirs;
+  job.sampleMajor = table.sampleMajor.data();
+  job.sampleWeight = static_cast<float>(table.dirs.weight);
+  job.diffusePrevious = diffusePrevious;
+  job.senderIndex = senderIndex;
+  job.threads = options.threads ? options.threads : defaultThreadCount();
+  job.options = &options;
+  return job;
+}
+
+std::vector<std::int32_t> glossySenderIndex(const Scene& scene, std::size_t* senders) {
+  std::vector<std::int32_t> index(scene.positions.size(), -1);
+  std::int32_t count = 0;
+  for (std::size_t v = 0; v < scene.specular.size() && v < index.size(); ++v) {
+    // A sender reflects glossily unless its Fresnel term is 0 at every angle (f0 = f90 = 0).
+    const Rgb f0 = scene.specular[v].f0;
+    if (f0.r > 0.0f || f0.g > 0.0f || f0.b > 0.0f || scene.specular[v].f90 > 0.0f) index[v] = count++;
+  }
+  *senders = static_cast<std::size_t>(count);
+  return index;
+}
+
+std::vector<float> expandShadowedMatrices(std::span<const float> shadowed, int order, MatrixPacking packing) {
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order));
+  const std::size_t entries = matrixEntryCount(order, packing), full = matrixEntryCount(order, MatrixPacking::kFull);
+  const std::size_t vertices = shadowed.size() / entries;
+  std::vector<float> out(vertices * 3 * full, 0.0f);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const float* src = &shadowed[v * entries];
+    float* dst = &out[v * 3 * full];
+    for (std::size_t i = 0; i < n2; ++i) {
+      for (std::size_t j = 0; j < n2; ++j) {
+        const float m = src[matrixEntryIndex(i, j, packing)];
+        for (std::size_t c = 0; c < 3; ++c) dst[c * full + matrixEntryIndex(i, j, MatrixPacking::kFull)] = m;
+      }
+    }
+  }
+  return out;
+}
+
+void addBounceMatrices(const float* bounce, std::size_t vertices, int order, float* interreflected) {
+  const std::size_t n2 = static_cast<std::size_t>(shCoeffCount(order)), full = n2 * n2;
+  const std::vector<std::uint32_t> fullIndex = packedIndexTable(static_cast<int>(n2), MatrixPacking::kFull);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const float* src = bounce + v * 3 * full;
+    float* dst = interreflected + v * 3 * full;
+    for (std::size_t c = 0; c < 3; ++c) {
+      for (std::size_t e = 0; e < full; ++e) dst[c * full + fullIndex[e]] += src[c * full + e];
+    }
+  }
 }
 
 }  // namespace prt::bake

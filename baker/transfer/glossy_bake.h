@@ -1,5 +1,6 @@
 // Glossy transfer matrices (docs/glossy.md; Fujita & Kanai 2004 §2.2, Sloan et al. 2002):
-// the kernels bakeTransfer runs when BakeOptions::glossy is set. Internal to prt_transfer.
+// the kernels bakeTransfer runs when BakeOptions::glossy is set. Private to prt_transfer and
+// the shard library (baker/shard), whose bounce shards and merges run the same kernels.
 //
 // Shadowed matrix, accumulated in the direct pass from the same rays (w = 4pi/N):
 //   distant  (M_x)_ij = w sum_{k visible, n.w_k > 0} y_i(w_k) y_j(w_k)
@@ -34,6 +35,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "prt/sampling.h"
@@ -76,7 +78,10 @@ struct GlossyBounceJob {
   const Scene* scene = nullptr;
   int order = 0;
   int bounce = 0;                                 // b >= 1
-  const std::vector<HitBlock>* blocks = nullptr;  // the direct pass's hits, kBlockVertices per block
+  std::span<const HitBlock> blocks;               // the direct pass's hits, kBlockVertices per block
+  // blocks[j] is the scene's block firstBlock + j: a sharded bake gathers one vertex range.
+  // Every per-vertex output below is indexed from that block's first vertex.
+  std::size_t firstBlock = 0;
   const DirectionSet* dirs = nullptr;             // the sample directions w_k
   const float* sampleMajor = nullptr;             // [sample][coefficient]
   float sampleWeight = 0.0f;                      // 4pi/N
@@ -87,8 +92,14 @@ struct GlossyBounceJob {
                                           // 1 channel, all vertices); b >= 2: [sender][channel][dense
                                           // row-major n2 x n2], as glossyCurrent
   MatrixPacking previousPacking = MatrixPacking::kFull;
+  // b = 1: glossyPrevious holds the senders' packed matrices only, indexed by sender (a
+  // sharded bake's merged pass keeps no others) instead of every vertex's.
+  bool previousBySender = false;
   float* glossyCurrent = nullptr;   // M^b at senders, [sender][channel][dense n2 x n2]; null: not kept
-  float* interreflected = nullptr;  // += M^b, [vertex][channel][full]
+  float* interreflected = nullptr;  // += M^b, [vertex][channel][full]; null: not summed here
+  // Written when non-null: M^b of the blocks' vertices, [vertex][channel][dense n2 x n2] (the
+  // layout of glossyCurrent): a sharded bake's bounce shard, summed into the series at the merge.
+  float* bounceMatrices = nullptr;
   // Written (not added to) when non-null: the glossy senders' radiance a diffuse receiver
   // gathers in its bounce b, sum_h Hit::weight * glossy part of row^{b-1}(q_h),
   // [vertex][channel][coefficient], albedo not applied.
@@ -97,8 +108,29 @@ struct GlossyBounceJob {
   const BakeOptions* options = nullptr;  // for progress
 };
 
-// Gathers bounce `job.bounce` for every vertex (deterministic whatever job.threads).
+struct SampleTable;
+
+// A job of bounce `bounce` over `blocks` with what every caller sets alike: the scene, order,
+// samples (`table`: directions, [sample][coefficient] basis, weight), B^{b-1}, the senders,
+// threads and progress from `options`. The caller adds the matrices it reads and writes.
+GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
+                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                const std::vector<std::int32_t>* senderIndex);
+
+// Gathers bounce `job.bounce` for the job's blocks (deterministic whatever job.threads).
 // Returns the stats entry "glossy bounce N".
 PassStats gatherGlossyBounce(const GlossyBounceJob& job);
+
+// Per vertex, its index among the glossy senders (f0 or f90 > 0: some Fresnel term), in
+// vertex order, else -1; *senders counts them.
+std::vector<std::int32_t> glossySenderIndex(const Scene& scene, std::size_t* senders);
+
+// The interreflected matrix series' start: every vertex's shadowed matrix (`packing`) in all
+// three channels, full packing ([vertex][channel][full]).
+std::vector<float> expandShadowedMatrices(std::span<const float> shadowed, int order, MatrixPacking packing);
+
+// interreflected ([vertex][channel][full]) += bounce ([vertex][channel][dense n2 x n2]) over
+// `vertices` vertices, element by element as gatherGlossyBounce adds M^b.
+void addBounceMatrices(const float* bounce, std::size_t vertices, int order, float* interreflected);
 
 }  // namespace prt::bake

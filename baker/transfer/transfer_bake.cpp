@@ -106,47 +106,21 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   std::vector<float> glossyPrevious, glossyCurrent, diffuseFromGlossy;
   if (glossyBounce) {
     diffuseFromGlossy.assign(vertexCount * stride, 0.0f);
-    out->glossyInterreflected.assign(vertexCount * 3 * fullEntries, 0.0f);
-    for (std::size_t v = 0; v < vertexCount; ++v) {
-      const float* src = &out->glossyShadowed[v * glossyEntries];
-      float* dst = &out->glossyInterreflected[v * 3 * fullEntries];
-      for (int i = 0; i < n2; ++i) {
-        for (int j = 0; j < n2; ++j) {
-          const float m = src[matrixEntryIndex(i, j, glossyPacking)];
-          for (int c = 0; c < 3; ++c) dst[c * fullEntries + matrixEntryIndex(i, j, MatrixPacking::kFull)] = m;
-        }
-      }
-    }
-    senderIndex.assign(vertexCount, -1);
-    std::int32_t senders = 0;
-    for (std::size_t v = 0; v < scene.specular.size(); ++v) {
-      // A sender reflects glossily unless its Fresnel term is 0 at every angle (f0 = f90 = 0).
-      const Rgb f0 = scene.specular[v].f0;
-      if (f0.r > 0.0f || f0.g > 0.0f || f0.b > 0.0f || scene.specular[v].f90 > 0.0f) senderIndex[v] = senders++;
-    }
-    if (o.glossyBounces > 1) glossyCurrent.assign(static_cast<std::size_t>(senders) * 3 * fullEntries, 0.0f);
+    out->glossyInterreflected = expandShadowedMatrices(out->glossyShadowed, o.order, glossyPacking);
+    std::size_t senders = 0;
+    senderIndex = glossySenderIndex(scene, &senders);
+    if (o.glossyBounces > 1) glossyCurrent.assign(senders * 3 * fullEntries, 0.0f);
   }
 
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
     const bool glossyThisBounce = glossyBounce && bounce <= o.glossyBounces;
     if (glossyThisBounce) {
-      GlossyBounceJob job;
-      job.scene = &scene;
-      job.order = o.order;
-      job.bounce = bounce;
-      job.blocks = &blocks;
-      job.dirs = &table.dirs;
-      job.sampleMajor = table.sampleMajor.data();
-      job.sampleWeight = static_cast<float>(table.dirs.weight);
-      job.diffusePrevious = previous.data();
-      job.senderIndex = &senderIndex;
+      GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, blocks, previous.data(), &senderIndex);
       job.glossyPrevious = bounce == 1 ? out->glossyShadowed.data() : glossyPrevious.data();
       job.previousPacking = glossyPacking;
       job.glossyCurrent = bounce < o.glossyBounces ? glossyCurrent.data() : nullptr;
       job.interreflected = out->glossyInterreflected.data();
       job.diffuseFromGlossy = diffuseFromGlossy.data();
-      job.threads = threads;
-      job.options = &o;
       out->passes.push_back(gatherGlossyBounce(job));
       out->glossyBounces = bounce;
       if (bounce < o.glossyBounces) std::swap(glossyPrevious, glossyCurrent);

@@ -6,10 +6,48 @@
 #include "baker/transfer/diffuse_bounce.h"
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/embree_scene.h"
+#include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
+namespace {
+
+// bakeTransfer's glossy gather of bounce b over the range's blocks (sizes checked here, the
+// hit records by the caller): M^b into *glossy.bounce, and what the diffuse receivers gather
+// from the glossy senders into *fromGlossy ([vertex of the range][channel][coefficient]).
+Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
+                         std::span<const HitBlock> blocks, std::span<const float> diffusePrevious,
+                         const GlossyRangeBounce& glossy, std::vector<float>* fromGlossy, PassStats* stats) {
+  const std::size_t vertexCount = scene.positions.size(), n2 = static_cast<std::size_t>(shCoeffCount(o.order));
+  const std::size_t begin = firstBlock * kBlockVertices;
+  const std::size_t end = std::min(vertexCount, (firstBlock + blocks.size()) * kBlockVertices);
+  const MatrixPacking packing = matrixPackingFor(TransferKind::kShadowed, o.lighting.model);
+  std::size_t senders = 0;
+  const std::vector<std::int32_t> senderIndex = glossySenderIndex(scene, &senders);
+  const std::size_t perSender = bounce == 1 ? matrixEntryCount(o.order, packing) : 3 * n2 * n2;
+  if (!o.glossy || bounce > o.glossyBounces || glossy.previous.size() != senders * perSender || !glossy.bounce) {
+    return Status::error(StatusCode::kInvalidArgument, "glossy bounce " + std::to_string(bounce) + ": the senders' matrices (" +
+                                                           std::to_string(glossy.previous.size()) + " floats) do not fit " +
+                                                           std::to_string(senders) + " senders of this bake");
+  }
+  useSingleThreadedBlas();
+  SampleTable table;
+  PRT_RETURN_IF_ERROR(makeSamples(o, &table));
+  fromGlossy->assign((end - begin) * 3 * n2, 0.0f);
+  glossy.bounce->assign((end - begin) * 3 * n2 * n2, 0.0f);
+  GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, blocks, diffusePrevious.data(), &senderIndex);
+  job.firstBlock = firstBlock;
+  job.glossyPrevious = glossy.previous.data();
+  job.previousPacking = packing;
+  job.previousBySender = true;
+  job.bounceMatrices = glossy.bounce->data();
+  job.diffuseFromGlossy = fromGlossy->data();
+  *stats = gatherGlossyBounce(job);
+  return Status::ok();
+}
+
+}  // namespace
 
 Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t begin, std::size_t end, DirectRange* out) {
   PRT_RETURN_IF_ERROR(checkOptions(scene, o));
@@ -19,7 +57,8 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
                                                            std::to_string(end) + ") is not a block-aligned range of the scene's " +
                                                            std::to_string(vertexCount) + " vertices");
   }
-  if (o.glossy) return Status::error(StatusCode::kInvalidArgument, "sharded bakes do not support glossy matrices yet");
+  // As bakeTransfer: the baker's threads split the vertices, and the kernel's bits stay fixed.
+  if (o.glossy) useSingleThreadedBlas();
   SampleTable table;
   PRT_RETURN_IF_ERROR(makeSamples(o, &table));
   EmbreeScene embree;
@@ -29,6 +68,8 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
   out->unshadowed.assign(count * n2, 0.0f);
   out->shadowed.assign(count * n2, 0.0f);
   out->blocks.clear();
+  const std::size_t glossyEntries = matrixEntryCount(o.order, matrixPackingFor(TransferKind::kShadowed, o.lighting.model));
+  out->glossyShadowed.assign(o.glossy ? count * glossyEntries : 0, 0.0f);
   const std::vector<Vec3> faceNormal = faceNormals(scene);
   std::vector<std::uint8_t> outside(count, 0);
   DirectPassJob job;
@@ -43,6 +84,8 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
   job.threads = o.threads ? o.threads : defaultThreadCount();
   job.unshadowed = out->unshadowed.data();
   job.shadowed = out->shadowed.data();
+  job.glossyShadowed = o.glossy ? out->glossyShadowed.data() : nullptr;
+  job.glossyEntries = glossyEntries;
   job.blocks = o.interreflection ? &out->blocks : nullptr;
   job.outside = outside.data();
   GlossyKernelStats unused;
@@ -53,8 +96,9 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
 }
 
 Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
-                         std::span<const HitBlock> blocks, std::span<const float> previous, std::vector<float>* current,
-                         std::vector<double>* blockEnergy, PassStats* stats) {
+                         std::span<const HitBlock> blocks, std::span<const float> previous,
+                         const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
+                         PassStats* stats) {
   const std::size_t vertexCount = scene.positions.size();
   const std::size_t stride = 3 * static_cast<std::size_t>(shCoeffCount(o.order));
   const std::size_t begin = firstBlock * kBlockVertices;
@@ -79,7 +123,16 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
                                                        std::to_string(triangles));
       }
     }
+    if (glossy && (b.hitSample.size() != b.hits.size() ||
+                   std::any_of(b.hitSample.begin(), b.hitSample.end(), [&](std::uint32_t k) { return k >= o.samples; }))) {
+      return Status::error(StatusCode::kCorrupt, "the hits' sample indices of block " + std::to_string(firstBlock + j) +
+                                                     " do not fit its hits or the " + std::to_string(o.samples) + " samples");
+    }
   }
+  const unsigned threads = o.threads ? o.threads : defaultThreadCount();
+  std::vector<float> fromGlossy;
+  PassStats glossyStats;
+  if (glossy) PRT_RETURN_IF_ERROR(gatherGlossyRange(scene, o, bounce, firstBlock, blocks, previous, *glossy, &fromGlossy, &glossyStats));
   const std::vector<double> vertexArea = vertexAreas(scene);
   current->assign((end - begin) * stride, 0.0f);
   blockEnergy->assign(blocks.size(), 0.0);
@@ -90,11 +143,13 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.firstBlock = firstBlock;
   job.blocks = blocks;
   job.previous = previous.data();
+  job.fromGlossy = glossy ? fromGlossy.data() : nullptr;
   job.vertexArea = vertexArea;
   job.current = current->data();
   job.blockEnergy = blockEnergy->data();
-  job.threads = o.threads ? o.threads : defaultThreadCount();
+  job.threads = threads;
   *stats = gatherDiffuseBounce(job);
+  stats->seconds += glossyStats.seconds;
   return Status::ok();
 }
 

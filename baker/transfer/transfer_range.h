@@ -20,24 +20,38 @@ namespace prt::bake {
 // The direct pass's outputs for vertices [begin, end).
 struct DirectRange {
   std::vector<float> unshadowed, shadowed;  // (end - begin) x order^2
+  // options.glossy: (end - begin) x matrixEntryCount(order, matrixPackingFor(kShadowed, model))
+  std::vector<float> glossyShadowed;
   std::vector<HitBlock> blocks;             // with interreflection: the range's blocks' front-face hits
   std::size_t verticesOutsideLight = 0;     // local lighting
   PassStats stats;
 };
 
-// Direct pass (unshadowed, shadowed, hit records when options.interreflection) over
-// vertices [begin, end) of `scene`, prepared as bakeAsset prepares it. kInvalidArgument
-// when begin is not a multiple of kBlockVertices, the range is empty or past the vertices,
-// or the options ask for glossy (sharded bakes do not split matrices yet).
+// Direct pass (unshadowed, shadowed, the glossy shadowed matrices with options.glossy, hit
+// records when options.interreflection) over vertices [begin, end) of `scene`, prepared as
+// bakeAsset prepares it (the glossy material split included). kInvalidArgument when begin is
+// not a multiple of kBlockVertices or the range is empty or past the vertices.
 Status bakeDirectRange(const Scene& scene, const BakeOptions& options, std::size_t begin, std::size_t end,
                        DirectRange* out);
 
+// The glossy part of a range's bounce b (options.glossy and b <= options.glossyBounces):
+// bakeTransfer's glossy gather, which runs before the diffuse one and feeds it.
+struct GlossyRangeBounce {
+  // M^{b-1} at every glossy sender, in glossySenderIndex order: for b = 1 the shadowed
+  // matrices (packing matrixPackingFor(kShadowed, model)), for b >= 2 [sender][channel][dense n2 x n2].
+  std::span<const float> previous;
+  std::vector<float>* bounce = nullptr;  // out: M^b of the range's vertices, [vertex][channel][dense n2 x n2]
+};
+
 // Bounce `bounce` (>= 1) over the blocks [firstBlock, firstBlock + blocks.size()) given
-// B^{bounce-1} of every vertex (`previous`): writes B^bounce of the range's vertices into
-// *current and each block's energy into *blockEnergy (summed in block order they are
-// bakeTransfer's bounce energy). kInvalidArgument on sizes that do not fit the scene.
+// B^{bounce-1} of every vertex (`previous`) and, when `glossy` is given, the glossy senders'
+// M^{bounce-1}: writes B^bounce of the range's vertices into *current (with the light the
+// glossy senders add, as bakeTransfer) and each block's energy into *blockEnergy (summed in
+// block order they are bakeTransfer's bounce energy). kInvalidArgument or kCorrupt on sizes
+// or hit records that do not fit the scene.
 Status gatherBounceRange(const Scene& scene, const BakeOptions& options, int bounce, std::size_t firstBlock,
                          std::span<const HitBlock> blocks, std::span<const float> previous,
-                         std::vector<float>* current, std::vector<double>* blockEnergy, PassStats* stats);
+                         const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
+                         PassStats* stats);
 
 }  // namespace prt::bake

@@ -1,6 +1,12 @@
 #include "prt/checksum.h"
 
 #include <array>
+#include <cstring>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <nmmintrin.h>
+#define PRT_CRC32C_SSE42 1
+#endif
 
 namespace prt {
 namespace {
@@ -28,9 +34,42 @@ constexpr Crc32cTables kTables = makeCrc32cTables();
 
 static_assert(kTables[0][1] == 0xF26B8303u, "CRC-32C table generation");
 
+#ifdef PRT_CRC32C_SSE42
+// SSE4.2's crc32 instruction computes this very CRC (same polynomial, reflected), several
+// times faster than the tables: the sharded bake's files are checked at hundreds of MB a
+// pass. Chosen at run time, so the build does not require the instruction.
+__attribute__((target("sse4.2"))) std::uint32_t crc32cHardware(const std::uint8_t* p, std::size_t n,
+                                                              std::uint32_t c) noexcept {
+  std::uint64_t c64 = c;
+  while (n >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);  // x86 is little-endian: the bytes in the order the CRC takes them
+    c64 = _mm_crc32_u64(c64, word);
+    p += 8;
+    n -= 8;
+  }
+  c = static_cast<std::uint32_t>(c64);
+  while (n > 0) {
+    c = _mm_crc32_u8(c, *p);
+    ++p;
+    --n;
+  }
+  return c;
+}
+
+const bool kHasSse42 = __builtin_cpu_supports("sse4.2");
+#endif
+
 }  // namespace
 
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes, std::uint32_t crc) noexcept {
+#ifdef PRT_CRC32C_SSE42
+  if (kHasSse42) return ~crc32cHardware(bytes.data(), bytes.size(), ~crc);
+#endif
+  return crc32cTables(bytes, crc);
+}
+
+std::uint32_t crc32cTables(std::span<const std::uint8_t> bytes, std::uint32_t crc) noexcept {
   std::uint32_t c = ~crc;
   const std::uint8_t* p = bytes.data();
   std::size_t n = bytes.size();

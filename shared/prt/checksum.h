@@ -14,6 +14,11 @@ namespace prt {
 // CRC-32C of `bytes` (reflected polynomial 0x82F63B78, initial value and final xor
 // 0xFFFFFFFF; crc32c of "123456789" is 0xE3069283). Pass the previous result as `crc` to
 // continue over data split into pieces: crc32c(b, crc32c(a)) == crc32c(a ++ b).
+// Uses the CPU's crc32 instruction where there is one (x86-64 with SSE4.2), else the tables.
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) noexcept;
+
+// The same by the slicing-by-8 tables alone, on any host: the reference the fast path is
+// tested against.
+std::uint32_t crc32cTables(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) noexcept;
 
 }  // namespace prt

@@ -34,26 +34,49 @@ expect_failure() {
   grep -qE -- "$pattern" err.txt || { cat err.txt >&2; fail "'$*': stderr does not match '$pattern'"; }
 }
 
+# identical_to_one_machine "OPTIONS" SHARDS...: for each shard count, plan, bake and merge
+# every pass, and compare with the one-machine bake of OPTIONS byte for byte.
+identical_to_one_machine() {
+  local options=$1 shards passes
+  shift
+  read -ra opts <<< "$options"
+  run --default -o one.prt "${opts[@]}"
+  for shards in "$@"; do
+    passes=$(run plan --default -o room.plan --shards "$shards" "${opts[@]}" --json | plan_passes)
+    [[ -n $passes ]] || fail "plan --json printed no passes"
+    bake_all room.plan sharded.prt "$shards" "$passes"
+    cmp one.prt sharded.prt || fail "options '$options', $shards shards: the merged asset differs from the one-machine bake"
+    if [[ $options == *--bounce-threshold* ]]; then
+      [[ $passes == 9 && -e room.plan.pass3.merged && ! -e room.plan.pass4.merged && ! -e room.plan.pass4.shard0 ]] ||
+        fail "the threshold bake did not end after bounce 3 of $passes planned passes"
+    fi
+    rm -f room.plan*
+    echo "ok: $options, $shards shards: identical"
+  done
+}
+
 case_identical() {
   # Exact bounce counts; the threshold rule (0.05 stops the room's series after 3 of the 8
   # planned bounces, so passes 4..8 have nothing to do); local lighting with a codec.
   local options
   for options in "${small[*]}" "--order 3 --samples 64 --bounces 0 --quiet" "--order 3 --samples 64 --bounce-threshold 0.05 --quiet" \
                  "--order 2 --samples 64 --bounces 1 --lighting local --compress q16 --passes shadowed,interreflected --quiet"; do
-    read -ra opts <<< "$options"
-    run --default -o one.prt "${opts[@]}"
-    for shards in 1 3 4; do
-      passes=$(run plan --default -o room.plan --shards "$shards" "${opts[@]}" --json | plan_passes)
-      [[ -n $passes ]] || fail "plan --json printed no passes"
-      bake_all room.plan sharded.prt "$shards" "$passes"
-      cmp one.prt sharded.prt || fail "options '$options', $shards shards: the merged asset differs from the one-machine bake"
-      if [[ $options == *--bounce-threshold* ]]; then
-        [[ $passes == 9 && -e room.plan.pass3.merged && ! -e room.plan.pass4.merged && ! -e room.plan.pass4.shard0 ]] ||
-          fail "the threshold bake did not end after bounce 3 of $passes planned passes"
-      fi
-      rm -f room.plan*
-      echo "ok: $options, $shards shards: identical"
-    done
+    identical_to_one_machine "$options" 1 3 4
+  done
+}
+
+case_glossy() {
+  # Glossy matrices (every vertex of the room is a glossy sender): two glossy bounces, so
+  # bounce 2 reads bounce 1's matrices from the merged pass; the threshold rule ending the
+  # series (after bounce 3) before the 4 glossy bounces asked for; local lighting (full
+  # packing) with a codec; no glossy bounce; the shadowed matrices alone (no interreflection).
+  local options
+  for options in "--order 3 --samples 64 --bounces 2 --glossy --glossy-bounces 2 --quiet" \
+                 "--order 2 --samples 64 --glossy --glossy-bounces 4 --bounce-threshold 0.05 --quiet" \
+                 "--order 2 --samples 64 --bounces 1 --glossy --lighting local --compress q16 --quiet" \
+                 "--order 3 --samples 64 --bounces 1 --glossy --glossy-bounces 0 --quiet" \
+                 "--order 3 --samples 64 --glossy --glossy-bounces 0 --passes unshadowed,shadowed --quiet"; do
+    identical_to_one_machine "$options" 1 2 3
   done
 }
 
@@ -123,7 +146,7 @@ case_usage() {
   expect_failure 2 "--shards '0' is out of range" "$bake" plan --default -o p.plan --shards 0
   expect_failure 4 "shard count 400 exceeds the scene's 320 blocks of 64 vertices" "$bake" plan --default -o p.plan --shards 400
   expect_failure 4 "sharded bakes do not support --texels yet" "$bake" plan --default -o p.plan --shards 2 --texels
-  expect_failure 4 "sharded bakes do not support --glossy yet" "$bake" plan --default -o p.plan --shards 2 --glossy
+  expect_failure 4 "sharded bakes do not support --texel-glossy yet" "$bake" plan --default -o p.plan --shards 2 --texels --texel-glossy
   expect_failure 2 "unknown option '--bogus'" "$bake" plan --default -o p.plan --shards 2 --bogus
   [[ ! -e p.plan ]] || fail "a refused plan was written"
   expect_failure 3 "no-such.plan" "$bake" bake-shard --plan no-such.plan --shard 0 --pass 0

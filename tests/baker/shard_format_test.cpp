@@ -97,20 +97,27 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   const DirectShard d = sampleDirect();
   const std::vector<std::uint8_t> payload = encodeDirectShard(d);
   DirectShard e;
-  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, &e).isOk());
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, true, &e).isOk());
   EXPECT_EQ(e.unshadowed, d.unshadowed);
   ASSERT_EQ(e.blocks.size(), 2u);
   EXPECT_EQ(e.blocks[0].hitStart, d.blocks[0].hitStart);
   EXPECT_EQ(e.blocks[1].hits[0].triangle, 9u);
   EXPECT_EQ(e.blocks[0].hits[1].v, 65535);
   // A triangle outside the scene.
-  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, &e).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, 0, 64, true, &e).code(), StatusCode::kCorrupt);
   // Another vertex count or order.
-  EXPECT_FALSE(decodeDirectShard(payload, 69, 4, 10, &e).isOk());
-  EXPECT_FALSE(decodeDirectShard(payload, 70, 9, 10, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(payload, 69, 4, 10, 0, 64, true, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 9, 10, 0, 64, true, &e).isOk());
   for (std::size_t n = 0; n < payload.size(); ++n) {
-    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, &e).isOk()) << "prefix of " << n << " bytes";
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, 0, 64, true, &e).isOk()) << "prefix of " << n << " bytes";
   }
+  // Without the hits (the merges): the transfer alone, the hit records' sizes still checked.
+  DirectShard f;
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, false, &f).isOk());
+  EXPECT_EQ(f.shadowed, d.shadowed);
+  EXPECT_TRUE(f.hasHits);
+  EXPECT_TRUE(f.blocks.empty());
+  EXPECT_FALSE(decodeDirectShard(std::span(payload).first(payload.size() - 1), 70, 4, 10, 0, 64, false, &f).isOk());
   // In a file, any flipped byte is caught by a checksum.
   ShardHeader h;
   h.planId = 7;
@@ -136,26 +143,86 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   b.blockEnergy = {1.0, 2.0};
   const std::vector<std::uint8_t> bp = encodeBounceShard(b);
   BounceShard c;
-  ASSERT_TRUE(decodeBounceShard(bp, 70, 4, &c).isOk());
+  ASSERT_TRUE(decodeBounceShard(bp, 70, 4, false, &c).isOk());
   EXPECT_EQ(c.blockEnergy, b.blockEnergy);
-  EXPECT_FALSE(decodeBounceShard(bp, 64, 4, &c).isOk());
-  EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, &c).isOk());
+  EXPECT_FALSE(decodeBounceShard(bp, 64, 4, false, &c).isOk());
+  EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, false, &c).isOk());
+  EXPECT_FALSE(decodeBounceShard(bp, 70, 4, true, &c).isOk());  // a glossy bounce's matrices are missing
 
   MergedPass m;
   m.final = true;
   m.energies = {3.0, 1.0};
   m.bounce.assign(70 * 12, 0.25f);
-  m.total.assign(70 * 12, 0.75f);
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
   MergedPass n;
-  ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, &n).isOk());
+  ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, 0, &n).isOk());
   EXPECT_TRUE(n.final);
-  EXPECT_EQ(n.total, m.total);
-  EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, &n).isOk());  // energies of another pass
-  EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, &n).isOk());
+  EXPECT_EQ(n.bounce, m.bounce);
+  EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, 0, &n).isOk());  // energies of another pass
+  EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, 0, &n).isOk());
+  EXPECT_FALSE(decodeMergedPass(mp, 1, 70, 4, 48, &n).isOk());  // glossy senders' matrices expected
   for (std::size_t len = 0; len < mp.size(); len += 97) {
-    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 1, 70, 4, &n).isOk()) << "prefix of " << len << " bytes";
+    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 1, 70, 4, 0, &n).isOk()) << "prefix of " << len << " bytes";
   }
+}
+
+// The glossy payloads (--glossy): a direct shard with shadowed matrices and each hit's sample
+// index, a glossy bounce's M^b, a merged pass with the senders' matrices. Every prefix,
+// every appended byte, and every wrong size the plan implies is refused.
+TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
+  DirectShard d = sampleDirect();
+  d.glossy = true;
+  d.glossyShadowed.assign(70 * 10, 0.5f);  // order 2, symmetric packing: 10 entries
+  d.blocks[0].hitSample = {3, 63};
+  d.blocks[1].hitSample = {0};
+  const std::vector<std::uint8_t> payload = encodeDirectShard(d);
+  DirectShard e;
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 10, 64, true, &e).isOk());
+  EXPECT_TRUE(e.glossy);
+  EXPECT_EQ(e.glossyShadowed, d.glossyShadowed);
+  EXPECT_EQ(e.blocks[0].hitSample, d.blocks[0].hitSample);
+  EXPECT_EQ(e.blocks[1].hitSample, d.blocks[1].hitSample);
+  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 10, 10, 63, true, &e).code(), StatusCode::kCorrupt);  // sample 63 of 63
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 10, 16, 64, true, &e).isOk());  // another packing
+  for (std::size_t n = 0; n < payload.size(); ++n) {
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, 10, 64, true, &e).isOk()) << "prefix of " << n << " bytes";
+  }
+  std::vector<std::uint8_t> longer = payload;
+  longer.push_back(0);
+  EXPECT_FALSE(decodeDirectShard(longer, 70, 4, 10, 10, 64, true, &e).isOk());
+  std::vector<std::uint8_t> flags = payload;
+  flags[0] |= 4;  // a flag this format does not have
+  EXPECT_EQ(decodeDirectShard(flags, 70, 4, 10, 10, 64, true, &e).code(), StatusCode::kCorrupt);
+
+  BounceShard b;
+  b.bounce.assign(70 * 12, 0.5f);
+  b.blockEnergy = {1.0, 2.0};
+  b.matrices.assign(70 * 3 * 16, 0.125f);
+  const std::vector<std::uint8_t> bp = encodeBounceShard(b);
+  BounceShard c;
+  ASSERT_TRUE(decodeBounceShard(bp, 70, 4, true, &c).isOk());
+  EXPECT_EQ(c.matrices, b.matrices);
+  EXPECT_FALSE(decodeBounceShard(bp, 70, 4, false, &c).isOk());  // matrices where none belong
+  for (std::size_t n = 0; n < bp.size(); n += 13) {
+    EXPECT_FALSE(decodeBounceShard(std::span(bp).first(n), 70, 4, true, &c).isOk()) << "prefix of " << n << " bytes";
+  }
+
+  MergedPass m;
+  m.energies = {3.0};
+  m.bounce.assign(70 * 12, 0.25f);
+  m.senderMatrices.assign(5 * 10, 2.0f);
+  const std::vector<std::uint8_t> mp = encodeMergedPass(m);
+  MergedPass n;
+  ASSERT_TRUE(decodeMergedPass(mp, 0, 70, 4, 50, &n).isOk());
+  EXPECT_EQ(n.senderMatrices, m.senderMatrices);
+  EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 0, &n).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 60, &n).code(), StatusCode::kCorrupt);
+  for (std::size_t len = 0; len < mp.size(); len += 29) {
+    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 0, 70, 4, 50, &n).isOk()) << "prefix of " << len << " bytes";
+  }
+  std::vector<std::uint8_t> padded = mp;
+  padded.push_back(0);
+  EXPECT_FALSE(decodeMergedPass(padded, 0, 70, 4, 50, &n).isOk());
 }
 
 }  // namespace

@@ -1,0 +1,44 @@
+// CRC-32C (prt/checksum.h): the standard check value, and the fast path (the CPU's crc32
+// instruction where there is one) equal to the table reference at every length and
+// alignment, continued over pieces as one.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "prt/checksum.h"
+
+namespace prt {
+namespace {
+
+std::span<const std::uint8_t> bytesOf(std::string_view s) {
+  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
+}
+
+TEST(Crc32c, CheckValue) {
+  EXPECT_EQ(crc32c(bytesOf("123456789")), 0xE3069283u);
+  EXPECT_EQ(crc32cTables(bytesOf("123456789")), 0xE3069283u);
+  EXPECT_EQ(crc32c({}), 0u);
+}
+
+TEST(Crc32c, FastPathEqualsTablesAtEveryLengthAndAlignment) {
+  std::vector<std::uint8_t> data(4096 + 16);
+  std::uint32_t x = 12345;
+  for (std::uint8_t& b : data) {
+    x = x * 1664525u + 1013904223u;
+    b = static_cast<std::uint8_t>(x >> 24);
+  }
+  for (std::size_t offset = 0; offset < 8; ++offset) {
+    for (std::size_t n = 0; n <= 300; ++n) {
+      const std::span<const std::uint8_t> s(data.data() + offset, n);
+      ASSERT_EQ(crc32c(s), crc32cTables(s)) << "offset " << offset << ", " << n << " bytes";
+    }
+  }
+  const std::span<const std::uint8_t> all(data.data(), 4096);
+  EXPECT_EQ(crc32c(all), crc32cTables(all));
+  EXPECT_EQ(crc32c(all.subspan(1000), crc32c(all.first(1000))), crc32c(all));
+}
+
+}  // namespace
+}  // namespace prt
