@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "prt-gpu-frames: %s\n", e.c_str());
     return 1;
   }
-  app.setBackground(false);
+  app.setBackgroundMode(prt::web::BackgroundMode::kNone);  // as the page's benchmarks: background off
   if (!app.hasPass(o.mode)) {
     std::fprintf(stderr, "prt-gpu-frames: '%s' has no vertex pass of the chosen --mode\n", o.asset.c_str());
     return 1;
