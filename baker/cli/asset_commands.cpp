@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <string>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "baker/cli/report_failure.h"
 #include "baker/cli/shade_texels.h"
+#include "baker/scene/uv_atlas_check.h"
 #include "baker/texture/asset_texels.h"
 #include "native/cli_args.h"
 #include "native/exit_status.h"
@@ -75,25 +77,38 @@ std::string infoAtlasesLine(const std::vector<TextureAtlas>& atlases, std::uint6
   return s + "\n";
 }
 
-// Per atlas, its texels' coverage counts: sampled (1) and filled by dilation (2).
+// Per atlas, its texels' coverage counts: sampled (1) and filled by dilation (2), and its charts.
 struct AtlasUsage {
   std::uint64_t sampled = 0, dilated = 0;
+  std::size_t charts = 0;
 };
-std::vector<AtlasUsage> atlasUsage(const BakedAsset& a) {
-  std::vector<AtlasUsage> out(a.atlases.size());
+// `a` holds the atlas sections (decodeAssetAtlases); the charts come from the geometry of `file`.
+Status atlasUsage(std::span<const std::uint8_t> file, const BakedAsset& a, std::vector<AtlasUsage>* out) {
+  out->assign(a.atlases.size(), {});
+  if (a.atlases.empty()) return Status::ok();
   std::uint64_t first = 0;
   for (std::size_t i = 0; i < a.atlases.size(); ++i) {
     const std::uint64_t n = std::uint64_t{a.atlases[i].width} * a.atlases[i].height;
     for (std::uint64_t t = first; t < first + n && t < a.texelCoverage.size(); ++t) {
-      out[i].sampled += a.texelCoverage[t] == 1;
-      out[i].dilated += a.texelCoverage[t] == 2;
+      (*out)[i].sampled += a.texelCoverage[t] == 1;
+      (*out)[i].dilated += a.texelCoverage[t] == 2;
     }
     first += n;
   }
-  return out;
+  BakedAsset geometry;
+  if (Status s = decodeAssetGeometry(file, &geometry); !s.isOk()) return s;
+  std::vector<bake::Uv> uvs(a.atlasUv.size() / 2);
+  for (std::size_t v = 0; v < uvs.size(); ++v) uvs[v] = {a.atlasUv[2 * v], a.atlasUv[2 * v + 1]};
+  for (std::size_t i = 0; i < a.atlases.size(); ++i) {
+    const std::span<const std::uint32_t> indices(geometry.indices);
+    const std::size_t begin = 3 * std::size_t{a.atlases[i].firstTriangle}, count = 3 * std::size_t{a.atlases[i].triangleCount};
+    if (begin + count > indices.size()) return Status::error(StatusCode::kCorrupt, "an atlas covers triangles past the mesh");
+    if (Status s = bake::countUvCharts(geometry.positions, indices.subspan(begin, count), uvs, &(*out)[i].charts); !s.isOk()) return s;
+  }
+  return Status::ok();
 }
 
-// One line per atlas: "atlas 1: 64x64, triangles 12-23 (12), 812 texels sampled (19.8%), 301 dilated".
+// One line per atlas: "atlas 1: 64x64, triangles 12-23 (12), 3 charts, 812 texels sampled (19.8%), 301 dilated".
 std::string infoAtlasLines(const std::vector<TextureAtlas>& atlases, const std::vector<AtlasUsage>& usage) {
   std::string s;
   for (std::size_t i = 0; i < atlases.size(); ++i) {
@@ -103,7 +118,8 @@ std::string infoAtlasLines(const std::vector<TextureAtlas>& atlases, const std::
     std::snprintf(pct, sizeof pct, "%.1f%%", 100.0 * static_cast<double>(usage[i].sampled) / texels);
     s += "atlas " + std::to_string(i) + ": " + std::to_string(a.width) + "x" + std::to_string(a.height) + ", triangles " +
          std::to_string(a.firstTriangle) + "-" + std::to_string(std::uint64_t{a.firstTriangle} + a.triangleCount - 1) + " (" +
-         std::to_string(a.triangleCount) + "), " + std::to_string(usage[i].sampled) + " texels sampled (" + pct + "), " +
+         std::to_string(a.triangleCount) + "), " + std::to_string(usage[i].charts) + (usage[i].charts == 1 ? " chart, " : " charts, ") +
+         std::to_string(usage[i].sampled) + " texels sampled (" + pct + "), " +
          std::to_string(usage[i].dilated) + " dilated\n";
   }
   return s;
@@ -205,7 +221,8 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   }
   const std::uint64_t texels = assetTexelCount(atlases);
-  const std::vector<AtlasUsage> usage = atlasUsage(atlases);
+  std::vector<AtlasUsage> usage;
+  if (Status s = atlasUsage(bytes, atlases, &usage); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   if (p.has("--json")) {
     std::string s = "{\n  \"file\": " + jsonString(path) + ",\n  \"bytes\": " + std::to_string(bytes.size()) + ",\n";
     s += "  \"version\": \"" + std::to_string(sum.versionMajor) + "." + std::to_string(sum.versionMinor) + "\",\n";
@@ -235,7 +252,7 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "],\n  \"texels\": " + std::to_string(texels) + ",\n  \"atlases\": " + infoAtlasesJson(atlases.atlases) +
          ",\n  \"atlas_usage\": [";
     for (std::size_t i = 0; i < usage.size(); ++i) {
-      s += std::string(i ? ", " : "") + "{\"sampled\": " + std::to_string(usage[i].sampled) +
+      s += std::string(i ? ", " : "") + "{\"charts\": " + std::to_string(usage[i].charts) + ", \"sampled\": " + std::to_string(usage[i].sampled) +
            ", \"dilated\": " + std::to_string(usage[i].dilated) + "}";
     }
     s += "],\n  \"texel_normals\": ";

@@ -437,4 +437,16 @@ Status checkUvAtlas(std::span<const Vec3> positions, std::span<const std::uint32
   return Status::ok();
 }
 
+Status countUvCharts(std::span<const Vec3> positions, std::span<const std::uint32_t> indices, std::span<const Uv> uvs,
+                     std::size_t* charts) {
+  if (uvs.size() != positions.size() || indices.size() % 3 != 0) {
+    return Status::error(StatusCode::kInvalidArgument, "countUvCharts: one UV per position, 3 indices per triangle");
+  }
+  for (std::uint32_t i : indices) {
+    if (i >= positions.size()) return Status::error(StatusCode::kInvalidArgument, "countUvCharts: an index is out of range");
+  }
+  (void)chartsOf(positions, indices, uvs, charts);
+  return Status::ok();
+}
+
 }  // namespace prt::bake

@@ -70,4 +70,10 @@ Status checkUvAtlas(std::span<const Vec3> positions, std::span<const std::uint32
                     std::span<const Uv> uvs, const UvAtlasTarget& target, std::string_view setName,
                     UvAtlasReport* out);
 
+// Charts of the triangles `indices` (3 per triangle) over `uvs` (one per position): triangles
+// sharing an edge whose two corners agree in position and in UV are one chart (the count the
+// report above gives). Indices must be < positions.size() == uvs.size() (kInvalidArgument else).
+Status countUvCharts(std::span<const Vec3> positions, std::span<const std::uint32_t> indices, std::span<const Uv> uvs,
+                     std::size_t* charts);
+
 }  // namespace prt::bake

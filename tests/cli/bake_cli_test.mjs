@@ -84,6 +84,9 @@ const cases = {
     const atlasLine = `atlases: ${a.length}, ${wrote.texels} texels: ` +
                       a.map((t) => `${t.width}x${t.height} (triangles ${t.firstTriangle}-${t.firstTriangle + t.triangleCount - 1})`).join(', ');
     check(text.includes(atlasLine + '\n'), `atlases line: expected '${atlasLine}' in ${text}`);
+    // The generator's strip is connected within each atlas: one chart each.
+    check(JSON.stringify(info?.atlas_usage?.map((u) => u.charts)) === '[1,1]', `charts per atlas: ${JSON.stringify(info?.atlas_usage)}`);
+    check(/^atlas 1: 3x2, triangles 5-7 \(3\), 1 chart, /m.test(text), `atlas 1 line: ${text}`);
     // Damage in a texel pass (the last section) is reported as damage.
     const bytes = fs.readFileSync(out);
     const damaged = work('texel-damaged.prt');
@@ -175,6 +178,13 @@ const cases = {
       check(stats.texels?.sampled > 100000 && stats.texels.sampled < 512 * 512, `sampled texels: ${stats.texels?.sampled}`);
       check(stats.texels?.charts === 16, `charts: ${stats.texels?.charts}`);
     }
+    // `info` counts the charts again from the asset's own geometry and atlas UVs (split at the
+    // seams): the same 16, in its JSON and in its atlas line.
+    const described = json(expectExit(['info', out, '--json'], 0));
+    check(described?.atlas_usage?.length === 1 && described.atlas_usage[0].charts === 16,
+          `info charts: ${JSON.stringify(described?.atlas_usage)}`);
+    check(/^atlas 0: 512x512, triangles \d+-\d+ \(\d+\), 16 charts, \d+ texels sampled/m.test(expectExit(['info', out], 0).stdout),
+          'info atlas line with 16 charts');
     const shade = (pass) => json(expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', pass, '--json'], 0));
     const s = shade('shadowed'), i = shade('interreflected'), u = shade('unshadowed');
     if (!s || !i || !u) return;
