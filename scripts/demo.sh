@@ -7,8 +7,9 @@
 # them with prt-serve on 127.0.0.1. Open the printed URL. The catalogue lists files by path,
 # so default-room-glossy.prt comes first and the page, which opens the first usable scene,
 # shows it first.
-# PORT=8080 by default; PRT_DEMO_SAMPLES (default 1024) trades bake time for noise;
-# PRT_DEMO_COMPRESS picks the transfer codec setting (f32 for none).
+# PORT=8080 by default; PRT_DEMO_SAMPLES (default 4096) trades bake time for noise;
+# PRT_DEMO_COMPRESS picks the transfer codec setting (f32 for none); defaults and why:
+# scripts/demo_bake_settings.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -29,14 +30,15 @@ bake_room() {
   shift 2
   if [[ ! -f $asset || $bake -nt $asset ]]; then
     echo "=== baking the built-in room scene, $what (Embree: unshadowed, shadowed, interreflected)"
-    "$bake" --default -o "$asset" --samples "${PRT_DEMO_SAMPLES:-1024}" "$@"
+    "$bake" --default -o "$asset" --samples "$demo_samples" "$@"
   else
     echo "=== $asset is up to date"
   fi
 }
-# Transfer stored with the codec's CPCA at 1.5% relative error: about 13 bytes per vertex
-# after zstd against 213 for float32, above 40 dB radiance PSNR (docs/transfer-codec.md).
-compress=${PRT_DEMO_COMPRESS:-cpca8@0.015}
+# Samples and codec setting (scripts/demo_bake_settings.sh): 4096 directions and the codec's
+# CPCA at 0.5% relative error, so neither Monte Carlo noise nor clusters show as patches.
+source scripts/demo_bake_settings.sh
+compress=$demo_compress
 bake_room "$root/default-room-glossy.prt" "glossy (shadowed and interreflected matrices)" --glossy \
   --name default-room-glossy --compress "$compress"
 bake_room "$root/default-room.prt" "distant lighting" --compress "$compress"

@@ -74,3 +74,14 @@ add_test(NAME bake_cli_texel_info
          COMMAND ${PRT_NODE} ${CMAKE_CURRENT_LIST_DIR}/bake_cli_test.mjs texel_info $<TARGET_FILE:prt-bake>
                  ${CMAKE_CURRENT_BINARY_DIR}/bake_cli_work/texel_info $<TARGET_FILE:prt_cli_make_texel_asset>)
 set_tests_properties(bake_cli_texel_info PROPERTIES TIMEOUT 120)
+
+# The demo's bake (scripts/demo_bake_settings.sh) against an 8192-sample bake of the room: RMS
+# and patch error bounds (demo_quality_test.mjs). Not under the sanitizers: it measures the
+# bake's output, and the bakes it runs are the bake tests' code paths (about 20x slower there).
+if(NOT PRT_SANITIZE)
+  add_test(NAME demo_bake_quality
+           COMMAND ${PRT_NODE} ${CMAKE_CURRENT_LIST_DIR}/demo_quality_test.mjs $<TARGET_FILE:prt-bake>
+                   ${PROJECT_SOURCE_DIR}/scripts/demo_bake_settings.sh ${PRT_BLENDER_WORLD_DIR}
+                   ${CMAKE_CURRENT_BINARY_DIR}/demo_quality_work)
+  set_tests_properties(demo_bake_quality PROPERTIES TIMEOUT 900)
+endif()
