@@ -837,7 +837,7 @@ print(json.dumps(walk(root)))
     const used = (info?.atlas_usage ?? []).map((u) => u.sampled);
     check(used.length === 3 && used.every((n, i) => n === atlases[i]?.sampled && n > 0), `atlas usage ${JSON.stringify(info?.atlas_usage)} vs ${JSON.stringify(atlases)}`);
     const text = expectExit(['info', out], 0).stdout;
-    check(/^atlas 0: 32x32, triangles 0-1 \(2\), \d+ texels sampled/m.test(text) && /^atlas 2: 96x96, triangles 4-5 \(2\)/m.test(text), `info text: ${text}`);
+    check(/^atlas 0: 32x32, triangles 0-1 \(2\), 1 chart, \d+ texels sampled/m.test(text) && /^atlas 2: 96x96, triangles 4-5 \(2\)/m.test(text), `info text: ${text}`);
     const s = json(expectExit(['shade', out, '--texels', '--light', 'constant', '--pass', 'shadowed', '--json'], 0));
     if (!s) return;
     check(s.texels.length === stats?.texels?.sampled, `shade printed ${s.texels.length} of ${stats?.texels?.sampled} texels`);
