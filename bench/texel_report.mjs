@@ -83,8 +83,9 @@ if (frame) {
 } else {
   md += `## Frame time\n\nNot measured in this run (the page benchmark did not complete).\n\n`;
 }
-md += `## Not measured yet\n\n`;
-md += `- Quality at equal bytes against a brute-force reference on a low-poly scene.\n`;
+md += `## Quality at equal bytes\n\n`;
+md += 'Measured by its own script against a closed form on a low-poly scene: `scripts/bench-texel-quality.sh`, ' +
+      '[texel-quality.md](texel-quality.md).\n';
 
 fs.writeFileSync(outMd, md);
 fs.writeFileSync(outJson, JSON.stringify({ date, machine, bake_command: bakeCommand, bake: { rows: bakeRows, texel_seconds_per_million: texelSecondsPerMillion,
