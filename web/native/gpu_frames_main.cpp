@@ -271,7 +271,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  const double diffuse = best[1];
+  const auto diffuseRow = std::find_if(settings.begin(), settings.end(), [](const Setting& s) { return s.name == "diffuse PRT"; });
+  const double diffuse = best[static_cast<std::size_t>(diffuseRow - settings.begin())];
   std::ostringstream json;
   json << "{\n  \"renderer\": " << jsonString(glString(GL_RENDERER)) << ",\n  \"version\": "
        << jsonString(glString(GL_VERSION)) << ",\n  \"asset\": " << jsonString(o.asset) << ",\n  \"vertices\": "

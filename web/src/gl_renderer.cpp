@@ -422,15 +422,15 @@ void GlRenderer::makeGeometry(const BakedAsset& asset) {
 Status GlRenderer::uploadGeometry(const BakedAsset& asset) {
   release();
   makeGeometry(asset);
-  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
-    release();
-    return s;
-  }
-  if (Status s = texels_.setShadingNormals(asset.texelNormals, asset.texelCoverage); !s.isOk()) {
-    release();
-    return s;
-  }
-  return Status::ok();
+  return finishGeometry(asset);
+}
+
+Status GlRenderer::finishGeometry(const BakedAsset& asset) {
+  Status s = glErrorStatus("this scene", "uploading the scene");
+  // The glossy term's shading normals come with the geometry (the page fetches them with it).
+  if (s.isOk()) s = texels_.setShadingNormals(asset.texelNormals, asset.texelCoverage);
+  if (!s.isOk()) release();
+  return s;
 }
 
 Status GlRenderer::uploadPass(const TransferPass& pass, int order) {
@@ -483,16 +483,7 @@ Status GlRenderer::upload(const BakedAsset& asset) {
     if (t.texels.empty()) continue;
     setPassTexture(k, t, asset.shOrder);
   }
-  if (Status s = glErrorStatus("this scene", "uploading the scene"); !s.isOk()) {
-    release();
-    return s;
-  }
-  // The glossy term's shading normals come with the geometry (the page fetches them with it).
-  if (Status s = texels_.setShadingNormals(asset.texelNormals, asset.texelCoverage); !s.isOk()) {
-    release();
-    return s;
-  }
-  return Status::ok();
+  return finishGeometry(asset);
 }
 
 bool GlRenderer::hasPass(ShadingMode mode) const {

@@ -205,6 +205,9 @@ class GlRenderer {
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
+  // After makeGeometry (and any pass textures): the GL error check, then the texel shading
+  // normals, which come with the geometry. On failure everything is released.
+  Status finishGeometry(const BakedAsset& asset);
   // Replaces the texture of pass `kind` with `t` (packed at `order`), dropping a CPCA form.
   void setPassTexture(std::size_t kind, const TransferTexture& t, int order);
   static void releasePass(PassTexture* p);
