@@ -6,6 +6,10 @@
 //   L_c = k_s,c sum_i (g_l(i) T_c,i) y_i(R),   k_s = Schlick(f0, f90, n.v)
 // as prt::glossyExitRadiance (prt/glossy_radiance.h). One point per vertex, rasteriser off,
 // captured by transform feedback; glossyRadianceCpu (web/src/glossy_texture.cpp) emulates it.
+//
+// The renderer links this program per displayed band count and defines BANDS (1 .. 8) after
+// the version line, so the SH recurrence, the band scales and the sum are written out below
+// with constant indices (see glossy_transfer.vert for why: no loop-indexed local arrays).
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -20,7 +24,6 @@ uniform int uTextureMask;     // the textures' width - 1 (a power of two)
 uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uRowTexels;       // ceil(packed bands^2 / 4)
 uniform int uVertices;
-uniform int uBands;           // displayed bands (<= 8)
 uniform int uFresnel;         // 0: k_s = f0
 uniform vec3 uEye;            // world space
 // Real SH by Lisle & Huang's recurrence, constants as prt/sh_basis.cpp (glossy_texture.h).
@@ -31,48 +34,27 @@ uniform vec4 uShB[16];
 
 out vec3 vGlossy;
 
-float y[64];
+#define ROWS (BANDS * BANDS)
+#define TEXELS ((ROWS + 3) / 4)
+// SH index of band l, order m; the recurrence's constants of an index.
+#define IDX(l, m) ((l) * ((l) + 1) + (m))
+#define SHA(i) uShA[(i) >> 2][(i) & 3]
+#define SHB(i) uShB[(i) >> 2][(i) & 3]
+// Band l's entry m with |m| <= l - 2, from bands l - 1 and l - 2.
+#define MID(l, m) y[IDX(l, m)] = SHA(IDX(l, m)) * r.z * y[IDX((l) - 1, m)] - SHB(IDX(l, m)) * y[IDX((l) - 2, m)];
+// Band l's entries m = +-(l - 1) and +-l, from band l - 1.
+#define EDGES(l) y[IDX(l, 1 - (l))] = SHA(IDX(l, 1 - (l))) * r.z * y[IDX((l) - 1, 1 - (l))]; y[IDX(l, (l) - 1)] = SHA(IDX(l, (l) - 1)) * r.z * y[IDX((l) - 1, (l) - 1)]; y[IDX(l, l)] = SHA(IDX(l, l)) * (r.x * y[IDX((l) - 1, (l) - 1)] - r.y * y[IDX((l) - 1, 1 - (l))]); y[IDX(l, -(l))] = SHA(IDX(l, l)) * (r.y * y[IDX((l) - 1, (l) - 1)] + r.x * y[IDX((l) - 1, 1 - (l))]);
+// Phong band scales g_l(s) = (s+1) I_l by prt/glossy_lobe.cpp's recurrence (even and odd l
+// each from l - 2), in float.
+#define SCALE(l, prev) prev = prev * (s - float(l) + 2.0) / (s + float(l) + 1.0); g[l] = (s + 1.0) * prev;
+// Entry i of g_l(i) y_i(R), zero from ROWS on (kBand: the band of an index).
+#define GY(i) ((i) < ROWS ? g[kBand[i]] * y[i] : 0.0)
+#define GY_TEXEL(t) if ((t) < TEXELS) gy[t] = vec4(GY(4 * (t)), GY(4 * (t) + 1), GY(4 * (t) + 2), GY(4 * (t) + 3));
+#define SUM(t) if ((t) < TEXELS) sum += dot(transferTexel(base + (t)), gy[t]);
 
-float shA(int i) { return uShA[i >> 2][i & 3]; }
-float shB(int i) { return uShB[i >> 2][i & 3]; }
-
-void shBasis(int order, vec3 d) {
-  y[0] = uShY00;
-  if (order == 1) return;
-  y[1] = uShK1 * d.y;
-  y[2] = uShK1 * d.z;
-  y[3] = uShK1 * d.x;
-  for (int l = 2; l < order; ++l) {
-    int base = l * (l + 1), base1 = (l - 1) * l, base2 = (l - 2) * (l - 1);
-    for (int m = -(l - 2); m <= l - 2; ++m) y[base + m] = shA(base + m) * d.z * y[base1 + m] - shB(base + m) * y[base2 + m];
-    y[base - (l - 1)] = shA(base - (l - 1)) * d.z * y[base1 - (l - 1)];
-    y[base + (l - 1)] = shA(base + (l - 1)) * d.z * y[base1 + (l - 1)];
-    float sp = y[base1 + (l - 1)], sn = y[base1 - (l - 1)];
-    float c = shA(base + l);
-    y[base + l] = c * (d.x * sp - d.y * sn);
-    y[base - l] = c * (d.y * sp + d.x * sn);
-  }
-}
-
-// Phong band scales g_l(s) = (s+1) I_l (prt/glossy_lobe.cpp's recurrence, in float).
-void phongBandScales(int bands, float s, out float g[8]) {
-  float evenPrev = 1.0 / (s + 1.0), oddPrev = 1.0 / (s + 2.0);
-  for (int l = 0; l < bands; ++l) {
-    float value;
-    if (l == 0) {
-      value = evenPrev;
-    } else if (l == 1) {
-      value = oddPrev;
-    } else if (l % 2 == 0) {
-      evenPrev = evenPrev * (s - float(l) + 2.0) / (s + float(l) + 1.0);
-      value = evenPrev;
-    } else {
-      oddPrev = oddPrev * (s - float(l) + 2.0) / (s + float(l) + 1.0);
-      value = oddPrev;
-    }
-    g[l] = (s + 1.0) * value;
-  }
-}
+const int kBand[64] = int[64](0, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4,
+                              5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6, 6,
+                              7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7);
 
 // Schlick's k_s = f0 + (f90 - f0)(1 - max(0, n.v))^5 (prt::schlickFresnel); f0 alone when off.
 vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on) {
@@ -100,23 +82,69 @@ void main() {
   vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
   float rl = length(r);
   r = rl > 0.0 ? r * (1.0 / rl) : n;
-  shBasis(uBands, r);
+
+  // y_i(R), bands 0 .. BANDS - 1 (Lisle & Huang, as prt/sh_basis.cpp).
+  float y[64];
+  y[0] = uShY00;
+#if BANDS > 1
+  y[1] = uShK1 * r.y;
+  y[2] = uShK1 * r.z;
+  y[3] = uShK1 * r.x;
+#endif
+#if BANDS > 2
+  MID(2, 0) EDGES(2)
+#endif
+#if BANDS > 3
+  MID(3, -1) MID(3, 0) MID(3, 1) EDGES(3)
+#endif
+#if BANDS > 4
+  MID(4, -2) MID(4, -1) MID(4, 0) MID(4, 1) MID(4, 2) EDGES(4)
+#endif
+#if BANDS > 5
+  MID(5, -3) MID(5, -2) MID(5, -1) MID(5, 0) MID(5, 1) MID(5, 2) MID(5, 3) EDGES(5)
+#endif
+#if BANDS > 6
+  MID(6, -4) MID(6, -3) MID(6, -2) MID(6, -1) MID(6, 0) MID(6, 1) MID(6, 2) MID(6, 3) MID(6, 4) EDGES(6)
+#endif
+#if BANDS > 7
+  MID(7, -5) MID(7, -4) MID(7, -3) MID(7, -2) MID(7, -1) MID(7, 0) MID(7, 1) MID(7, 2) MID(7, 3) MID(7, 4) MID(7, 5) EDGES(7)
+#endif
+
   float g[8];
-  phongBandScales(uBands, aSpecular.w, g);
-  vec3 ks = schlick(aSpecular.rgb, aSpecularF90, dot(n, toEye), uFresnel == 1);
-  int rows = uBands * uBands, activeTexels = (rows + 3) / 4;
-  // The lobe's band scales folded into the basis once: gy_i = g_l(i) y_i(R), zero from rows on.
+  float s = aSpecular.w;
+  float even = 1.0 / (s + 1.0), odd = 1.0 / (s + 2.0);
+  g[0] = (s + 1.0) * even;
+#if BANDS > 1
+  g[1] = (s + 1.0) * odd;
+#endif
+#if BANDS > 2
+  SCALE(2, even)
+#endif
+#if BANDS > 3
+  SCALE(3, odd)
+#endif
+#if BANDS > 4
+  SCALE(4, even)
+#endif
+#if BANDS > 5
+  SCALE(5, odd)
+#endif
+#if BANDS > 6
+  SCALE(6, even)
+#endif
+#if BANDS > 7
+  SCALE(7, odd)
+#endif
+
+  // The lobe's band scales folded into the basis once: gy_i = g_l(i) y_i(R), zero from ROWS on.
   vec4 gy[16];
-  for (int t = 0; t < activeTexels; ++t) {
-    for (int q = 0; q < 4; ++q) {
-      int i = 4 * t + q;
-      gy[t][q] = i < rows ? g[int(sqrt(float(i) + 0.5))] * y[i] : 0.0;
-    }
-  }
+  GY_TEXEL(0) GY_TEXEL(1) GY_TEXEL(2) GY_TEXEL(3) GY_TEXEL(4) GY_TEXEL(5) GY_TEXEL(6) GY_TEXEL(7)
+  GY_TEXEL(8) GY_TEXEL(9) GY_TEXEL(10) GY_TEXEL(11) GY_TEXEL(12) GY_TEXEL(13) GY_TEXEL(14) GY_TEXEL(15)
+  vec3 ks = schlick(aSpecular.rgb, aSpecularF90, dot(n, toEye), uFresnel == 1);
   for (int c = 0; c < 3; ++c) {
     float sum = 0.0;
     int base = (c * uVertices + gl_VertexID) * uRowTexels;
-    for (int t = 0; t < activeTexels; ++t) sum += dot(transferTexel(base + t), gy[t]);
+    SUM(0) SUM(1) SUM(2) SUM(3) SUM(4) SUM(5) SUM(6) SUM(7) SUM(8) SUM(9) SUM(10) SUM(11) SUM(12) SUM(13) SUM(14) SUM(15)
     vGlossy[c] = ks[c] * sum;
   }
 }

@@ -4,9 +4,16 @@
 //   T_vc = table[k][0][c] + sum_j level_vj table[k][j][c]
 // (k its cluster, the table glossy_table.vert made from this lighting), independent of the
 // view. One point per vertex, rasteriser off, drawn once per channel (uChannel), captured by
-// transform feedback as ROW_TEXELS vec4 (vT0 .. vT15, the first ROW_TEXELS of them captured:
-// the program is linked per row width). glossyTransferCpu (web/src/glossy_texture.cpp)
-// emulates it.
+// transform feedback as ROW_TEXELS vec4 (vT0 .. vT{ROW_TEXELS-1}). glossyTransferCpu
+// (web/src/glossy_texture.cpp) emulates it.
+//
+// The renderer links this program per (ROW_TEXELS, ACTIVE_TEXELS) and defines both after the
+// version line: ROW_TEXELS = ceil(packed bands^2 / 4), the table's stride; ACTIVE_TEXELS =
+// ceil(displayed bands^2 / 4) <= ROW_TEXELS, the texels summed (the rest of T stays 0). With
+// both known at compile time every loop over texels is written out below and the
+// accumulators are 16 named vectors: a software rasteriser (SwiftShader, llvmpipe) that does
+// not unroll loops turns a loop-indexed local array into per-lane memory gathers and scatters,
+// which cost as much as the texel fetches themselves.
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -20,8 +27,6 @@ uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
 uniform int uTextureMask;     // the textures' width - 1 (a power of two)
 uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
-uniform int uRowTexels;       // ceil(packed bands^2 / 4): the table's stride (<= 16)
-uniform int uActiveTexels;    // ceil(displayed bands^2 / 4) (<= uRowTexels)
 uniform int uVectors;         // N' (<= 64)
 uniform int uWeightTexels;
 uniform int uChannel;         // 0 r, 1 g, 2 b
@@ -32,35 +37,48 @@ ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
 
 vec4 tableTexel(int i) { return texelFetch(uTable, texelCoord(i), 0); }
 
+// One basis vector's (or the mean's) row, times `level`, into the accumulators: texel t of
+// the row at `row + t`, for t < ACTIVE_TEXELS (a compile-time test).
+#define ADD(a, t, level) if ((t) < ACTIVE_TEXELS) a += (level) * tableTexel(row + (t));
+#define ADD_ROW(level) ADD(a0, 0, level) ADD(a1, 1, level) ADD(a2, 2, level) ADD(a3, 3, level) ADD(a4, 4, level) ADD(a5, 5, level) ADD(a6, 6, level) ADD(a7, 7, level) ADD(a8, 8, level) ADD(a9, 9, level) ADD(a10, 10, level) ADD(a11, 11, level) ADD(a12, 12, level) ADD(a13, 13, level) ADD(a14, 14, level) ADD(a15, 15, level)
+#define MEAN(a, t) if ((t) < ACTIVE_TEXELS) a = tableTexel(row + (t));
+
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-  vec4 tr[16];
-  for (int t = 0; t < 16; ++t) tr[t] = vec4(0.0);
+  vec4 a0 = vec4(0.0), a1 = vec4(0.0), a2 = vec4(0.0), a3 = vec4(0.0), a4 = vec4(0.0), a5 = vec4(0.0), a6 = vec4(0.0), a7 = vec4(0.0);
+  vec4 a8 = vec4(0.0), a9 = vec4(0.0), a10 = vec4(0.0), a11 = vec4(0.0), a12 = vec4(0.0), a13 = vec4(0.0), a14 = vec4(0.0), a15 = vec4(0.0);
   // A matte vertex (f0 = f90 = 0) has no glossy term (glossy.vert returns 0 for it): its T is
   // left 0, unread.
-  bool matte = aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0);
-  // Basis vectors outer, row texels inner: each basis vector's level is read once and its row
-  // is one run of texels from `row`; the loops have constant bounds (16 texels, 4 levels a
-  // weight texel) so the accumulators stay in registers where the compiler unrolls them. The
-  // sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N'.
-  int stride = 3 * uRowTexels;  // texels from basis vector j's row for channel c to j + 1's
-  int row = (int(aCluster) * (1 + uVectors) * 3 + uChannel) * uRowTexels;
-  for (int t = 0; t < 16; ++t) {
-    if (matte || t >= uActiveTexels) break;
-    tr[t] = tableTexel(row + t);
-  }
-  int weightTexel = gl_VertexID * uWeightTexels;
-  for (int w = 0; w < (matte ? 0 : uWeightTexels); ++w) {
-    vec4 q = vec4(texelFetch(uWeights, texelCoord(weightTexel + w), 0));
-    for (int u = 0; u < 4; ++u) {
-      if (4 * w + u >= uVectors) break;
-      row += stride;
-      for (int t = 0; t < 16; ++t) {
-        if (t >= uActiveTexels) break;
-        tr[t] += q[u] * tableTexel(row + t);
+  if (!(aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0))) {
+    // The sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N', each
+    // level read once.
+    int stride = 3 * ROW_TEXELS;  // texels from basis vector j's row for channel c to j + 1's
+    int row = (int(aCluster) * (1 + uVectors) * 3 + uChannel) * ROW_TEXELS;
+    MEAN(a0, 0) MEAN(a1, 1) MEAN(a2, 2) MEAN(a3, 3) MEAN(a4, 4) MEAN(a5, 5) MEAN(a6, 6) MEAN(a7, 7)
+    MEAN(a8, 8) MEAN(a9, 9) MEAN(a10, 10) MEAN(a11, 11) MEAN(a12, 12) MEAN(a13, 13) MEAN(a14, 14) MEAN(a15, 15)
+    int weightTexel = gl_VertexID * uWeightTexels;
+    int left = uVectors;  // basis vectors still to add
+    for (int w = 0; w < uWeightTexels; ++w) {
+      vec4 q = vec4(texelFetch(uWeights, texelCoord(weightTexel + w), 0));
+      if (left > 0) {
+        row += stride;
+        ADD_ROW(q.x)
       }
+      if (left > 1) {
+        row += stride;
+        ADD_ROW(q.y)
+      }
+      if (left > 2) {
+        row += stride;
+        ADD_ROW(q.z)
+      }
+      if (left > 3) {
+        row += stride;
+        ADD_ROW(q.w)
+      }
+      left -= 4;
     }
   }
-  vT0 = tr[0]; vT1 = tr[1]; vT2 = tr[2]; vT3 = tr[3]; vT4 = tr[4]; vT5 = tr[5]; vT6 = tr[6]; vT7 = tr[7];
-  vT8 = tr[8]; vT9 = tr[9]; vT10 = tr[10]; vT11 = tr[11]; vT12 = tr[12]; vT13 = tr[13]; vT14 = tr[14]; vT15 = tr[15];
+  vT0 = a0; vT1 = a1; vT2 = a2; vT3 = a3; vT4 = a4; vT5 = a5; vT6 = a6; vT7 = a7;
+  vT8 = a8; vT9 = a9; vT10 = a10; vT11 = a11; vT12 = a12; vT13 = a13; vT14 = a14; vT15 = a15;
 }

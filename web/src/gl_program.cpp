@@ -56,6 +56,13 @@ Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* cons
   return Status::ok();
 }
 
+std::string withDefines(const char* source, const std::string& defines) {
+  std::string out(source);
+  const std::size_t afterVersion = out.find('\n');
+  out.insert(afterVersion == std::string::npos ? out.size() : afterVersion + 1, defines);
+  return out;
+}
+
 void bindUniformBlock(GLuint program, const char* name, GLuint binding) {
   const GLuint index = glGetUniformBlockIndex(program, name);
   if (index != GL_INVALID_INDEX) glUniformBlockBinding(program, index, binding);

@@ -3,6 +3,8 @@
 
 #include <GLES3/gl3.h>
 
+#include <string>
+
 #include "prt/status.h"
 
 namespace prt::web {
@@ -12,6 +14,11 @@ namespace prt::web {
 Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* feedback = nullptr);
 // The same with `feedbackCount` varyings captured interleaved into one buffer, in that order.
 Status linkProgram(const char* vs, const char* fs, GLuint* out, const char* const* feedback, int feedbackCount);
+
+// `source` (GLSL ES 3.00, its first line the #version directive) with `defines` (whole
+// lines, e.g. "#define BANDS 5\n") inserted after the version line: one shader file, linked
+// per compile-time constant.
+std::string withDefines(const char* source, const std::string& defines);
 
 // Binds the program's uniform block `name` (if it has one) to binding point `binding`.
 void bindUniformBlock(GLuint program, const char* name, GLuint binding);

@@ -99,7 +99,6 @@ Status GlRenderer::init() {
   if (Status s = link(shaders::k_radiance_vert, shaders::k_shade_frag, &radiance_); !s.isOk()) return s;
   if (Status s = link(shaders::k_cpca_vert, shaders::k_discard_frag, &cpca_, "vRadiance"); !s.isOk()) return s;
   if (Status s = link(shaders::k_glossy_table_vert, shaders::k_discard_frag, &glossyTable_, "vTable"); !s.isOk()) return s;
-  if (Status s = link(shaders::k_glossy_vert, shaders::k_discard_frag, &glossyProgram_, "vGlossy"); !s.isOk()) return s;
   glGenTransformFeedbacks(1, &feedback_);
   glGenVertexArrays(1, &tableVao_);
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
@@ -211,7 +210,9 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   GlossyTextures packed;
   if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
-  if (Status s = ensureTransferProgram(packed.rowTexels); !s.isOk()) return s;
+  // The programs of the packed order (the one displayed unless the order slider is lowered).
+  if (Status s = ensureTransferProgram(packed.rowTexels, packed.rowTexels); !s.isOk()) return s;
+  if (Status s = ensureViewProgram(packed.bands); !s.isOk()) return s;
   GlossyPass& g = glossy_[k];
   releaseGlossy(&g);
   g.bands = packed.bands;
@@ -276,13 +277,25 @@ std::array<int, 3> GlRenderer::glossyShape(ShadingMode mode) const {
   return {g.clusters, g.vectors, g.channels};
 }
 
-Status GlRenderer::ensureTransferProgram(int rowTexels) {
-  if (rowTexels < 1 || rowTexels > 16) return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad row width");
-  Program& p = glossyTransfer_[static_cast<std::size_t>(rowTexels)];
+Status GlRenderer::ensureTransferProgram(int rowTexels, int activeTexels) {
+  if (rowTexels < 1 || rowTexels > 16 || activeTexels < 1 || activeTexels > rowTexels) {
+    return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad row width");
+  }
+  Program& p = glossyTransfer_[static_cast<std::size_t>(17 * rowTexels + activeTexels)];
   if (p.id) return Status::ok();
   static const char* const kNames[16] = {"vT0", "vT1", "vT2",  "vT3",  "vT4",  "vT5",  "vT6",  "vT7",
                                          "vT8", "vT9", "vT10", "vT11", "vT12", "vT13", "vT14", "vT15"};
-  return link(shaders::k_glossy_transfer_vert, shaders::k_discard_frag, &p, kNames, rowTexels);
+  const std::string vs = withDefines(shaders::k_glossy_transfer_vert, "#define ROW_TEXELS " + std::to_string(rowTexels) +
+                                                                          "\n#define ACTIVE_TEXELS " + std::to_string(activeTexels) + "\n");
+  return link(vs.c_str(), shaders::k_discard_frag, &p, kNames, rowTexels);
+}
+
+Status GlRenderer::ensureViewProgram(int bands) {
+  if (bands < 1 || bands > kMaxGlossyOrder) return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad band count");
+  Program& p = glossyView_[static_cast<std::size_t>(bands)];
+  if (p.id) return Status::ok();
+  const std::string vs = withDefines(shaders::k_glossy_vert, "#define BANDS " + std::to_string(bands) + "\n");
+  return link(vs.c_str(), shaders::k_discard_frag, &p, "vGlossy");
 }
 
 void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
@@ -306,7 +319,7 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   g.transferValid = false;
   if (tableOnly) return;
   // 2. Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
-  const Program& t = glossyTransfer_[static_cast<std::size_t>(g.rowTexels)];
+  const Program& t = glossyTransfer_[static_cast<std::size_t>(17 * g.rowTexels + texelsForOrder(bands))];
   glUseProgram(t.id);
   glBindTexture(GL_TEXTURE_2D, g.table);
   glUniform1i(t.table, 0);
@@ -314,8 +327,6 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   glBindTexture(GL_TEXTURE_2D, g.weights);
   glUniform1i(t.weights, 1);
   setTextureLayout(t.textureMask, t.textureShift);
-  glUniform1i(t.rowTexels, g.rowTexels);
-  glUniform1i(t.activeTexels, texelsForOrder(bands));
   glUniform1i(t.vectors, g.vectors);
   glUniform1i(t.weightTexels, g.weightTexels);
   glBindVertexArray(g.vao);
@@ -338,6 +349,9 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
   if (g.bands == 0) return false;
   const int bands = std::clamp(displayOrder, 1, g.bands);
+  // The programs of this band count (linked at upload for the packed one; a lowered order
+  // links its own on first use).
+  if (!ensureTransferProgram(g.rowTexels, texelsForOrder(bands)).isOk() || !ensureViewProgram(bands).isOk()) return false;
   const bool stale = !g.transferValid || g.transferVersion != lightingVersion || g.transferBands != bands;
   if (work == GlossyWork::kTableOnly || work == GlossyWork::kRelight || (work == GlossyWork::kAsNeeded && stale)) {
     relightGlossy(g, bands, work == GlossyWork::kTableOnly);
@@ -347,21 +361,21 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   }
   if (!g.transferValid) return false;  // kViewOnly before any relight
   // 3. Per vertex: lobe convolution, y_i(R) toward the eye, Schlick, on the cached T.
-  glUseProgram(glossyProgram_.id);
+  const Program& view = glossyView_[static_cast<std::size_t>(bands)];
+  glUseProgram(view.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.transfer);
-  glUniform1i(glossyProgram_.transfer, 0);
-  setTextureLayout(glossyProgram_.textureMask, glossyProgram_.textureShift);
-  glUniform1i(glossyProgram_.rowTexels, g.rowTexels);
-  glUniform1i(glossyProgram_.vertices, vertexCount_);
-  glUniform1i(glossyProgram_.bands, bands);
-  glUniform1i(glossyProgram_.fresnel, fresnel ? 1 : 0);
-  glUniform3f(glossyProgram_.eye, eye.x, eye.y, eye.z);
+  glUniform1i(view.transfer, 0);
+  setTextureLayout(view.textureMask, view.textureShift);
+  glUniform1i(view.rowTexels, g.rowTexels);
+  glUniform1i(view.vertices, vertexCount_);
+  glUniform1i(view.fresnel, fresnel ? 1 : 0);
+  glUniform3f(view.eye, eye.x, eye.y, eye.z);
   const ShRecurrenceConstants& sh = shRecurrenceConstants();
-  glUniform1f(glossyProgram_.shY00, sh.y00);
-  glUniform1f(glossyProgram_.shK1, sh.k1);
-  glUniform4fv(glossyProgram_.shA, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.a);
-  glUniform4fv(glossyProgram_.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
+  glUniform1f(view.shY00, sh.y00);
+  glUniform1f(view.shK1, sh.k1);
+  glUniform4fv(view.shA, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.a);
+  glUniform4fv(view.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
   glBindVertexArray(g.vao);
   capture(glossyBuffer_, vertexCount_);
   return true;

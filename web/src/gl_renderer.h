@@ -201,7 +201,10 @@ class GlRenderer {
   Status link(const char* vs, const char* fs, Program* out, const char* const* feedback, int count);
   // Makes the table and the transferred radiance of `g` for the bound lighting at `bands`.
   void relightGlossy(GlossyPass& g, int bands, bool tableOnly);
-  Status ensureTransferProgram(int rowTexels);  // links glossyTransfer_[rowTexels] once
+  // Link glossy_transfer.vert for (rowTexels, activeTexels), 1 <= active <= row <= 16, and
+  // glossy.vert for `bands` (1 .. kMaxGlossyOrder), each once, on first use.
+  Status ensureTransferProgram(int rowTexels, int activeTexels);
+  Status ensureViewProgram(int bands);
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
@@ -220,10 +223,11 @@ class GlRenderer {
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
-  Program prt_, lambert_, background_, radiance_, cpca_, glossyTable_, glossyProgram_;
-  // glossy_transfer.vert linked per row width r = 1 .. 16 texels (capturing vT0 .. vT{r-1}),
-  // on first use.
-  std::array<Program, 17> glossyTransfer_{};
+  Program prt_, lambert_, background_, radiance_, cpca_, glossyTable_;
+  // glossy_transfer.vert linked per row width r = 1 .. 16 texels (capturing vT0 .. vT{r-1})
+  // and active texels a <= r, at [17 r + a]; glossy.vert per displayed band count.
+  std::array<Program, 17 * 17> glossyTransfer_{};
+  std::array<Program, kMaxGlossyOrder + 1> glossyView_{};
   GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
