@@ -65,11 +65,16 @@ struct TransferCodecSettings {
   // Their rounding is part of the verified error. Setting names "cpca16b8", "cpca8b8".
   // Vector CPCA (encodeTransfer) ignores it: its basis vectors are binary16.
   int cpcaBasisBits = 16;
+  // Matrix kCpca only. Largest N', basis matrices per cluster (0 .. 32, the encoder's limit
+  // and the default). The client's per-vertex work when the lighting changes is linear in
+  // 1 + N', so a renderer-bound user trades bytes (more clusters) for frame time with it
+  // (docs/glossy.md). Setting names "cpca16b8n8@0.045": N' <= 8.
+  int cpcaMaxVectors = 32;
 };
 
 // Parses a setting name: "f32", "f16", "q16", "q8", "cpca8", "cpca16", "cpca8b8",
 // "cpca16b8" (8-bit basis entries, matrix transfer only), the CPCA ones optionally with a
-// target, "cpca8@0.02". The unspecified fields come from `defaults`.
+// basis limit "n8" (N' <= 8, matrix transfer only) and a target, "cpca16b8n8@0.045". The unspecified fields come from `defaults`.
 Status parseTransferSetting(std::string_view text, const TransferCodecSettings& defaults, TransferCodecSettings* out);
 
 // The canonical name of a setting, as parseTransferSetting reads it ("q8", "cpca8@0.02").

@@ -491,5 +491,43 @@ TEST(TransferCodecMatrix, CraftedHeaderAndContentErrorsAreNamed) {
   expectCorrupt(b, "not finite or beyond the transfer range");
 }
 
+
+// The basis limit ("n<N>" in a setting's name, TransferCodecSettings::cpcaMaxVectors): the
+// encoder keeps at most N' basis matrices per cluster and reaches its target with more
+// clusters instead, or says that the limit is what stops it.
+TEST(TransferCodecMatrix, CpcaBasisLimitCapsTheVectorsAndNamesItselfWhenItStops) {
+  TransferCodecSettings parsed;
+  ASSERT_TRUE(parseTransferSetting("cpca16b8n8@0.045", {}, &parsed).isOk());
+  EXPECT_EQ(parsed.cpcaMaxVectors, 8);
+  EXPECT_EQ(parsed.cpcaBasisBits, 8);
+  EXPECT_EQ(transferSettingName(parsed), "cpca16b8n8@0.045");
+  EXPECT_EQ(transferSettingName(setting("cpca16@0.02")), "cpca16@0.02");  // no limit: no suffix
+  for (const char* bad : {"cpca16n33", "cpca16n", "cpca16nx", "cpca8b8n-1", "cpca16n123", "cpca16b8x@0.1"}) {
+    TransferCodecSettings s;
+    EXPECT_FALSE(parseTransferSetting(bad, {}, &s).isOk()) << bad;
+  }
+
+  const int order = 3, channels = 1;
+  const std::size_t D = entries(order, MatrixPacking::kFull);
+  const std::vector<float> x = lowRankMatrices(600, D, 4, 2, 0.003, 7);
+  TransferCodecSettings free = setting("cpca16@0.05"), capped = setting("cpca16n1@0.05");
+  free.cpcaMaxClusters = capped.cpcaMaxClusters = 256;
+  TransferEncodeReport freeReport, cappedReport;
+  (void)encodeOrDie(x, order, MatrixPacking::kFull, channels, free, &freeReport);
+  const Bytes blob = encodeOrDie(x, order, MatrixPacking::kFull, channels, capped, &cappedReport);
+  ASSERT_EQ(cappedReport.vectorsPerBand.size(), 1u);
+  EXPECT_GT(freeReport.vectorsPerBand[0], 1);  // without the limit the search wants more
+  EXPECT_LE(cappedReport.vectorsPerBand[0], 1);
+  EXPECT_LE(relError(x, decodeOrDie(blob, order)), capped.cpcaTargetError);
+
+  TransferCodecSettings stuck = setting("cpca16n0@0.02");
+  stuck.cpcaMaxClusters = 1;
+  Bytes out;
+  const Status st = encodeTransferMatrix(x, order, MatrixPacking::kFull, channels, stuck, &out);
+  ASSERT_FALSE(st.isOk());
+  EXPECT_NE(st.message().find("at most 0 basis matrices"), std::string::npos) << st.toString();
+  EXPECT_NE(st.message().find("a larger basis limit"), std::string::npos) << st.toString();
+}
+
 }  // namespace
 }  // namespace prt

@@ -319,8 +319,9 @@ std::vector<double> basis8Errors(const ClusterFit& cf, std::span<const float> en
 // `scale` (>= 1) multiplies the per-vertex costs (ids, weights) when `fit` is of a sample.
 // `basisBits` 8: the basis matrices' rounding (basis8Errors) counts in the error and their
 // tables take a byte per entry plus a scale per shell; `entryWeight` is the fit's space.
+// `maxVectors` (<= kMaxVectors) caps N'.
 Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order, MatrixPacking packing, int bits,
-                    int basisBits, std::span<const float> entryWeight, double goal, int* tried, double scale = 1.0) {
+                    int basisBits, int maxVectors, std::span<const float> entryWeight, double goal, int* tried, double scale = 1.0) {
   const int levelsMax = quantLevels(bits), wb = bits / 8;
   const std::uint64_t E = matrixEntryCount(order, packing), C = static_cast<std::uint64_t>(channels);
   const std::uint64_t K = static_cast<std::uint64_t>(fit.clusters);
@@ -355,7 +356,7 @@ Choice chooseForFit(const MatrixFit& fit, std::size_t V, int channels, int order
                                            : static_cast<double>(K * C * E) * (4.0 + 2.0 * n);
       const double bytes = fixedBytes + streamSum + tables;
       if (resid[static_cast<std::size_t>(n)] + errSum <= goal && bytes < best.bytes) best = {bytes, n, delta};
-      if (n == kMaxVectors || static_cast<std::uint64_t>(n) >= C * E) break;
+      if (n == maxVectors || static_cast<std::uint64_t>(n) >= C * E) break;
       const std::size_t j = static_cast<std::size_t>(n);
       for (std::size_t v = 0; v < V; ++v) {
         const double e = static_cast<double>(fit.weights[v * kMaxVectors + j]) -
@@ -450,6 +451,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   const std::size_t E = matrixEntryCount(order, packing), C = static_cast<std::size_t>(channels), D = C * E;
   const std::size_t V = packed.size() / D;
   const int bits = settings.cpcaWeightBits, basisBits = settings.cpcaBasisBits;
+  const int maxVectors = std::clamp(settings.cpcaMaxVectors, 0, kMaxVectors);
   const double target = settings.cpcaTargetError;
   const int maxClusters = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(settings.cpcaMaxClusters), V));
   // x: the matrices in the space the fit and the target live in, each entry times its rows'
@@ -530,7 +532,7 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     MatrixFit fit = fitMatrixCpca(sample, S, D, k, settings.seed, samplePoints, pointDims, sampleEnergy);
     if (fit.clusters == previousClusters) break;  // no more distinct points to split
     previousClusters = fit.clusters;
-    const Choice c = chooseForFit(fit, S, channels, order, packing, bits, basisBits, entryWeight, sampleGoal, &tried, scale);
+    const Choice c = chooseForFit(fit, S, channels, order, packing, bits, basisBits, maxVectors, entryWeight, sampleGoal, &tried, scale);
     const bool improved = c.bytes < bestChoice.bytes;
     if (improved) {
       bestChoice = c;
@@ -543,10 +545,11 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
   const double goal = kEstimateMargin * kEstimateMargin * target * target * energy;
   if (sampled) {
     // The winner on every vertex; where the sample misled (the full fit misses the goal),
-    // twice the clusters, up to the limit.
-    for (int k = std::max(bestK, 1);; k = std::min(2 * k, maxClusters)) {
+    // twice the clusters, up to the limit. When no sampled count reached the goal, the
+    // search goes on from the sample's largest count.
+    for (int k = bestK > 0 ? bestK : std::max(sampleMaxClusters, 1);; k = std::min(2 * k, maxClusters)) {
       best = fitMatrixCpca(x, V, D, k, settings.seed, points, pointDims, energy);
-      bestChoice = chooseForFit(best, V, channels, order, packing, bits, basisBits, entryWeight, goal, &tried);
+      bestChoice = chooseForFit(best, V, channels, order, packing, bits, basisBits, maxVectors, entryWeight, goal, &tried);
       if (bestChoice.bytes < INFINITY || k >= maxClusters || best.clusters < k) break;
     }
   }
@@ -554,7 +557,8 @@ Status encodeMatrixCpca(std::span<const float> packed, int order, MatrixPacking 
     return Status::error(StatusCode::kInvalidArgument,
                          "matrix CPCA cannot reach the target " + metric + "relative error " + std::to_string(target) + " with " +
                              std::to_string(bits) + "-bit weights" + (basisBits == 8 ? ", 8-bit basis entries" : "") +
-                             " and at most " + std::to_string(kMaxVectors) + " basis matrices per cluster; use " +
+                             " and at most " + std::to_string(maxVectors) + " basis matrices per cluster; use " +
+                             (maxVectors < kMaxVectors ? "a larger basis limit, " : "") +
                              (bits < 16 ? "16-bit weights, " : "") + (basisBits == 8 ? "binary16 basis entries, " : "") +
                              "more clusters (the limit was " + std::to_string(maxClusters) + ") or a larger target");
   }

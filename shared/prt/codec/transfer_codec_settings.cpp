@@ -1,4 +1,5 @@
 // Names of the transfer codec's encodings and settings (prt/transfer_codec.h).
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -54,6 +55,9 @@ Status parseTransferSetting(std::string_view text, const TransferCodecSettings& 
   TransferCodecSettings s = defaults;
   const std::size_t at = text.find('@');
   const std::string_view name = text.substr(0, at);
+  static const char* const kUnknown =
+      "unknown setting (expected f32, f16, q16, q8, cpca8, cpca16, cpca8b8 or cpca16b8, the CPCA ones optionally with a basis "
+      "limit nN and @TARGET, e.g. cpca8@0.02, cpca16b8n8@0.045)";
   auto bad = [&](const std::string& why) {
     return Status::error(StatusCode::kInvalidArgument, "setting '" + std::string(text) + "': " + why);
   };
@@ -61,14 +65,24 @@ Status parseTransferSetting(std::string_view text, const TransferCodecSettings& 
   else if (name == "f16") s.encoding = TransferEncoding::kFloat16;
   else if (name == "q16") s.encoding = TransferEncoding::kQuant16;
   else if (name == "q8") s.encoding = TransferEncoding::kQuant8;
-  else if (name == "cpca8" || name == "cpca16" || name == "cpca8b8" || name == "cpca16b8") {
-    // cpca<weight bits>[b8]: the name says both widths, whatever `defaults` held.
+  else if (name.starts_with("cpca")) {
+    // cpca<weight bits>[b8][n<N'>]: the name says both widths, whatever `defaults` held.
+    const std::size_t n = name.find('n');
+    const std::string_view widths = name.substr(0, n);
+    if (widths != "cpca8" && widths != "cpca16" && widths != "cpca8b8" && widths != "cpca16b8") return bad(kUnknown);
     s.encoding = TransferEncoding::kCpca;
-    s.cpcaWeightBits = name.starts_with("cpca8") ? 8 : 16;
-    s.cpcaBasisBits = name.ends_with("b8") ? 8 : 16;
+    s.cpcaWeightBits = widths.starts_with("cpca8") ? 8 : 16;
+    s.cpcaBasisBits = widths.ends_with("b8") ? 8 : 16;
+    if (n != std::string_view::npos) {
+      const std::string_view digits = name.substr(n + 1);
+      int limit = -1;
+      if (digits.size() >= 1 && digits.size() <= 2 && std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        limit = std::stoi(std::string(digits));
+      if (!(limit >= 0 && limit <= 32)) return bad("the basis limit n<N> takes N from 0 to 32, e.g. cpca16b8n8@0.045");
+      s.cpcaMaxVectors = limit;
+    }
   } else {
-    return bad("unknown setting (expected f32, f16, q16, q8, cpca8, cpca16, cpca8b8 or cpca16b8, the CPCA ones optionally "
-               "@TARGET, e.g. cpca8@0.02)");
+    return bad(kUnknown);
   }
   if (at != std::string_view::npos) {
     if (s.encoding != TransferEncoding::kCpca) return bad("only CPCA settings take a target (@)");
@@ -87,8 +101,15 @@ Status parseTransferSetting(std::string_view text, const TransferCodecSettings& 
 
 std::string transferSettingName(const TransferCodecSettings& settings) {
   if (settings.encoding != TransferEncoding::kCpca) return transferEncodingName(settings.encoding);
-  return "cpca" + std::to_string(settings.cpcaWeightBits) + (settings.cpcaBasisBits == 8 ? "b8" : "") + "@" +
-         formatTarget(settings.cpcaTargetError);
+  std::string name = "cpca" + std::to_string(settings.cpcaWeightBits);
+  if (settings.cpcaBasisBits == 8) name += "b8";
+  if (settings.cpcaMaxVectors != 32) {
+    name += 'n';
+    name += std::to_string(settings.cpcaMaxVectors);
+  }
+  name += '@';
+  name += formatTarget(settings.cpcaTargetError);
+  return name;
 }
 
 }  // namespace prt
