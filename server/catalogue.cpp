@@ -37,7 +37,8 @@ bool urlSafeName(std::string_view name) {
   return true;
 }
 
-// Examines one listed file: open, read, verify, hash, make the variants and the parts.
+// Examines one listed file: open, read, verify, hash, make the variants, the parts and the
+// thumbnail.
 std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const ScannedFile& scanned,
                                               const CatalogueOptions& options, PartPool* pool,
                                               ThumbnailPool* thumbnails, bool* unstable) {

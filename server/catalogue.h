@@ -68,7 +68,7 @@ struct CatalogueOptions {
   // memory with their br/zstd/gzip variants: about 3x the asset's size. 0: no parts at all.
   std::uint64_t maxPartsBytes = std::uint64_t{64} << 20;
   // Assets up to this size get a thumbnail (a decode and a small CPU render at scan time:
-  // about 10 ms for the 20k-vertex demo room). 0: no thumbnails.
+  // about 12 ms for the 20k-vertex demo room). 0: no thumbnails.
   std::uint64_t maxThumbnailBytes = std::uint64_t{64} << 20;
 };
 
