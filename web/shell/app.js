@@ -451,7 +451,9 @@ function buildGui() {
   const sceneFolder = gui.addFolder('scenes');
   const pickScene = (n) => loadScene(n).then(() => { sceneControl.updateDisplay(); picker.select(state.scene); })
     .catch((e) => fail(e.message));
-  const picker = new ScenePicker(sceneFolder.$children, scenes.filter((s) => s.usable), pickScene);
+  const pickerBox = document.createElement('div');  // inside lil-gui's own children box, which it hides when closed
+  sceneFolder.$children.append(pickerBox);
+  const picker = new ScenePicker(pickerBox, scenes.filter((s) => s.usable), pickScene);
   picker.select(state.scene);
   if (usable.length < 2 || window.innerWidth < 600) sceneFolder.close();
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
