@@ -239,6 +239,10 @@ const cases = {
       await page.waitForFunction((name) => window.prtApp.error || window.prtApp.scene === name, second.name, { timeout: 90000 });
       check(await page.evaluate(() => window.prtApp.scene) === second.name, 'Enter did not load the second scene');
       check(await pressed(second.name) === 'true' && await pressed(room.name) === 'false', 'the picker does not mark the second scene as shown');
+      // The mark shows: the pressed tile's border differs from the other's (lil-gui's button
+      // rules must not flatten it).
+      const borders = await page.$$eval('.scene-tile', (els) => els.map((e) => `${getComputedStyle(e).borderTopStyle} ${getComputedStyle(e).borderTopColor}`));
+      check(borders.every((b) => b.startsWith('solid')) && borders[0] !== borders[1], `tile borders: ${JSON.stringify(borders)}`);
       // The only console error allowed is the thumbnail the test held back.
       const others = consoleErrors.filter((e) => !/404/.test(e));
       check(others.length === 0, `console errors: ${others.join(' | ')}`);
