@@ -46,11 +46,15 @@ void drawTriangle(RasterTarget& target, const RasterVertex& a0, const RasterVert
   const RasterVertex &a = *v[0], &b = *v[1], &c = *v[2];
   const double minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
   const double minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
-  // Pixels whose centre (i + 0.5) can lie in [min, max], clipped to the target.
-  const int x0 = std::max(0, static_cast<int>(std::ceil(minX - 0.5)));
-  const int x1 = std::min(target.width - 1, static_cast<int>(std::floor(maxX - 0.5)));
-  const int y0 = std::max(0, static_cast<int>(std::ceil(minY - 0.5)));
-  const int y1 = std::min(target.height - 1, static_cast<int>(std::floor(maxY - 0.5)));
+  // Pixels whose centre (i + 0.5) can lie in [min, max], clipped to the target in double
+  // first: a float far outside int's range must not reach the conversion.
+  const auto pixelRange = [](double lo, double hi, int size, int* first, int* last) {
+    *first = static_cast<int>(std::clamp(std::ceil(lo - 0.5), 0.0, static_cast<double>(size)));
+    *last = static_cast<int>(std::clamp(std::floor(hi - 0.5), -1.0, static_cast<double>(size - 1)));
+  };
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  pixelRange(minX, maxX, target.width, &x0, &x1);
+  pixelRange(minY, maxY, target.height, &y0, &y1);
   if (x0 > x1 || y0 > y1) return;
   // Edge i is opposite vertex i; its function is that vertex's barycentric weight x area.
   const bool tl0 = topLeft(b.x, b.y, c.x, c.y), tl1 = topLeft(c.x, c.y, a.x, a.y), tl2 = topLeft(a.x, a.y, b.x, b.y);

@@ -74,6 +74,7 @@ TEST(MeshRaster, BadTrianglesDrawNothing) {
   drawTriangle(t, vertex(0, 0, -1), vertex(8, 0, 1), vertex(0, 8, 1));  // behind the eye
   drawTriangle(t, vertex(0, 0, 1), vertex(4, 4, 1), vertex(8, 8, 1));   // no area
   drawTriangle(t, vertex(-1e9f, -1e9f, 1), vertex(-1e9f + 1, -1e9f, 1), vertex(-1e9f, -1e9f + 1, 1));  // off target
+  drawTriangle(t, vertex(1e30f, 1e30f, 1), vertex(3e30f, 1e30f, 1), vertex(1e30f, 3e30f, 1));  // beyond int's range
   EXPECT_EQ(coveredCount(t), 0);
 }
 
