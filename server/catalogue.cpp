@@ -37,9 +37,11 @@ bool urlSafeName(std::string_view name) {
   return true;
 }
 
-// Examines one listed file: open, read, verify, hash, make the variants and the parts.
+// Examines one listed file: open, read, verify, hash, make the variants, the parts and the
+// thumbnail.
 std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const ScannedFile& scanned,
-                                              const CatalogueOptions& options, PartPool* pool, bool* unstable) {
+                                              const CatalogueOptions& options, PartPool* pool,
+                                              ThumbnailPool* thumbnails, bool* unstable) {
   auto e = std::make_shared<CatalogueEntry>();
   e->file = scanned.relPath;
   const std::string fileName = baseName(scanned.relPath);
@@ -118,6 +120,10 @@ std::shared_ptr<const CatalogueEntry> examine(const RootDir& root, const Scanned
     // no parts and clients fetch the whole asset.
     pool->makeParts(bytes, e->summary, options.compress && e->bytes <= options.maxCompressBytes, &e->parts);
   }
+  if (e->bytes <= options.maxThumbnailBytes) {
+    // Never fails the entry: without a thumbnail it is listed and served the same.
+    e->thumbnail = thumbnails->thumbnailFor(e->hash, bytes, e->summary, scanned.relPath);
+  }
   e->usable = true;
   return e;
 }
@@ -185,6 +191,7 @@ std::string entryJson(const CatalogueEntry& e) {
     j += std::string(i > 1 ? "," : "") + "\"" + encodingToken(e.resource->variants[i].encoding) + "\"";
   }
   j += "]";
+  if (e.thumbnail && !e.thumbnail->url.empty()) j += ",\"thumbnail\":" + jsonString(e.thumbnail->url);
   if (!e.parts.empty()) {
     j += ",\"parts\":[";
     for (std::size_t i = 0; i < e.parts.size(); ++i) {
@@ -247,6 +254,12 @@ std::shared_ptr<const CatalogueEntry> Catalogue::findAsset(std::string_view path
   return it->second;
 }
 
+std::shared_ptr<const Resource> Catalogue::findThumbnail(std::string_view path) {
+  const std::shared_ptr<const CatalogueSnapshot> snap = current();
+  const auto it = snap->thumbnails.find(path);
+  return it == snap->thumbnails.end() ? nullptr : it->second;
+}
+
 std::shared_ptr<const Resource> Catalogue::findPart(std::string_view path) {
   const std::shared_ptr<const CatalogueSnapshot> snap = current();
   const auto it = snap->parts.find(path);
@@ -268,16 +281,22 @@ void Catalogue::refresh() {
   }
   auto snap = std::make_shared<CatalogueSnapshot>();
   PartPool pool(old ? old->parts : PartMap{});
+  ThumbnailPool thumbnails(old ? old->thumbnailsByHash : ThumbnailMap{});
   for (const ScannedFile& f : listing) {
     const auto it = previous.find(f.relPath);
     const bool same = it != previous.end() && f.problem.empty() && !(it->second->stamp == FileStamp{}) &&
                       it->second->stamp == f.stamp;
-    std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &pool, &snap->retry);
+    std::shared_ptr<const CatalogueEntry> entry = same ? it->second : examine(root_, f, options_, &pool, &thumbnails, &snap->retry);
     if (!same && !entry->usable) entry = withPublicError(entry, f, root_);
     if (entry->usable) {
       ++snap->usableCount;
       snap->byPath.emplace("/assets/" + entry->hash + "/" + baseName(entry->file), entry);
       for (const ServedPart& p : entry->parts) snap->parts.emplace(p.url, p.resource);
+      // Only the hashes still listed are kept, so a deleted asset's thumbnail goes with it.
+      if (entry->thumbnail) {
+        snap->thumbnailsByHash.emplace(entry->hash, entry->thumbnail);
+        if (entry->thumbnail->resource) snap->thumbnails.emplace(entry->thumbnail->url, entry->thumbnail->resource);
+      }
     }
     snap->entries.push_back(std::move(entry));
   }

@@ -19,6 +19,7 @@
 #include "prt/asset.h"
 #include "resource.h"
 #include "root_dir.h"
+#include "thumbnail_store.h"
 
 namespace prt::serve {
 
@@ -38,6 +39,9 @@ struct CatalogueEntry {
   std::shared_ptr<const Resource> resource;
   FileRef source;  // the file as verified; its stamp tells an in-place rewrite
   std::vector<ServedPart> parts;  // the file cut into parts, in file order; empty: served whole only
+  // Its picture for the scene picker (thumbnail.h); null for unusable entries and url empty
+  // when none could be made (the entry is listed all the same, without "thumbnail").
+  std::shared_ptr<const ServedThumbnail> thumbnail;
 };
 
 struct CatalogueSnapshot {
@@ -46,6 +50,8 @@ struct CatalogueSnapshot {
   // Decoded URL path ("/assets/<hash>/<name>") to its usable entry.
   std::map<std::string, std::shared_ptr<const CatalogueEntry>, std::less<>> byPath;
   PartMap parts;  // every part of every usable entry, by URL path (shared parts once)
+  ThumbnailMap thumbnailsByHash;  // by asset content hash: what the next refresh reuses
+  std::map<std::string, std::shared_ptr<const Resource>, std::less<>> thumbnails;  // by URL path
   std::shared_ptr<const Resource> json;  // the /api/scenes document
   bool retry = false;  // some file changed while it was read: look again next time
   int usableCount = 0;
@@ -61,6 +67,9 @@ struct CatalogueOptions {
   // Assets up to this size are also cut into parts (/parts/<hash>), which are held in
   // memory with their br/zstd/gzip variants: about 3x the asset's size. 0: no parts at all.
   std::uint64_t maxPartsBytes = std::uint64_t{64} << 20;
+  // Assets up to this size get a thumbnail (a decode and a small CPU render at scan time:
+  // about 12 ms for the 20k-vertex demo room). 0: no thumbnails.
+  std::uint64_t maxThumbnailBytes = std::uint64_t{64} << 20;
 };
 
 class Catalogue {
@@ -80,6 +89,10 @@ class Catalogue {
   // The part at decoded URL path ("/parts/<hash>") in the current snapshot; null otherwise.
   // Parts are copies of verified bytes, so a later change to the file cannot reach them.
   std::shared_ptr<const Resource> findPart(std::string_view path);
+
+  // The thumbnail PNG at decoded URL path ("/api/scenes/thumbnail/<hash>.png") in the current
+  // snapshot; null otherwise.
+  std::shared_ptr<const Resource> findThumbnail(std::string_view path);
 
  private:
   void refresh();

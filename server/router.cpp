@@ -55,6 +55,10 @@ Answer Router::route(const RequestHead& request) {
     if (auto r = lights_.preview(path)) return respond(request, *r);
     return errorReply(version, http::status::not_found, "no such background texture", true);
   }
+  if (path.starts_with(kThumbnailPrefix)) {
+    if (auto r = catalogue_.findThumbnail(path)) return respond(request, *r);
+    return errorReply(version, http::status::not_found, "no such thumbnail; see /api/scenes", false);
+  }
   if (path.starts_with("/api/") || path == "/api") {
     return errorReply(version, http::status::not_found, "no such API endpoint (try /api/scenes or /api/lights)", true);
   }

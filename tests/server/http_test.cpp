@@ -8,14 +8,20 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
+#include <set>
 #include <sstream>
 #include <thread>
 
 #include <unistd.h>
 
+#include <stb_image.h>
+
 #include "light_preview.h"
 #include "public_error.h"
 #include "serve_env.h"
+#include "thumbnail.h"
+#include "thumbnail_view.h"
 
 namespace prt::serve::test {
 namespace {
@@ -110,6 +116,97 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   EXPECT_EQ(findByFile(scenes, "outdir/secret.prt"), nullptr);  // a directory symlink out is not walked
   EXPECT_EQ(cat.at("usable").get<double>(), 2);
   EXPECT_EQ(cat.at("unusable").get<double>(), 3);
+}
+
+// The thumbnail named by the catalogue entry of `file`, or "" when it has none.
+std::string thumbnailUrl(const Json& catalogue, const std::string& file) {
+  const Json* e = findByFile(catalogue.at("scenes"), file);
+  return e && e->contains("thumbnail") ? e->at("thumbnail").get<std::string>() : std::string();
+}
+
+TEST(Scenes, ThumbnailsAreListedAndLoad) {
+  SharedServer& s = sharedServer();
+  const Json cat = getJson(s.port, "/api/scenes");
+  const std::string url = thumbnailUrl(cat, "room.prt");
+  ASSERT_TRUE(url.starts_with("/api/scenes/thumbnail/") && url.ends_with(".png")) << url;
+  EXPECT_TRUE(thumbnailUrl(cat, "sub/small.prt").starts_with("/api/scenes/thumbnail/"));
+  // Broken assets are listed without one, and the catalogue still answers.
+  for (const char* broken : {"corrupt.prt", "truncated.prt", "escape.prt"}) {
+    ASSERT_NE(findByFile(cat.at("scenes"), broken), nullptr) << broken;
+    EXPECT_EQ(thumbnailUrl(cat, broken), "") << broken;
+  }
+
+  const HttpResponse r = fetch(s.port, url);
+  ASSERT_EQ(r.status, 200) << r.error;
+  EXPECT_EQ(r.header("content-type"), "image/png");
+  EXPECT_EQ(r.header("cache-control"), "public, max-age=31536000, immutable");
+  ASSERT_FALSE(r.header("etag").empty());
+  int w = 0, h = 0, n = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(r.body.data()), static_cast<int>(r.body.size()), &w, &h, &n, 4),
+      stbi_image_free);
+  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
+  EXPECT_EQ(w, kThumbnailWidth);
+  EXPECT_EQ(h, kThumbnailHeight);
+  // Not uniform: the mesh (opaque, shaded in many values) over a transparent background.
+  int opaque = 0, clear = 0;
+  std::set<int> greens;
+  for (int i = 0; i < w * h; ++i) {
+    const stbi_uc* p = pixels.get() + 4 * i;
+    opaque += p[3] == 255;
+    clear += p[3] == 0;
+    if (p[3] == 255) greens.insert(p[1]);
+  }
+  // The test room is a long, thin ribbon (makeAssetBytes): a few hundred pixels of it.
+  EXPECT_GT(opaque, 100) << "the mesh covers too little of the thumbnail";
+  EXPECT_GT(clear, w * h / 2) << "no background around the mesh";
+  EXPECT_GT(greens.size(), 10u) << "the mesh is flat-shaded";
+  // The very picture the renderer makes of those bytes (its pixels are checked against the
+  // transfer in thumbnail_test.cpp).
+  AssetSummary summary;
+  ASSERT_TRUE(verifyAsset(s.tree.room, &summary).isOk());
+  ThumbnailImage expected;
+  ASSERT_TRUE(renderThumbnail(s.tree.room, summary, &expected).isOk());
+  EXPECT_TRUE(std::equal(expected.rgba.begin(), expected.rgba.end(), pixels.get()));
+
+  // Cached like the other derived files: a 304 for its ETag, HEAD without a body.
+  EXPECT_EQ(fetch(s.port, url, {{"If-None-Match", r.header("etag")}}).status, 304);
+  const HttpResponse head = fetch(s.port, url, {}, "HEAD");
+  EXPECT_EQ(head.status, 200);
+  EXPECT_EQ(head.header("content-length"), std::to_string(r.body.size()));
+  EXPECT_TRUE(head.body.empty());
+  EXPECT_EQ(fetch(s.port, "/api/scenes/thumbnail/0000000000000000.png").status, 404);
+  EXPECT_EQ(fetch(s.port, "/api/scenes/thumbnail/").status, 404);
+  EXPECT_TRUE(healthy(s.port));
+}
+
+TEST(Rescan, ThumbnailsFollowTheirAssets) {
+  const TestTree tree = makeTestTree(workDir());
+  auto server = startServer(tree, {}, "rescan-thumbnails.log");
+  ASSERT_TRUE(server);
+  const int port = server->port();
+  const std::string url = thumbnailUrl(getJson(port, "/api/scenes"), "sub/small.prt");
+  ASSERT_FALSE(url.empty());
+  ASSERT_EQ(fetch(port, url).status, 200);
+  // A copy has the same content hash: the same thumbnail.
+  writeFile(tree.root + "/copy.prt", tree.small);
+  std::string copyUrl;
+  for (int i = 0; i < 100 && copyUrl.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    copyUrl = thumbnailUrl(getJson(port, "/api/scenes"), "copy.prt");
+  }
+  EXPECT_EQ(copyUrl, url);
+  // Both gone: the thumbnail is gone too.
+  ASSERT_EQ(std::remove((tree.root + "/sub/small.prt").c_str()), 0);
+  ASSERT_EQ(std::remove((tree.root + "/copy.prt").c_str()), 0);
+  int status = 200;
+  for (int i = 0; i < 100 && status == 200; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    (void)getJson(port, "/api/scenes");
+    status = fetch(port, url).status;
+  }
+  EXPECT_EQ(status, 404);
+  EXPECT_TRUE(healthy(port));
 }
 
 TEST(Assets, ServedByteExactWithImmutableCaching) {

@@ -35,15 +35,17 @@ add_executable(prt_server_tests
   ${PRT_SERVE_TEST_DIR}/hostile_test.cpp
   ${PRT_SERVE_TEST_DIR}/load_test.cpp
   ${PRT_SERVE_TEST_DIR}/cli_test.cpp
+  ${PRT_SERVE_TEST_DIR}/thumbnail_test.cpp
 )
-target_link_libraries(prt_server_tests PRIVATE prt_serve_test_support GTest::gtest_main)
+# stb_image decodes the thumbnails' PNGs (thumbnail_test.cpp, http_test.cpp).
+target_link_libraries(prt_server_tests PRIVATE prt_serve_test_support prt_stb GTest::gtest_main)
 target_compile_options(prt_server_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_dependencies(prt_server_tests prt-serve)
 
 # One ctest test per group, each its own process with its own servers.
 foreach(group IN ITEMS unit http parts hostile load cli)
   if(group STREQUAL "unit")
-    set(filter "ContentHash.*:RequestTarget.*:RequestHead.*:PublicError.*:Negotiation.*:AccessLog.Escapes*:MimeTypes.*:AssetParts.*:ServeOptions.*:OsError.*:BackgroundTexture.*")
+    set(filter "ContentHash.*:RequestTarget.*:RequestHead.*:PublicError.*:Negotiation.*:AccessLog.Escapes*:MimeTypes.*:AssetParts.*:ServeOptions.*:OsError.*:BackgroundTexture.*:MeshRaster.*:Thumbnail.*")
   elseif(group STREQUAL "parts")
     set(filter "Parts.*")
   elseif(group STREQUAL "http")

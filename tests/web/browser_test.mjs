@@ -2,6 +2,8 @@
 // prt-serve on loopback serving a freshly baked default scene and a blender-data
 // environment. One ctest test per case (shared harness: browser_harness.mjs).
 // Usage: node browser_test.mjs CASE PRT_SERVE PRT_BAKE WEB_DIST WORK_DIR ENV_EXR
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
 import path from 'node:path';
 import { makeChecks, startServer as startServerAt, openPage, settle, capture, windowLuminance, meanAbsDifference, runCase, requireInputs,
   bakeDefaultRoom } from './browser_harness.mjs';
@@ -157,6 +159,93 @@ const cases = {
         check(consoleErrors.length === 0, `${what}: console errors: ${consoleErrors.join(' | ')}`);
         await page.close();
       }
+    } finally {
+      server.child.kill('SIGTERM');
+    }
+  },
+
+  // The scene picker shows the server's thumbnails (docs/server.md, "Thumbnails"): a second
+  // scene and a broken asset beside the room; the room's thumbnail decodes in the page at
+  // 160x120 and is not blank; the second scene's thumbnail fails to load (held back here) and
+  // its tile shows a placeholder; the broken asset is listed without a thumbnail and has no
+  // tile; the keyboard moves between the tiles and picks a scene.
+  async scene_thumbnails(browser) {
+    execFileSync(prtBake, ['--default', '-o', path.join(root, 'second.prt'), '--samples', '16', '--order', '2', '--name', 'second room', '--quiet']);
+    fs.writeFileSync(path.join(root, 'broken.prt'), fs.readFileSync(path.join(root, 'room.prt')).subarray(0, 4000));
+    const server = await startServer();
+    try {
+      const catalogue = await (await fetch(`${server.base}/api/scenes`)).json();
+      const byFile = Object.fromEntries(catalogue.scenes.map((e) => [e.file, e]));
+      const room = byFile['room.prt'], second = byFile['second.prt'], broken = byFile['broken.prt'];
+      check(room && room.usable && /^\/api\/scenes\/thumbnail\/[0-9a-f]{16}\.png$/.test(room.thumbnail || ''), `room entry: ${JSON.stringify(room).slice(0, 300)}`);
+      check(second && second.usable && second.thumbnail && second.thumbnail !== room.thumbnail, `second entry's thumbnail: ${second && second.thumbnail}`);
+      check(broken && !broken.usable && !('thumbnail' in broken), `broken entry: ${JSON.stringify(broken)}`);
+      const thumb = await fetch(`${server.base}${room.thumbnail}`);
+      check(thumb.status === 200 && thumb.headers.get('content-type') === 'image/png' &&
+        /immutable/.test(thumb.headers.get('cache-control') || ''), `thumbnail response ${thumb.status} ${thumb.headers.get('content-type')}`);
+
+      const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+      const consoleErrors = [];
+      page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+      page.on('pageerror', (e) => consoleErrors.push(`uncaught: ${e.message}`));
+      await page.route(`**${second.thumbnail}`, (route) => route.fulfill({ status: 404, contentType: 'text/plain', body: 'held back by the test' }));
+      await page.goto(`${server.base}/`);
+      await page.waitForFunction(() => window.prtApp && (window.prtApp.error || (window.prtApp.ready && document.querySelector('.scene-tile'))),
+        null, { timeout: 90000 });
+      check(await page.evaluate(() => window.prtApp.error) === null, 'page error');
+      const tiles = await page.$$eval('.scene-tile', (els) => els.map((e) => e.dataset.scene));
+      check(JSON.stringify(tiles) === JSON.stringify([room.name, second.name]), `tiles: ${JSON.stringify(tiles)} (the broken asset must have none)`);
+      // The room's thumbnail, decoded by the browser, drawn into a canvas and read back.
+      await page.waitForFunction((name) => {
+        const img = document.querySelector(`.scene-tile[data-scene="${name}"] img`);
+        return img && img.complete && img.naturalWidth > 0;
+      }, room.name, { timeout: 30000 });
+      const picture = await page.evaluate((name) => {
+        const img = document.querySelector(`.scene-tile[data-scene="${name}"] img`);
+        const c = document.createElement('canvas');
+        c.width = img.naturalWidth;
+        c.height = img.naturalHeight;
+        const ctx = c.getContext('2d');
+        ctx.drawImage(img, 0, 0);
+        const d = ctx.getImageData(0, 0, c.width, c.height).data;
+        let opaque = 0, clear = 0, lo = 255, hi = 0;
+        for (let i = 0; i < d.length; i += 4) {
+          if (d[i + 3] === 0) clear++;
+          if (d[i + 3] === 255) {
+            opaque++;
+            lo = Math.min(lo, d[i + 1]);
+            hi = Math.max(hi, d[i + 1]);
+          }
+        }
+        const shown = img.getBoundingClientRect();
+        return { width: img.naturalWidth, height: img.naturalHeight, opaque, clear, lo, hi, shownWidth: shown.width };
+      }, room.name);
+      check(picture.width === 160 && picture.height === 120, `thumbnail is ${picture.width}x${picture.height}, expected 160x120`);
+      check(picture.opaque > 160 * 120 / 10 && picture.clear > 160 * 120 / 20, `thumbnail coverage: ${picture.opaque} opaque, ${picture.clear} clear pixels`);
+      check(picture.hi - picture.lo > 40, `thumbnail looks flat (green ${picture.lo}..${picture.hi})`);
+      check(picture.shownWidth > 40, `thumbnail shown ${picture.shownWidth} px wide`);
+      // The second scene's image failed: its tile has a placeholder instead.
+      await page.waitForSelector(`.scene-tile[data-scene="${second.name}"] .scene-placeholder`, { timeout: 30000 });
+      check(await page.$(`.scene-tile[data-scene="${second.name}"] img`) === null, 'the failed image is still in the tile');
+      await page.screenshot({ path: path.join(workDir, 'scene-picker.png') });
+      // Keyboard: focus the room's tile, arrow to the next, Enter picks it.
+      const pressed = (name) => page.getAttribute(`.scene-tile[data-scene="${name}"]`, 'aria-pressed');
+      check(await pressed(room.name) === 'true' && await pressed(second.name) === 'false', 'the room is not marked as shown');
+      await page.focus(`.scene-tile[data-scene="${room.name}"]`);
+      await page.keyboard.press('ArrowRight');
+      const focused = await page.evaluate(() => document.activeElement && document.activeElement.dataset.scene);
+      check(focused === second.name, `ArrowRight focused ${focused}`);
+      await page.keyboard.press('Enter');
+      await page.waitForFunction((name) => window.prtApp.error || window.prtApp.scene === name, second.name, { timeout: 90000 });
+      check(await page.evaluate(() => window.prtApp.scene) === second.name, 'Enter did not load the second scene');
+      check(await pressed(second.name) === 'true' && await pressed(room.name) === 'false', 'the picker does not mark the second scene as shown');
+      // The mark shows: the pressed tile's border differs from the other's (lil-gui's button
+      // rules must not flatten it).
+      const borders = await page.$$eval('.scene-tile', (els) => els.map((e) => `${getComputedStyle(e).borderTopStyle} ${getComputedStyle(e).borderTopColor}`));
+      check(borders.every((b) => b.startsWith('solid')) && borders[0] !== borders[1], `tile borders: ${JSON.stringify(borders)}`);
+      // The only console error allowed is the thumbnail the test held back.
+      const others = consoleErrors.filter((e) => !/404/.test(e));
+      check(others.length === 0, `console errors: ${others.join(' | ')}`);
     } finally {
       server.child.kill('SIGTERM');
     }

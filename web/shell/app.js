@@ -8,6 +8,7 @@ import { LightSet } from './light_set.js';
 import { LightDrag } from './light_drag.js';
 import { LightsPanel } from './lights_panel.js';
 import { fetchJson, downloadAsset } from './scene_download.js';
+import { ScenePicker } from './scene_picker.js';
 import { streamAsset, PASS_NAMES } from './stream_loader.js';
 import { installTestHook } from './test_hook.js';
 import { encodePermalink, decodePermalink } from './permalink.js';
@@ -445,7 +446,16 @@ function buildGui() {
   if (window.innerWidth < 600) gui.close();
   const usable = scenes.filter((s) => s.usable).map((s) => s.name);
   gui.add({ copyLink }, 'copyLink').name('copy link');  // first: what people look for when sharing
-  gui.add(state, 'scene', usable).name('scene').onChange((n) => loadScene(n).catch((e) => fail(e.message)));
+  const sceneControl = gui.add(state, 'scene', usable).name('scene').onChange((n) => pickScene(n));
+  // The same choice as pictures (server-made thumbnails, placeholders where there are none).
+  const sceneFolder = gui.addFolder('scenes');
+  const pickScene = (n) => loadScene(n).then(() => { sceneControl.updateDisplay(); picker.select(state.scene); })
+    .catch((e) => fail(e.message));
+  const pickerBox = document.createElement('div');  // inside lil-gui's own children box, which it hides when closed
+  sceneFolder.$children.append(pickerBox);
+  const picker = new ScenePicker(pickerBox, scenes.filter((s) => s.usable), pickScene);
+  picker.select(state.scene);
+  if (usable.length < 2 || window.innerWidth < 600) sceneFolder.close();
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
   updateGlossyControl();

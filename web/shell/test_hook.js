@@ -51,6 +51,7 @@ export function installTestHook(page) {
     cubeSH() {
       return page.app ? rows(page.app.cubeSH()) : [];
     },
+    get scene() { return ready() ? state.scene : null; },  // the scene shown (its catalogue name)
     get lightCenter() { return ready() ? Array.from(page.app.lightCenter()) : null; },
     get lightingModel() { return ready() ? page.lightingModels[page.app.lightingModel()] ?? 'unknown' : null; },
     get lightingRadius() { return ready() ? page.app.lightingRadius() : null; },
