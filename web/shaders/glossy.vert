@@ -68,6 +68,14 @@ ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
 
 vec4 transferTexel(int i) { return texelFetch(uTransfer, texelCoord(i), 0); }
 
+// sum_i gy_i T_i over the transfer row at `row` (channel c of vertex v: row c * V + v).
+float channelSum(int row, vec4 gy[16]) {
+  float sum = 0.0;
+  int base = row * uRowTexels;
+  SUM(0) SUM(1) SUM(2) SUM(3) SUM(4) SUM(5) SUM(6) SUM(7) SUM(8) SUM(9) SUM(10) SUM(11) SUM(12) SUM(13) SUM(14) SUM(15)
+  return sum;
+}
+
 void main() {
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
   vGlossy = vec3(0.0);
@@ -141,10 +149,6 @@ void main() {
   GY_TEXEL(0) GY_TEXEL(1) GY_TEXEL(2) GY_TEXEL(3) GY_TEXEL(4) GY_TEXEL(5) GY_TEXEL(6) GY_TEXEL(7)
   GY_TEXEL(8) GY_TEXEL(9) GY_TEXEL(10) GY_TEXEL(11) GY_TEXEL(12) GY_TEXEL(13) GY_TEXEL(14) GY_TEXEL(15)
   vec3 ks = schlick(aSpecular.rgb, aSpecularF90, dot(n, toEye), uFresnel == 1);
-  for (int c = 0; c < 3; ++c) {
-    float sum = 0.0;
-    int base = (c * uVertices + gl_VertexID) * uRowTexels;
-    SUM(0) SUM(1) SUM(2) SUM(3) SUM(4) SUM(5) SUM(6) SUM(7) SUM(8) SUM(9) SUM(10) SUM(11) SUM(12) SUM(13) SUM(14) SUM(15)
-    vGlossy[c] = ks[c] * sum;
-  }
+  vGlossy = vec3(ks.r * channelSum(gl_VertexID, gy), ks.g * channelSum(uVertices + gl_VertexID, gy),
+                 ks.b * channelSum(2 * uVertices + gl_VertexID, gy));
 }

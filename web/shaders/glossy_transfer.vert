@@ -7,13 +7,14 @@
 // transform feedback as ROW_TEXELS vec4 (vT0 .. vT{ROW_TEXELS-1}). glossyTransferCpu
 // (web/src/glossy_texture.cpp) emulates it.
 //
-// The renderer links this program per (ROW_TEXELS, ACTIVE_TEXELS) and defines both after the
-// version line: ROW_TEXELS = ceil(packed bands^2 / 4), the table's stride; ACTIVE_TEXELS =
-// ceil(displayed bands^2 / 4) <= ROW_TEXELS, the texels summed (the rest of T stays 0). With
-// both known at compile time every loop over texels is written out below and the
-// accumulators are 16 named vectors: a software rasteriser (SwiftShader, llvmpipe) that does
-// not unroll loops turns a loop-indexed local array into per-lane memory gathers and scatters,
-// which cost as much as the texel fetches themselves.
+// The renderer links this program per (ROW_TEXELS, ACTIVE_TEXELS, VECTORS) and defines them
+// after the version line: ROW_TEXELS = ceil(packed bands^2 / 4), the table's stride;
+// ACTIVE_TEXELS = ceil(displayed bands^2 / 4) <= ROW_TEXELS, the texels summed (the rest of
+// T stays 0); VECTORS = N'. With all three known at compile time the sum is written out below
+// (macros over constant indices) and the accumulators are 16 named vectors: a software
+// rasteriser that does not unroll loops (SwiftShader) turns a loop-indexed local array and a
+// loop-indexed vector component into per-lane memory gathers and scatters, and keeps loop
+// state in memory; in SwiftShader the written-out sum takes about half the time of the loops.
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -27,7 +28,6 @@ uniform sampler2D uTable;     // RGBA32F, glossy_table.vert's output
 uniform isampler2D uWeights;  // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
 uniform int uTextureMask;     // the textures' width - 1 (a power of two)
 uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
-uniform int uVectors;         // N' (<= 64)
 uniform int uWeightTexels;
 uniform int uChannel;         // 0 r, 1 g, 2 b
 
@@ -41,6 +41,10 @@ vec4 tableTexel(int i) { return texelFetch(uTable, texelCoord(i), 0); }
 // the row at `row + t`, for t < ACTIVE_TEXELS (a compile-time test).
 #define ADD(a, t, level) if ((t) < ACTIVE_TEXELS) a += (level) * tableTexel(row + (t));
 #define ADD_ROW(level) ADD(a0, 0, level) ADD(a1, 1, level) ADD(a2, 2, level) ADD(a3, 3, level) ADD(a4, 4, level) ADD(a5, 5, level) ADD(a6, 6, level) ADD(a7, 7, level) ADD(a8, 8, level) ADD(a9, 9, level) ADD(a10, 10, level) ADD(a11, 11, level) ADD(a12, 12, level) ADD(a13, 13, level) ADD(a14, 14, level) ADD(a15, 15, level)
+// Basis vector j (0-based) with its level, for j < VECTORS (compile-time).
+#define BASIS(j, level) if ((j) < VECTORS) { row += stride; ADD_ROW(level) }
+// Weight texel w: the levels of basis vectors 4w .. 4w + 3.
+#define WEIGHTS(i) if (4 * (i) < VECTORS) { q = vec4(texelFetch(uWeights, texelCoord(weightTexel + (i)), 0)); BASIS(4 * (i), q.x) BASIS(4 * (i) + 1, q.y) BASIS(4 * (i) + 2, q.z) BASIS(4 * (i) + 3, q.w) }
 #define MEAN(a, t) if ((t) < ACTIVE_TEXELS) a = tableTexel(row + (t));
 
 void main() {
@@ -53,31 +57,13 @@ void main() {
     // The sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N', each
     // level read once.
     int stride = 3 * ROW_TEXELS;  // texels from basis vector j's row for channel c to j + 1's
-    int row = (int(aCluster) * (1 + uVectors) * 3 + uChannel) * ROW_TEXELS;
+    int row = (int(aCluster) * (1 + VECTORS) * 3 + uChannel) * ROW_TEXELS;
     MEAN(a0, 0) MEAN(a1, 1) MEAN(a2, 2) MEAN(a3, 3) MEAN(a4, 4) MEAN(a5, 5) MEAN(a6, 6) MEAN(a7, 7)
     MEAN(a8, 8) MEAN(a9, 9) MEAN(a10, 10) MEAN(a11, 11) MEAN(a12, 12) MEAN(a13, 13) MEAN(a14, 14) MEAN(a15, 15)
     int weightTexel = gl_VertexID * uWeightTexels;
-    int left = uVectors;  // basis vectors still to add
-    for (int w = 0; w < uWeightTexels; ++w) {
-      vec4 q = vec4(texelFetch(uWeights, texelCoord(weightTexel + w), 0));
-      if (left > 0) {
-        row += stride;
-        ADD_ROW(q.x)
-      }
-      if (left > 1) {
-        row += stride;
-        ADD_ROW(q.y)
-      }
-      if (left > 2) {
-        row += stride;
-        ADD_ROW(q.z)
-      }
-      if (left > 3) {
-        row += stride;
-        ADD_ROW(q.w)
-      }
-      left -= 4;
-    }
+    vec4 q;
+    WEIGHTS(0) WEIGHTS(1) WEIGHTS(2) WEIGHTS(3) WEIGHTS(4) WEIGHTS(5) WEIGHTS(6) WEIGHTS(7)
+    WEIGHTS(8) WEIGHTS(9) WEIGHTS(10) WEIGHTS(11) WEIGHTS(12) WEIGHTS(13) WEIGHTS(14) WEIGHTS(15)
   }
   vT0 = a0; vT1 = a1; vT2 = a2; vT3 = a3; vT4 = a4; vT5 = a5; vT6 = a6; vT7 = a7;
   vT8 = a8; vT9 = a9; vT10 = a10; vT11 = a11; vT12 = a12; vT13 = a13; vT14 = a14; vT15 = a15;

@@ -98,7 +98,6 @@ Status GlRenderer::init() {
   if (Status s = link(shaders::k_prt_vert, shaders::k_discard_frag, &prt_, "vRadiance"); !s.isOk()) return s;
   if (Status s = link(shaders::k_radiance_vert, shaders::k_shade_frag, &radiance_); !s.isOk()) return s;
   if (Status s = link(shaders::k_cpca_vert, shaders::k_discard_frag, &cpca_, "vRadiance"); !s.isOk()) return s;
-  if (Status s = link(shaders::k_glossy_table_vert, shaders::k_discard_frag, &glossyTable_, "vTable"); !s.isOk()) return s;
   glGenTransformFeedbacks(1, &feedback_);
   glGenVertexArrays(1, &tableVao_);
   if (Status s = link(shaders::k_lambert_vert, shaders::k_shade_frag, &lambert_); !s.isOk()) return s;
@@ -210,9 +209,6 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   GlossyTextures packed;
   if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
-  // The programs of the packed order (the one displayed unless the order slider is lowered).
-  if (Status s = ensureTransferProgram(packed.rowTexels, packed.rowTexels); !s.isOk()) return s;
-  if (Status s = ensureViewProgram(packed.bands); !s.isOk()) return s;
   GlossyPass& g = glossy_[k];
   releaseGlossy(&g);
   g.bands = packed.bands;
@@ -225,6 +221,13 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   g.tableTexels = packed.tableTexels;
   g.tableHeight = packed.tableHeight;
   g.transferHeight = packed.transferHeight;
+  // The programs of the packed order (the one displayed unless the order slider is lowered;
+  // a lowered order links its own on first use).
+  GlossyPrograms programs;
+  if (Status s = glossyPrograms(g, g.bands, &programs); !s.isOk()) {
+    releaseGlossy(&g);
+    return s;
+  }
   glGenTextures(1, &g.matrices);
   glBindTexture(GL_TEXTURE_2D, g.matrices);
   setNearestClamp(GL_TEXTURE_2D);
@@ -277,38 +280,49 @@ std::array<int, 3> GlRenderer::glossyShape(ShadingMode mode) const {
   return {g.clusters, g.vectors, g.channels};
 }
 
-Status GlRenderer::ensureTransferProgram(int rowTexels, int activeTexels) {
-  if (rowTexels < 1 || rowTexels > 16 || activeTexels < 1 || activeTexels > rowTexels) {
-    return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad row width");
+Status GlRenderer::glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms* out) {
+  if (bands < 1 || bands > g.bands || g.rowTexels < 1 || g.rowTexels > 16) {
+    return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad band count or row width");
   }
-  Program& p = glossyTransfer_[static_cast<std::size_t>(17 * rowTexels + activeTexels)];
-  if (p.id) return Status::ok();
   static const char* const kNames[16] = {"vT0", "vT1", "vT2",  "vT3",  "vT4",  "vT5",  "vT6",  "vT7",
                                          "vT8", "vT9", "vT10", "vT11", "vT12", "vT13", "vT14", "vT15"};
-  const std::string vs = withDefines(shaders::k_glossy_transfer_vert, "#define ROW_TEXELS " + std::to_string(rowTexels) +
-                                                                          "\n#define ACTIVE_TEXELS " + std::to_string(activeTexels) + "\n");
-  return link(vs.c_str(), shaders::k_discard_frag, &p, kNames, rowTexels);
+  const std::string row = "#define ROW_TEXELS " + std::to_string(g.rowTexels) + "\n";
+  const std::string table = row + "#define ROWS " + std::to_string(bands * bands) + "\n";
+  const std::string transfer = row + "#define ACTIVE_TEXELS " + std::to_string(texelsForOrder(bands)) + "\n#define VECTORS " +
+                               std::to_string(g.vectors) + "\n";
+  const std::string view = "#define BANDS " + std::to_string(bands) + "\n";
+  PRT_RETURN_IF_ERROR(specialised("table", shaders::k_glossy_table_vert, table, &kNames[0], 0, &out->table));
+  PRT_RETURN_IF_ERROR(specialised("transfer", shaders::k_glossy_transfer_vert, transfer, kNames, g.rowTexels, &out->transfer));
+  return specialised("view", shaders::k_glossy_vert, view, nullptr, 0, &out->view);
 }
 
-Status GlRenderer::ensureViewProgram(int bands) {
-  if (bands < 1 || bands > kMaxGlossyOrder) return Status::error(StatusCode::kInvalidArgument, "glossy pass: bad band count");
-  Program& p = glossyView_[static_cast<std::size_t>(bands)];
-  if (p.id) return Status::ok();
-  const std::string vs = withDefines(shaders::k_glossy_vert, "#define BANDS " + std::to_string(bands) + "\n");
-  return link(vs.c_str(), shaders::k_discard_frag, &p, "vGlossy");
+Status GlRenderer::specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
+                               const Program** out) {
+  const std::string key = std::string(name) + "\n" + defines;
+  if (const auto it = specialised_.find(key); it != specialised_.end()) {
+    *out = &it->second;
+    return Status::ok();
+  }
+  static const char* const kTable = "vTable";
+  static const char* const kGlossy = "vGlossy";
+  // The table and view programs capture one varying each; the transfer program `count`.
+  const char* const* names = count > 0 ? feedback : (std::string(name) == "table" ? &kTable : &kGlossy);
+  Program p;
+  PRT_RETURN_IF_ERROR(link(withDefines(vs, defines).c_str(), shaders::k_discard_frag, &p, names, count > 0 ? count : 1));
+  *out = &specialised_.emplace(key, p).first->second;
+  return Status::ok();
 }
 
-void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
+void GlRenderer::relightGlossy(GlossyPass& g, bool tableOnly, const GlossyPrograms& programs) {
   // 1. The table: every cluster's (1 + N') matrices times the lighting, one point per texel.
-  glUseProgram(glossyTable_.id);
+  const Program& table = *programs.table;
+  glUseProgram(table.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.matrices);
-  glUniform1i(glossyTable_.matrices, 0);
-  setTextureLayout(glossyTable_.textureMask, glossyTable_.textureShift);
-  glUniform1i(glossyTable_.rowTexels, g.rowTexels);
-  glUniform1i(glossyTable_.matrixTexels, g.matrixTexels);
-  glUniform1i(glossyTable_.channels, g.channels);
-  glUniform1i(glossyTable_.rows, bands * bands);
+  glUniform1i(table.matrices, 0);
+  setTextureLayout(table.textureMask, table.textureShift);
+  glUniform1i(table.matrixTexels, g.matrixTexels);
+  glUniform1i(table.channels, g.channels);
   glBindVertexArray(tableVao_);
   capture(g.tableBuffer, static_cast<GLsizei>(g.tableTexels));
   // Into the table texture, GPU to GPU.
@@ -319,7 +333,7 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   g.transferValid = false;
   if (tableOnly) return;
   // 2. Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
-  const Program& t = glossyTransfer_[static_cast<std::size_t>(17 * g.rowTexels + texelsForOrder(bands))];
+  const Program& t = *programs.transfer;
   glUseProgram(t.id);
   glBindTexture(GL_TEXTURE_2D, g.table);
   glUniform1i(t.table, 0);
@@ -327,7 +341,6 @@ void GlRenderer::relightGlossy(GlossyPass& g, int bands, bool tableOnly) {
   glBindTexture(GL_TEXTURE_2D, g.weights);
   glUniform1i(t.weights, 1);
   setTextureLayout(t.textureMask, t.textureShift);
-  glUniform1i(t.vectors, g.vectors);
   glUniform1i(t.weightTexels, g.weightTexels);
   glBindVertexArray(g.vao);
   const GLsizeiptr channelBytes = static_cast<GLsizeiptr>(vertexCount_) * g.rowTexels * 4 * static_cast<GLsizeiptr>(sizeof(float));
@@ -349,19 +362,18 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   GlossyPass& g = glossy_[static_cast<std::size_t>(mode)];
   if (g.bands == 0) return false;
   const int bands = std::clamp(displayOrder, 1, g.bands);
-  // The programs of this band count (linked at upload for the packed one; a lowered order
-  // links its own on first use).
-  if (!ensureTransferProgram(g.rowTexels, texelsForOrder(bands)).isOk() || !ensureViewProgram(bands).isOk()) return false;
+  GlossyPrograms programs;
+  if (!glossyPrograms(g, bands, &programs).isOk()) return false;
   const bool stale = !g.transferValid || g.transferVersion != lightingVersion || g.transferBands != bands;
   if (work == GlossyWork::kTableOnly || work == GlossyWork::kRelight || (work == GlossyWork::kAsNeeded && stale)) {
-    relightGlossy(g, bands, work == GlossyWork::kTableOnly);
+    relightGlossy(g, work == GlossyWork::kTableOnly, programs);
     g.transferVersion = lightingVersion;
     g.transferBands = bands;
     if (work == GlossyWork::kTableOnly) return true;
   }
   if (!g.transferValid) return false;  // kViewOnly before any relight
   // 3. Per vertex: lobe convolution, y_i(R) toward the eye, Schlick, on the cached T.
-  const Program& view = glossyView_[static_cast<std::size_t>(bands)];
+  const Program& view = *programs.view;
   glUseProgram(view.id);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.transfer);

@@ -6,6 +6,7 @@
 #include <GLES3/gl3.h>
 
 #include <array>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -199,12 +200,23 @@ class GlRenderer {
   Status link(const char* vs, const char* fs, Program* out, const char* feedback = nullptr);
   // The same with `count` varyings captured interleaved.
   Status link(const char* vs, const char* fs, Program* out, const char* const* feedback, int count);
-  // Makes the table and the transferred radiance of `g` for the bound lighting at `bands`.
-  void relightGlossy(GlossyPass& g, int bands, bool tableOnly);
-  // Link glossy_transfer.vert for (rowTexels, activeTexels), 1 <= active <= row <= 16, and
-  // glossy.vert for `bands` (1 .. kMaxGlossyOrder), each once, on first use.
-  Status ensureTransferProgram(int rowTexels, int activeTexels);
-  Status ensureViewProgram(int bands);
+  // The three glossy programs for a pass at a displayed band count, each linked with its
+  // compile-time shape (docs/web-client.md, "Glossy rendering").
+  struct GlossyPrograms {
+    const Program* table = nullptr;     // glossy_table.vert: ROW_TEXELS, ROWS
+    const Program* transfer = nullptr;  // glossy_transfer.vert: ROW_TEXELS, ACTIVE_TEXELS, VECTORS
+    const Program* view = nullptr;      // glossy.vert: BANDS
+  };
+  // Links (once per shape, kept for the context's life) and returns the programs of pass `g`
+  // at `bands` (1 .. g.bands).
+  Status glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms* out);
+  // `vs` with `defines` after its version line, linked once per (name, defines) into
+  // specialised_; `count` varyings of `feedback` captured (0: the shader's one, vTable or vGlossy).
+  Status specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
+                     const Program** out);
+  // Makes the table and the transferred radiance of `g` for the bound lighting, at the band
+  // count `programs` were linked for.
+  void relightGlossy(GlossyPass& g, bool tableOnly, const GlossyPrograms& programs);
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
@@ -223,11 +235,8 @@ class GlRenderer {
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
-  Program prt_, lambert_, background_, radiance_, cpca_, glossyTable_;
-  // glossy_transfer.vert linked per row width r = 1 .. 16 texels (capturing vT0 .. vT{r-1})
-  // and active texels a <= r, at [17 r + a]; glossy.vert per displayed band count.
-  std::array<Program, 17 * 17> glossyTransfer_{};
-  std::array<Program, kMaxGlossyOrder + 1> glossyView_{};
+  Program prt_, lambert_, background_, radiance_, cpca_;
+  std::map<std::string, Program> specialised_;  // the glossy programs by shape (specialised())
   GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
