@@ -14,6 +14,7 @@ const char* magicFor(ShardFileKind kind) {
     case ShardFileKind::kPlan: return "PRTPLAN1";
     case ShardFileKind::kShard: return "PRTSHRD1";
     case ShardFileKind::kMergedPass: return "PRTPASS1";
+    case ShardFileKind::kPreparedScene: return "PRTSCEN1";
   }
   return "????????";
 }
@@ -23,6 +24,7 @@ const char* kindName(ShardFileKind kind) {
     case ShardFileKind::kPlan: return "bake plan";
     case ShardFileKind::kShard: return "bake shard";
     case ShardFileKind::kMergedPass: return "merged pass";
+    case ShardFileKind::kPreparedScene: return "prepared scene";
   }
   return "file";
 }
@@ -73,6 +75,7 @@ Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, 
   r.u64(&payloadBytes);
   r.u32(&payloadCrc);
   r.u32(&headerCrc);
+  h->payloadCrc = payloadCrc;
   h->kind = kind;
   if (crc32c(bytes.first(52)) != headerCrc) {
     return Status::error(StatusCode::kChecksumMismatch, "header checksum mismatch: the file is damaged");

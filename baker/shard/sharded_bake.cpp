@@ -191,18 +191,6 @@ std::uint32_t plannedPasses(const BakeOptions& transfer) {
   return transfer.interreflection ? 1 + static_cast<std::uint32_t>(transfer.maxBounces) : 1;
 }
 
-Status checkPlannedScene(const BakePlan& plan, const Scene& scene) {
-  const std::uint32_t hash = sceneHash(scene);
-  if (hash == plan.sceneHash && scene.positions.size() == plan.vertices && scene.indices.size() / 3 == plan.triangles) {
-    return Status::ok();
-  }
-  char text[200];
-  std::snprintf(text, sizeof text, " changed since the plan was made (scene hash %08x, %zu vertices; the plan has %08x, %llu vertices): make a new plan",
-                hash, scene.positions.size(), plan.sceneHash, static_cast<unsigned long long>(plan.vertices));
-  return Status::error(StatusCode::kInvalidArgument,
-                       (plan.scenePath.empty() ? std::string("the built-in room") : "the scene '" + plan.scenePath + "'") + text);
-}
-
 Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, bool* skipped, PassStats* stats) {
   PRT_RETURN_IF_ERROR(checkPassShard(ctx, pass, shard));
   *skipped = false;
