@@ -44,7 +44,7 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out) {
+                         std::size_t glossyEntries, std::uint64_t samplesPlanned, bool readHits, DirectShard* out) {
   ByteReader r(payload);
   std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
@@ -60,6 +60,8 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
     return corrupt("the glossy shadowed matrices (" + std::to_string(count * glossyEntries) + " floats) are cut short");
   }
   out->blocks.clear();
+  out->hitViews.clear();
+  out->hitStarts.clear();
   if (!out->hasHits) {
     if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
     return Status::ok();
@@ -75,35 +77,45 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
                    std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
   if (!readHits) return Status::ok();
-  out->blocks.resize(blocksOf(count));
-  for (std::size_t j = 0; j < out->blocks.size(); ++j) {
-    HitBlock& b = out->blocks[j];
-    const std::size_t first = j * kBlockVertices, last = std::min(count, first + kBlockVertices);
-    b.hitStart.assign(1, 0);
-    std::uint64_t hits = 0;
-    for (std::size_t v = first; v < last; ++v) {
-      hits += perVertex[v];
-      if (hits > 0xFFFFFFFFu) return corrupt("block " + std::to_string(j) + " holds more than 2^32 hits");
-      b.hitStart.push_back(static_cast<std::uint32_t>(hits));
-    }
-    b.hits.resize(static_cast<std::size_t>(hits));
-    // The records are Hit's own bytes (kHitLayoutIsTheFiles): one copy, then each is checked.
-    if (!r.raw(b.hits.data(), b.hits.size() * sizeof(Hit))) return corrupt("the hit records are cut short");
-    for (const Hit& h : b.hits) {
-      if (h.triangle >= triangles || !std::isfinite(h.weight)) {
-        return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
-                       " or has a weight that is not finite");
-      }
+  // The records, then (glossy) their sample indices, in place: Hit's own bytes (kHitLayoutIsTheFiles).
+  const std::span<const std::uint8_t> rest = payload.subspan(payload.size() - r.remaining());
+  if (reinterpret_cast<std::uintptr_t>(rest.data()) % alignof(Hit) != 0) {
+    return corrupt("the hit records are not 4-byte aligned in memory (read the file mapped or from an aligned buffer)");
+  }
+  const std::span<const Hit> hits(reinterpret_cast<const Hit*>(rest.data()), static_cast<std::size_t>(total));
+  const std::span<const std::uint32_t> samples =
+      out->glossy ? std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(rest.data() + total * 12),
+                                                   static_cast<std::size_t>(total))
+                  : std::span<const std::uint32_t>();
+  for (const Hit& h : hits) {
+    if (h.triangle >= triangles || !std::isfinite(h.weight)) {
+      return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
+                     " or has a weight that is not finite");
     }
   }
-  if (!out->glossy) return Status::ok();
-  for (HitBlock& b : out->blocks) {
-    if (!r.u32s(b.hits.size(), &b.hitSample)) return corrupt("the hits' sample indices are cut short");
-    for (std::uint32_t k : b.hitSample) {
-      if (k >= samples) {
-        return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samples));
-      }
+  for (std::uint32_t k : samples) {
+    if (k >= samplesPlanned) return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samplesPlanned));
+  }
+  const std::size_t blocks = blocksOf(count);
+  out->hitStarts.clear();
+  out->hitStarts.reserve(count + blocks);
+  out->hitViews.resize(blocks);
+  std::uint64_t first = 0;  // the block's first hit
+  for (std::size_t j = 0; j < blocks; ++j) {
+    const std::size_t v0 = j * kBlockVertices, v1 = std::min(count, v0 + kBlockVertices);
+    const std::size_t start = out->hitStarts.size();
+    std::uint64_t hitsOfBlock = 0;
+    out->hitStarts.push_back(0);
+    for (std::size_t v = v0; v < v1; ++v) {
+      hitsOfBlock += perVertex[v];
+      if (hitsOfBlock > 0xFFFFFFFFu) return corrupt("block " + std::to_string(j) + " holds more than 2^32 hits");
+      out->hitStarts.push_back(static_cast<std::uint32_t>(hitsOfBlock));
     }
+    HitBlockView& b = out->hitViews[j];
+    b.hitStart = std::span<const std::uint32_t>(out->hitStarts).subspan(start, v1 - v0 + 1);  // reserved: never moves
+    b.hits = hits.subspan(first, hitsOfBlock);
+    if (out->glossy) b.hitSample = samples.subspan(first, hitsOfBlock);
+    first += hitsOfBlock;
   }
   return Status::ok();
 }

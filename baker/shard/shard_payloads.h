@@ -21,7 +21,12 @@ struct DirectShard {
   bool hasHits = false;                     // interreflection stored
   bool glossy = false;                      // --glossy: matrices, and each hit's sample index
   std::vector<float> glossyShadowed;        // glossy: count x the packing's entries
-  std::vector<HitBlock> blocks;             // ceil(count / 64) when hasHits (hitSample filled when glossy)
+  std::vector<HitBlock> blocks;             // encoding: ceil(count / 64) when hasHits (hitSample filled when glossy)
+  // Decoding with readHits: ceil(count / 64) views of the records in place, into the decoded
+  // payload (which must outlive them), their hitStart in `hitStarts`. Nothing is copied: a
+  // bounce shard reads 12 bytes a hit, ~160 hits a vertex, again every bounce.
+  std::vector<HitBlockView> hitViews;
+  std::vector<std::uint32_t> hitStarts;
 };
 
 // Pass b >= 1 of vertices [begin, end): B^b there, each block's energy and, for a glossy
@@ -48,8 +53,10 @@ struct MergedPass {
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s);
 // `count` vertices at order^2 = n2 coefficients; hit triangles below `triangles`; a glossy
 // shard's matrices `glossyEntries` floats a vertex and its hits' sample indices below `samples`.
-// With `readHits` false the hit records' sizes are checked but they are not copied or
-// checked one by one (out->blocks stays empty): for readers that use the transfer only.
+// With `readHits` the hit records are checked one by one and viewed in place (out->hitViews:
+// `payload` must outlive them, and be 4-byte aligned, as a mapped file is); without it their
+// sizes are checked but not the records (out->hitViews stays empty): for readers that use
+// the transfer only.
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
                          std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out);
 

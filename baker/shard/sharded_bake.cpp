@@ -11,6 +11,7 @@
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/transfer_range.h"
 #include "native/file_io.h"
+#include "native/mapped_file.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -25,11 +26,12 @@ std::string shardLabel(std::uint32_t pass, std::uint32_t shard) {
 std::string mergedLabel(std::uint32_t pass) { return "merged pass " + std::to_string(pass); }
 
 // Reads and checks one file of the plan: present, this kind, this plan, pass, shard and range.
+// The file is mapped, not copied (*payload views *file): the hit records are read in place.
 Status readPlanFile(const ShardContext& ctx, const std::string& path, const std::string& label, ShardFileKind kind,
-                    std::uint32_t pass, std::uint32_t shard, VertexRange range, std::vector<std::uint8_t>* bytes,
+                    std::uint32_t pass, std::uint32_t shard, VertexRange range, MappedFile* file,
                     std::span<const std::uint8_t>* payload) {
   const std::string named = label + " ('" + path + "')";
-  if (Status s = readFileBytes(path, kMaxShardFileBytes, bytes); !s.isOk()) {
+  if (Status s = MappedFile::open(path, kMaxShardFileBytes, file); !s.isOk()) {
     if (s.code() == StatusCode::kNotFound) {
       return Status::error(StatusCode::kNotFound, named + " is missing" +
                                                       (kind == ShardFileKind::kShard
@@ -41,7 +43,7 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
     return Status::error(s.code(), named + ": " + s.message());
   }
   ShardHeader h;
-  if (Status s = decodeShardFile(*bytes, kind, &h, payload); !s.isOk()) {
+  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload); !s.isOk()) {
     return Status::error(s.code(), named + " is corrupt: " + s.message());
   }
   if (h.planId != ctx.plan->id) {
@@ -97,13 +99,13 @@ void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_
   }
 }
 
-// readHits: the bounce shards need the hit records; the merges only the transfer.
-Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, DirectShard* out) {
+// readHits: the bounce shards need the hit records (out->hitViews, views into *file); the
+// merges only the transfer.
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, MappedFile* file, DirectShard* out) {
   const VertexRange range = ctx.plan->shards[shard];
-  std::vector<std::uint8_t> bytes;
   std::span<const std::uint8_t> payload;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
-                                   shard, range, &bytes, &payload));
+                                   shard, range, file, &payload));
   if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles,
                                    glossyEntries(ctx), ctx.transfer->samples, readHits, out);
       !s.isOk()) {
@@ -118,10 +120,10 @@ Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHi
 
 Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, BounceShard* out) {
   const VertexRange range = ctx.plan->shards[shard];
-  std::vector<std::uint8_t> bytes;
+  MappedFile file;
   std::span<const std::uint8_t> payload;
   const std::string path = shardPath(ctx.planPath, pass, shard);
-  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &bytes, &payload));
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &file, &payload));
   if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), glossyBounce(*ctx.transfer, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(pass, shard) + " ('" + path + "') is corrupt: " + s.message());
@@ -130,11 +132,11 @@ Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_
 }
 
 Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* out) {
-  std::vector<std::uint8_t> bytes;
+  MappedFile file;
   std::span<const std::uint8_t> payload;
   const std::string path = mergedPassPath(ctx.planPath, pass);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
-                                   {0, ctx.plan->vertices}, &bytes, &payload));
+                                   {0, ctx.plan->vertices}, &file, &payload));
   if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), senderFloats(ctx, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
@@ -219,12 +221,13 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   MergedPass previous;
   PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
   if (*skipped) return Status::ok();
+  MappedFile directFile;
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &direct));
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &directFile, &direct));
   BounceShard out;
   const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
   PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
-                                        direct.blocks, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
+                                        direct.hitViews, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
                                         &out.bounce, &out.blockEnergy, stats));
   return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeBounceShard(out));
 }
@@ -241,8 +244,9 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   if (pass == 0) {
     std::vector<float> shadowed;
     for (std::uint32_t i = 0; i < shards; ++i) {
+      MappedFile file;
       DirectShard d;
-      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
       shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
       if (keepSenders) {
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, d.glossyShadowed, glossyEntries(ctx), &merged.senderMatrices);
@@ -296,8 +300,9 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   }
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   for (std::uint32_t i = 0; i < shards; ++i) {
+    MappedFile file;
     DirectShard d;
-    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
     out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
     out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
     out->glossyShadowed.insert(out->glossyShadowed.end(), d.glossyShadowed.begin(), d.glossyShadowed.end());

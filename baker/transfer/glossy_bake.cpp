@@ -174,7 +174,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 
   parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
     Scratch& s = scratch[thread];
-    const HitBlock& rec = job.blocks[block];
+    const HitBlockView& rec = job.blocks[block];
     const std::size_t begin = (job.firstBlock + block) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
     const std::size_t blockVertices = end - begin;
     const std::size_t vertexDense = n2 * row3;
@@ -284,7 +284,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 }
 
 GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
-                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                std::span<const HitBlockView> blocks, const float* diffusePrevious,
                                 const std::vector<std::int32_t>* senderIndex) {
   GlossyBounceJob job;
   job.scene = &scene;

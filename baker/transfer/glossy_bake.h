@@ -78,7 +78,7 @@ struct GlossyBounceJob {
   const Scene* scene = nullptr;
   int order = 0;
   int bounce = 0;                                 // b >= 1
-  std::span<const HitBlock> blocks;               // the direct pass's hits, kBlockVertices per block
+  std::span<const HitBlockView> blocks;               // the direct pass's hits, kBlockVertices per block
   // blocks[j] is the scene's block firstBlock + j: a sharded bake gathers one vertex range.
   // Every per-vertex output below is indexed from that block's first vertex.
   std::size_t firstBlock = 0;
@@ -114,7 +114,7 @@ struct SampleTable;
 // samples (`table`: directions, [sample][coefficient] basis, weight), B^{b-1}, the senders,
 // threads and progress from `options`. The caller adds the matrices it reads and writes.
 GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
-                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                std::span<const HitBlockView> blocks, const float* diffusePrevious,
                                 const std::vector<std::int32_t>* senderIndex);
 
 // Gathers bounce `job.bounce` for the job's blocks (deterministic whatever job.threads).

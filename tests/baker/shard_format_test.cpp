@@ -3,6 +3,7 @@
 // refused with an error, never a crash or a silent success.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -99,10 +100,19 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   DirectShard e;
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, true, &e).isOk());
   EXPECT_EQ(e.unshadowed, d.unshadowed);
-  ASSERT_EQ(e.blocks.size(), 2u);
-  EXPECT_EQ(e.blocks[0].hitStart, d.blocks[0].hitStart);
-  EXPECT_EQ(e.blocks[1].hits[0].triangle, 9u);
-  EXPECT_EQ(e.blocks[0].hits[1].v, 65535);
+  ASSERT_EQ(e.hitViews.size(), 2u);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitStart.begin(), e.hitViews[0].hitStart.end()), d.blocks[0].hitStart);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitStart.begin(), e.hitViews[1].hitStart.end()), d.blocks[1].hitStart);
+  ASSERT_EQ(e.hitViews[1].hits.size(), 1u);
+  EXPECT_EQ(e.hitViews[1].hits[0].triangle, 9u);
+  EXPECT_EQ(e.hitViews[0].hits[1].v, 65535);
+  // Views into the payload, not copies.
+  EXPECT_GE(reinterpret_cast<const std::uint8_t*>(e.hitViews[0].hits.data()), payload.data());
+  EXPECT_LT(reinterpret_cast<const std::uint8_t*>(e.hitViews[0].hits.data()), payload.data() + payload.size());
+  // A misaligned payload (a copy one byte in) is refused, not read misaligned.
+  std::vector<std::uint8_t> shifted(payload.size() + 1);
+  std::copy(payload.begin(), payload.end(), shifted.begin() + 1);
+  EXPECT_EQ(decodeDirectShard(std::span(shifted).subspan(1), 70, 4, 10, 0, 64, true, &e).code(), StatusCode::kCorrupt);
   // A triangle outside the scene.
   EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, 0, 64, true, &e).code(), StatusCode::kCorrupt);
   // Another vertex count or order.
@@ -116,7 +126,7 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, false, &f).isOk());
   EXPECT_EQ(f.shadowed, d.shadowed);
   EXPECT_TRUE(f.hasHits);
-  EXPECT_TRUE(f.blocks.empty());
+  EXPECT_TRUE(f.hitViews.empty());
   EXPECT_FALSE(decodeDirectShard(std::span(payload).first(payload.size() - 1), 70, 4, 10, 0, 64, false, &f).isOk());
   // In a file, any flipped byte is caught by a checksum.
   ShardHeader h;
@@ -180,8 +190,8 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 10, 64, true, &e).isOk());
   EXPECT_TRUE(e.glossy);
   EXPECT_EQ(e.glossyShadowed, d.glossyShadowed);
-  EXPECT_EQ(e.blocks[0].hitSample, d.blocks[0].hitSample);
-  EXPECT_EQ(e.blocks[1].hitSample, d.blocks[1].hitSample);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitSample.begin(), e.hitViews[0].hitSample.end()), d.blocks[0].hitSample);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitSample.begin(), e.hitViews[1].hitSample.end()), d.blocks[1].hitSample);
   EXPECT_EQ(decodeDirectShard(payload, 70, 4, 10, 10, 63, true, &e).code(), StatusCode::kCorrupt);  // sample 63 of 63
   EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 10, 16, 64, true, &e).isOk());  // another packing
   for (std::size_t n = 0; n < payload.size(); ++n) {
