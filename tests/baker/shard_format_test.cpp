@@ -8,8 +8,10 @@
 #include <vector>
 
 #include "baker/shard/bake_plan.h"
+#include "baker/shard/prepared_scene.h"
 #include "baker/shard/shard_container.h"
 #include "baker/shard/shard_payloads.h"
+#include "prt/checksum.h"
 
 namespace prt::bake {
 namespace {
@@ -20,6 +22,8 @@ BakePlan samplePlan() {
   p.workingDirectory = "/data";
   p.bakeArgs = {"/data/scene.glb", "-o", "x.plan", "--order", "3"};
   p.sceneHash = 0x12345678u;
+  p.sceneName = "scene";
+  p.sceneFiles = {{"/data/scene.gltf", 1234, 0xabcdef01u}, {"/data/scene.bin", 99, 7}};
   p.vertices = 200;
   p.triangles = 300;
   p.order = 3;
@@ -51,6 +55,11 @@ TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
   EXPECT_EQ(q.scenePath, p.scenePath);
   EXPECT_EQ(q.bakeArgs, p.bakeArgs);
   EXPECT_EQ(q.sceneHash, p.sceneHash);
+  EXPECT_EQ(q.sceneName, "scene");
+  ASSERT_EQ(q.sceneFiles.size(), 2u);
+  EXPECT_EQ(q.sceneFiles[1].path, "/data/scene.bin");
+  EXPECT_EQ(q.sceneFiles[0].bytes, 1234u);
+  EXPECT_EQ(q.sceneFiles[0].crc32c, 0xabcdef01u);
   EXPECT_EQ(q.shards.size(), 3u);
   EXPECT_EQ(q.id, p.id);
   for (std::size_t n = 0; n < bytes.size(); ++n) {
@@ -65,6 +74,67 @@ TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
   longer.push_back(0);
   const Status s = decodeBakePlan(longer, &q);
   EXPECT_EQ(s.code(), StatusCode::kCorrupt) << s.message();
+}
+
+// Two triangles over four vertices, with specular materials when `glossy`.
+Scene sampleScene(bool glossy) {
+  Scene s;
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}};
+  s.normals.assign(4, Vec3{0, 0, 1});
+  s.albedo = {{0.1f, 0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}, {0.7f, 0.8f, 0.9f}, {1, 1, 1}};
+  s.indices = {0, 1, 2, 2, 1, 3};
+  if (glossy) s.specular = {{{0.04f, 0.04f, 0.04f}, 10.0f, 1.0f}, {}, {{0.9f, 0.6f, 0.3f}, 200.0f, 0.5f}, {}};
+  return s;
+}
+
+TEST(ShardFormat, PreparedSceneRoundTripsItsHashAndRefusesDamage) {
+  for (bool glossy : {false, true}) {
+    const Scene s = sampleScene(glossy);
+    const std::vector<std::uint8_t> payload = encodePreparedScene(s);
+    // The payload's checksum is the scene hash: the container's check is the plan's.
+    EXPECT_EQ(crc32c(payload), sceneHash(s));
+    Scene t;
+    ASSERT_TRUE(decodePreparedScene(payload, &t).isOk());
+    EXPECT_EQ(t.indices, s.indices);
+    EXPECT_EQ(sceneHash(t), sceneHash(s));
+    EXPECT_EQ(t.specular.size(), glossy ? 4u : 0u);
+    if (glossy) {
+      EXPECT_EQ(t.specular[2].exponent, 200.0f);
+      EXPECT_EQ(t.specular[2].f90, 0.5f);
+    }
+    for (std::size_t n = 0; n < payload.size(); ++n) {
+      // Every prefix: cut short, or (cut exactly before the materials) a valid scene without them.
+      Scene u;
+      const bool ok = decodePreparedScene(std::span(payload).first(n), &u).isOk();
+      EXPECT_EQ(ok, glossy && n == encodePreparedScene(sampleScene(false)).size()) << "prefix of " << n << " bytes";
+    }
+    std::vector<std::uint8_t> longer = payload;
+    longer.push_back(0);
+    EXPECT_EQ(decodePreparedScene(longer, &t).code(), StatusCode::kCorrupt);
+  }
+  // An index outside the vertices would read past them in every gather: refused.
+  Scene bad = sampleScene(false);
+  bad.indices[4] = 4;
+  Scene t;
+  const Status st = decodePreparedScene(encodePreparedScene(bad), &t);
+  EXPECT_EQ(st.code(), StatusCode::kCorrupt);
+  EXPECT_NE(st.message().find("index 4 is not below the 4 vertices"), std::string::npos) << st.message();
+  // In its container, any flipped byte is caught.
+  ShardHeader h;
+  h.kind = ShardFileKind::kPreparedScene;
+  h.planId = 3;
+  h.vertexEnd = 4;
+  const std::vector<std::uint8_t> file = encodeShardFile(h, encodePreparedScene(sampleScene(true)));
+  ShardHeader g;
+  std::span<const std::uint8_t> view;
+  ASSERT_TRUE(decodeShardFile(file, ShardFileKind::kPreparedScene, &g, &view).isOk());
+  EXPECT_EQ(g.payloadCrc, sceneHash(sampleScene(true)));
+  EXPECT_EQ(decodeShardFile(file, ShardFileKind::kShard, &g, &view).code(), StatusCode::kBadMagic);
+  for (std::size_t i = 0; i < file.size(); ++i) {
+    std::vector<std::uint8_t> b = file;
+    b[i] ^= 0x10;
+    EXPECT_FALSE(decodeShardFile(b, ShardFileKind::kPreparedScene, &g, &view).isOk()) << "byte " << i << " flipped";
+  }
 }
 
 TEST(ShardFormat, ShardFileOfAnotherKindIsNotRead) {
