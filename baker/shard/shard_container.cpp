@@ -1,5 +1,6 @@
 #include "baker/shard/shard_container.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "baker/shard/byte_io.h"
@@ -34,7 +35,17 @@ const char* kindName(ShardFileKind kind) {
 std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const std::uint8_t> payload) {
   std::vector<std::uint8_t> out;
   out.reserve(kShardHeaderBytes + payload.size());
-  ByteWriter w(&out);
+  out.resize(kShardHeaderBytes);
+  out.insert(out.end(), payload.begin(), payload.end());
+  sealShardFile(h, &out);
+  return out;
+}
+
+void sealShardFile(const ShardHeader& h, std::vector<std::uint8_t>* file) {
+  const std::span<const std::uint8_t> payload = std::span<const std::uint8_t>(*file).subspan(kShardHeaderBytes);
+  std::vector<std::uint8_t> header;
+  header.reserve(kShardHeaderBytes);
+  ByteWriter w(&header);
   w.raw(magicFor(h.kind), 8);
   w.u32(kShardFormatVersion);
   w.u32(h.planId);
@@ -44,9 +55,8 @@ std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const 
   w.u64(h.vertexEnd);
   w.u64(payload.size());
   w.u32(crc32c(payload));
-  w.u32(crc32c(out));  // bytes 0..51
-  w.raw(payload.data(), payload.size());
-  return out;
+  w.u32(crc32c(header));  // bytes 0..51
+  std::copy(header.begin(), header.end(), file->begin());
 }
 
 Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* h,

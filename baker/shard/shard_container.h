@@ -32,6 +32,10 @@ struct ShardHeader {
 // The file's bytes: header (with the payload's size and checksum) then `payload`.
 std::vector<std::uint8_t> encodeShardFile(const ShardHeader& header, std::span<const std::uint8_t> payload);
 
+// The same without copying the payload: *file holds kShardHeaderBytes (any values) then the
+// payload, appended there by its writer; the header is written over the first bytes.
+void sealShardFile(const ShardHeader& header, std::vector<std::uint8_t>* file);
+
 // Checks `bytes` as a file of `kind` and returns its header and payload (a view into bytes).
 // Errors, each naming the problem: kTruncated (shorter than its header or its declared
 // payload), kBadMagic (not this kind of file), kBadVersion (another format version),

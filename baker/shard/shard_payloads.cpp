@@ -26,13 +26,25 @@ static_assert(kHitLayoutIsTheFiles, "the shard file's hit records are copied as 
 
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
+  appendDirectShard(s, &out);
+  return out;
+}
+
+void appendDirectShard(const DirectShard& s, std::vector<std::uint8_t>* out) {
+  std::size_t hits = 0, vertices = 0;
+  for (const HitBlock& b : s.blocks) {
+    hits += b.hits.size();
+    vertices += b.hitStart.size() - 1;
+  }
+  out->reserve(out->size() + 4 + (s.unshadowed.size() + s.shadowed.size() + s.glossyShadowed.size()) * 4 + 8 +
+               (s.hasHits ? vertices * 4 + hits * (s.glossy ? 16 : 12) : 0));
+  ByteWriter w(out);
   w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
   w.floats(s.unshadowed);
   w.floats(s.shadowed);
   w.u64(s.verticesOutsideLight);
   if (s.glossy) w.floats(s.glossyShadowed);
-  if (!s.hasHits) return out;
+  if (!s.hasHits) return;
   for (const HitBlock& b : s.blocks) {
     for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
   }
@@ -40,7 +52,6 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   if (s.glossy) {
     for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
   }
-  return out;
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
@@ -122,22 +133,27 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
 
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
-  w.floats(s.bounce);
-  w.doubles(s.blockEnergy);
-  w.floats(s.matrices);
+  appendBounceShard(s, &out);
   return out;
 }
 
+void appendBounceShard(const BounceShard& s, std::vector<std::uint8_t>* out) {
+  out->reserve(out->size() + (s.bounce.size() + s.matrices.size()) * 4 + s.blockEnergy.size() * 8);
+  ByteWriter w(out);
+  w.floats(s.bounce);
+  w.doubles(s.blockEnergy);
+  w.floats(s.matrices);
+}
+
 Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
-                         BounceShard* out) {
+                         BounceShardView* out) {
   ByteReader r(payload);
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * 3 * n2;
-  if (!r.floats(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
+  if (!r.floatView(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
     return corrupt("the bounce's transfer or block energies are cut short");
   }
-  out->matrices.clear();
-  if (matrices && !r.floats(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
+  out->matrices = {};
+  if (matrices && !r.floatView(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
   if (r.remaining() != 0) {
     return corrupt(std::to_string(r.remaining()) + " bytes after the " + (matrices ? "glossy matrices" : "block energies"));
   }
@@ -146,19 +162,26 @@ Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t coun
 
 std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
-  w.u32(m.final ? 1 : 0);
-  w.u32(static_cast<std::uint32_t>(m.energies.size()));
-  w.doubles(m.energies);
-  w.u64(m.bounce.size());
-  w.floats(m.bounce);
-  w.u64(m.senderMatrices.size());
-  w.floats(m.senderMatrices);
+  appendMergedPass(m, &out);
   return out;
 }
 
+void appendMergedPass(const MergedPass& m, std::vector<std::uint8_t>* out) {
+  std::size_t floats = 0;
+  for (std::span<const float> part : m.bounce) floats += part.size();
+  out->reserve(out->size() + 8 + m.energies.size() * 8 + 16 + (floats + m.senderMatrices.size()) * 4);
+  ByteWriter w(out);
+  w.u32(m.final ? 1 : 0);
+  w.u32(static_cast<std::uint32_t>(m.energies.size()));
+  w.doubles(m.energies);
+  w.u64(floats);
+  for (std::span<const float> part : m.bounce) w.floats(part);
+  w.u64(m.senderMatrices.size());
+  w.floats(m.senderMatrices);
+}
+
 Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
-                        std::uint64_t senderFloats, MergedPass* out) {
+                        std::uint64_t senderFloats, MergedPassView* out) {
   ByteReader r(payload);
   std::uint32_t final = 0, energies = 0;
   std::uint64_t floats = 0;
@@ -170,13 +193,13 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
   if (floats != expected && floats != 0) {
     return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
   }
-  if (!r.floats(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
+  if (!r.floatView(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
   std::uint64_t senders = 0;
   if (!r.u64(&senders)) return corrupt("the glossy senders' matrix count is cut short");
   if (senders != senderFloats) {
     return corrupt("holds " + std::to_string(senders) + " floats of glossy senders' matrices, not " + std::to_string(senderFloats));
   }
-  if (!r.floats(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
+  if (!r.floatView(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
   if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
   out->final = final == 1;
   return Status::ok();

@@ -61,8 +61,13 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
   return Status::ok();
 }
 
-Status writePlanFile(const std::string& path, const ShardHeader& h, const std::vector<std::uint8_t>& payload) {
-  const std::vector<std::uint8_t> file = encodeShardFile(h, payload);
+// Writes a file whose payload `append` appends after the header's room: the payload is
+// built in the file's own buffer, never copied into it.
+template <typename Append>
+Status writePlanFile(const std::string& path, const ShardHeader& h, Append append) {
+  std::vector<std::uint8_t> file(kShardHeaderBytes);
+  append(&file);
+  sealShardFile(h, &file);
   return writeFileAtomically(path, file);
 }
 
@@ -90,7 +95,7 @@ std::uint64_t senderFloats(const ShardContext& ctx, std::uint32_t pass) {
 
 // Appends the rows of `perVertex` (floats a vertex, for the vertices from `begin`) that
 // belong to glossy senders: shards in range order give the senders in sender order.
-void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_t begin, const std::vector<float>& rows,
+void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_t begin, std::span<const float> rows,
                       std::size_t perVertex, std::vector<float>* out) {
   for (std::size_t local = 0; local * perVertex < rows.size(); ++local) {
     if (senderIndex[begin + local] < 0) continue;
@@ -118,12 +123,12 @@ Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHi
   return Status::ok();
 }
 
-Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, BounceShard* out) {
+// *out views *file.
+Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, MappedFile* file, BounceShardView* out) {
   const VertexRange range = ctx.plan->shards[shard];
-  MappedFile file;
   std::span<const std::uint8_t> payload;
   const std::string path = shardPath(ctx.planPath, pass, shard);
-  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &file, &payload));
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, file, &payload));
   if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), glossyBounce(*ctx.transfer, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(pass, shard) + " ('" + path + "') is corrupt: " + s.message());
@@ -131,12 +136,12 @@ Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_
   return Status::ok();
 }
 
-Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* out) {
-  MappedFile file;
+// *out views *file.
+Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MappedFile* file, MergedPassView* out) {
   std::span<const std::uint8_t> payload;
   const std::string path = mergedPassPath(ctx.planPath, pass);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
-                                   {0, ctx.plan->vertices}, &file, &payload));
+                                   {0, ctx.plan->vertices}, file, &payload));
   if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), senderFloats(ctx, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
@@ -150,11 +155,11 @@ Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* o
 // Before pass `pass` >= 1: merged pass pass-1 (one read: it exists only when no earlier pass
 // ended the series), or *ended when it is the last, or when it is absent because an earlier
 // merged pass was the last (then passes after that one wrote nothing).
-Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MergedPass* previous) {
+Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MappedFile* file, MergedPassView* previous) {
   *ended = false;
   Status first;
   for (std::uint32_t j = pass; j-- > 0;) {
-    const Status s = readMergedPass(ctx, j, previous);
+    const Status s = readMergedPass(ctx, j, file, previous);
     if (s.code() == StatusCode::kNotFound) {
       if (first.isOk()) first = s;
       continue;
@@ -216,10 +221,11 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
     s.glossyShadowed = std::move(r.glossyShadowed);
     s.blocks = std::move(r.blocks);
     *stats = r.stats;
-    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeDirectShard(s));
+    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendDirectShard(s, f); });
   }
-  MergedPass previous;
-  PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+  MappedFile previousFile;
+  MergedPassView previous;
+  PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previousFile, &previous));
   if (*skipped) return Status::ok();
   MappedFile directFile;
   DirectShard direct;
@@ -229,7 +235,7 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
                                         direct.hitViews, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
                                         &out.bounce, &out.blockEnergy, stats));
-  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeBounceShard(out));
+  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendBounceShard(out, f); });
 }
 
 Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, bool* final) {
@@ -237,6 +243,8 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   *skipped = false;
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   MergedPass merged;
+  std::vector<float> bounce0;           // pass 0: B^0, computed here
+  std::vector<MappedFile> shardFiles(shards);  // pass >= 1: the shards, whose B^b merged.bounce views
   // The glossy senders' part of this pass, which the next (glossy) bounce reads.
   const bool keepSenders = senderFloats(ctx, pass) > 0;
   std::size_t senders = 0;
@@ -254,19 +262,21 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     }
     double energy0 = 0.0;
     if (ctx.transfer->interreflection) {
-      firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &merged.bounce, &energy0);
+      firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &bounce0, &energy0);
+      merged.bounce = {bounce0};
     }
     merged.energies = {energy0};
   } else {
-    MergedPass previous;
-    PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+    MappedFile previousFile;
+    MergedPassView previous;
+    PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previousFile, &previous));
     if (*skipped) return Status::ok();
     double energy = 0.0;
     for (std::uint32_t i = 0; i < shards; ++i) {
-      BounceShard b;
-      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      BounceShardView b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &shardFiles[i], &b));
       for (double e : b.blockEnergy) energy += e;  // block order, as bakeTransfer sums them
-      merged.bounce.insert(merged.bounce.end(), b.bounce.begin(), b.bounce.end());
+      merged.bounce.push_back(b.bounce);
       if (keepSenders) {
         const std::size_t n2 = static_cast<std::size_t>(coefficients(ctx));
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, b.matrices, 3 * n2 * n2, &merged.senderMatrices);
@@ -283,19 +293,20 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   h.pass = pass;
   h.shard = kNoShard;
   h.vertexEnd = ctx.plan->vertices;
-  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, encodeMergedPass(merged));
+  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, [&](std::vector<std::uint8_t>* f) { appendMergedPass(merged, f); });
 }
 
 Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   *out = BakeResult{};
   out->order = ctx.transfer->order;
-  MergedPass last;
+  MappedFile lastFile;
+  MergedPassView last;
   std::uint32_t finalPass = 0;
   for (;; ++finalPass) {
     if (finalPass >= ctx.plan->passes) {
       return Status::error(StatusCode::kCorrupt, "no merged pass of the plan ends the bounce series");
     }
-    PRT_RETURN_IF_ERROR(readMergedPass(ctx, finalPass, &last));
+    PRT_RETURN_IF_ERROR(readMergedPass(ctx, finalPass, &lastFile, &last));
     if (last.final) break;
   }
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
@@ -328,8 +339,9 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   // asset needs) and so that a lost or damaged one is named.
   for (std::uint32_t pass = 1; pass <= finalPass; ++pass) {
     for (std::uint32_t i = 0; i < shards; ++i) {
-      BounceShard b;
-      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      MappedFile file;
+      BounceShardView b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &file, &b));
       float* total = &out->interreflected[ctx.plan->shards[i].begin * stride];
       for (std::size_t e = 0; e < b.bounce.size(); ++e) total[e] += b.bounce[e];
       if (glossyBounce(o, pass)) {

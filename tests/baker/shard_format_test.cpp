@@ -222,9 +222,11 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   b.bounce.assign(70 * 12, 0.5f);
   b.blockEnergy = {1.0, 2.0};
   const std::vector<std::uint8_t> bp = encodeBounceShard(b);
-  BounceShard c;
+  BounceShardView c;
   ASSERT_TRUE(decodeBounceShard(bp, 70, 4, false, &c).isOk());
   EXPECT_EQ(c.blockEnergy, b.blockEnergy);
+  EXPECT_EQ(std::vector<float>(c.bounce.begin(), c.bounce.end()), b.bounce);
+  EXPECT_EQ(reinterpret_cast<const std::uint8_t*>(c.bounce.data()), bp.data());  // viewed in place
   EXPECT_FALSE(decodeBounceShard(bp, 64, 4, false, &c).isOk());
   EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, false, &c).isOk());
   EXPECT_FALSE(decodeBounceShard(bp, 70, 4, true, &c).isOk());  // a glossy bounce's matrices are missing
@@ -232,12 +234,16 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   MergedPass m;
   m.final = true;
   m.energies = {3.0, 1.0};
-  m.bounce.assign(70 * 12, 0.25f);
+  // Two parts (two shards' ranges), stored one after the other.
+  const std::vector<float> first(64 * 12, 0.25f), second(6 * 12, 0.5f);
+  m.bounce = {first, second};
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
-  MergedPass n;
+  MergedPassView n;
   ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, 0, &n).isOk());
   EXPECT_TRUE(n.final);
-  EXPECT_EQ(n.bounce, m.bounce);
+  std::vector<float> both = first;
+  both.insert(both.end(), second.begin(), second.end());
+  EXPECT_EQ(std::vector<float>(n.bounce.begin(), n.bounce.end()), both);
   EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, 0, &n).isOk());  // energies of another pass
   EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, 0, &n).isOk());
   EXPECT_FALSE(decodeMergedPass(mp, 1, 70, 4, 48, &n).isOk());  // glossy senders' matrices expected
@@ -279,9 +285,9 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   b.blockEnergy = {1.0, 2.0};
   b.matrices.assign(70 * 3 * 16, 0.125f);
   const std::vector<std::uint8_t> bp = encodeBounceShard(b);
-  BounceShard c;
+  BounceShardView c;
   ASSERT_TRUE(decodeBounceShard(bp, 70, 4, true, &c).isOk());
-  EXPECT_EQ(c.matrices, b.matrices);
+  EXPECT_EQ(std::vector<float>(c.matrices.begin(), c.matrices.end()), b.matrices);
   EXPECT_FALSE(decodeBounceShard(bp, 70, 4, false, &c).isOk());  // matrices where none belong
   for (std::size_t n = 0; n < bp.size(); n += 13) {
     EXPECT_FALSE(decodeBounceShard(std::span(bp).first(n), 70, 4, true, &c).isOk()) << "prefix of " << n << " bytes";
@@ -289,12 +295,13 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
 
   MergedPass m;
   m.energies = {3.0};
-  m.bounce.assign(70 * 12, 0.25f);
+  const std::vector<float> bounce(70 * 12, 0.25f);
+  m.bounce = {bounce};
   m.senderMatrices.assign(5 * 10, 2.0f);
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
-  MergedPass n;
+  MergedPassView n;
   ASSERT_TRUE(decodeMergedPass(mp, 0, 70, 4, 50, &n).isOk());
-  EXPECT_EQ(n.senderMatrices, m.senderMatrices);
+  EXPECT_EQ(std::vector<float>(n.senderMatrices.begin(), n.senderMatrices.end()), m.senderMatrices);
   EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 0, &n).code(), StatusCode::kCorrupt);
   EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 60, &n).code(), StatusCode::kCorrupt);
   for (std::size_t len = 0; len < mp.size(); len += 29) {
