@@ -50,6 +50,12 @@ namespace prt::bake {
 // single-threaded kernel on a fixed shape gives the same bits whatever options.threads.
 void useSingleThreadedBlas();
 
+// Makes the BLAS single-threaded and ends OpenBLAS's worker threads, which the library starts
+// when it loads and which spin (sched_yield) for about 2^28 cycles before they sleep: CPU the
+// baker never uses (it runs BLAS single-threaded), paid by every process, so by every shard
+// and merge of a sharded bake (docs/bench/scale-out.md). Call it once, first.
+void releaseBlasThreads();
+
 // Per-thread accumulator of the shadowed matrix of one vertex at a time (scratch reused).
 class GlossyShadowedKernel {
  public:
