@@ -32,6 +32,8 @@ class MappedFile {
   std::span<const std::uint8_t> bytes() const { return {data_, size_}; }
 
  private:
+  void unmap() noexcept;
+
   const std::uint8_t* data_ = nullptr;
   std::size_t size_ = 0;
 };
