@@ -17,6 +17,7 @@
 #include "baker/cli/compress_command.h"
 #include "baker/cli/probe_command.h"
 #include "baker/cli/shard_commands.h"
+#include "baker/transfer/glossy_bake.h"
 
 #ifndef PRT_VERSION
 #define PRT_VERSION "unknown"
@@ -85,6 +86,8 @@ int run(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything else: OpenBLAS's idle workers would spin for a tenth of a second.
+  prt::bake::releaseBlasThreads();
   int code = prt::kExitInternal;
   try {
     code = run(std::vector<std::string>(argv + 1, argv + argc));

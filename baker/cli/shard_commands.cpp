@@ -14,6 +14,7 @@
 #include "baker/scene/glossy_materials.h"
 #include "baker/scene/gltf_loader.h"
 #include "baker/shard/bake_plan.h"
+#include "baker/shard/plan_scene.h"
 #include "baker/shard/sharded_bake.h"
 #include "baker/transfer/bake_asset.h"
 #include "native/cli_args.h"
@@ -65,13 +66,15 @@ Status refuseUnsharded(const BakeCommandLine& c) {
                                                          " yet (vertex passes only: docs/scale-out.md); bake it on one machine");
 }
 
-Status loadScene(const std::string& path, bool quiet, std::FILE* err, bake::Scene* scene) {
+// `files`: every file the load read (none for the built-in room).
+Status loadScene(const std::string& path, bool quiet, std::FILE* err, bake::Scene* scene, std::vector<bake::SceneFile>* files) {
+  files->clear();
   if (path.empty()) {
     *scene = bake::makeDefaultScene();
     return Status::ok();
   }
   std::vector<std::string> warnings;
-  PRT_RETURN_IF_ERROR(bake::loadGltf(path, scene, &warnings));
+  PRT_RETURN_IF_ERROR(bake::loadGltf(path, scene, &warnings, files));
   if (!quiet)
     for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
   return Status::ok();
@@ -85,7 +88,8 @@ Status prepareScene(const bake::AssetBakeOptions& o, bake::Scene* scene, bake::B
   return Status::ok();
 }
 
-// The plan at `planPath`, its bake options re-parsed, its scene loaded, prepared and checked.
+// The plan at `planPath`, its bake options re-parsed, the scene's files checked unchanged and
+// the prepared scene `plan` stored read (no glTF load, no preparation: docs/scale-out.md).
 struct LoadedPlan {
   bake::BakePlan plan;
   BakeCommandLine bake;
@@ -93,7 +97,7 @@ struct LoadedPlan {
   bake::BakeOptions transfer;
 };
 
-Status loadPlan(const std::string& planPath, const ParsedArgs& p, bool quiet, std::FILE* err, LoadedPlan* out) {
+Status loadPlan(const std::string& planPath, const ParsedArgs& p, LoadedPlan* out) {
   std::vector<std::uint8_t> bytes;
   PRT_RETURN_IF_ERROR(readFileBytes(planPath, std::uint64_t{1} << 30, &bytes));
   if (Status s = bake::decodeBakePlan(bytes, &out->plan); !s.isOk()) {
@@ -108,9 +112,9 @@ Status loadPlan(const std::string& planPath, const ParsedArgs& p, bool quiet, st
     PRT_RETURN_IF_ERROR(parseIntArg("--threads", *s, 1, 1024, &v));
     out->bake.bake.transfer.threads = static_cast<unsigned>(v);
   }
-  PRT_RETURN_IF_ERROR(loadScene(out->plan.scenePath, quiet, err, &out->scene));
-  PRT_RETURN_IF_ERROR(prepareScene(out->bake.bake, &out->scene, &out->transfer));
-  PRT_RETURN_IF_ERROR(bake::checkPlannedScene(out->plan, out->scene));
+  PRT_RETURN_IF_ERROR(bake::checkSceneFiles(out->plan));
+  PRT_RETURN_IF_ERROR(bake::readPreparedScene(out->plan, planPath, &out->scene));
+  out->transfer = bake::vertexBakeOptions(out->bake.bake, out->scene);
   return Status::ok();
 }
 
@@ -181,11 +185,12 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     plan.scenePath = real;
   }
   bake::Scene scene;
-  if (Status s = loadScene(plan.scenePath, c.quiet, err, &scene); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = loadScene(plan.scenePath, c.quiet, err, &scene, &plan.sceneFiles); !s.isOk()) return reportFailure(err, "plan", s);
   bake::BakeOptions transfer;
   if (Status s = prepareScene(c.bake, &scene, &transfer); !s.isOk()) return reportFailure(err, "plan", s);
   plan.bakeArgs = bakeArgs;
   plan.sceneHash = bake::sceneHash(scene);
+  plan.sceneName = scene.name;
   plan.vertices = scene.positions.size();
   plan.triangles = scene.indices.size() / 3;
   plan.order = static_cast<std::uint32_t>(transfer.order);
@@ -194,6 +199,10 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     return reportFailure(err, "plan", s);
   }
   const std::vector<std::uint8_t> bytes = bake::encodeBakePlan(&plan);
+  // The prepared scene first: a plan on disk always has its scene (a scene without its plan
+  // is never read).
+  if (Status s = checkOutputPath(bake::preparedScenePath(c.output), inputs); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = bake::writePreparedScene(plan, c.output, scene, inputs); !s.isOk()) return reportFailure(err, "plan", s);
   if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return reportFailure(err, "plan", s);
   if (!c.quiet) {
     std::fprintf(err, "prt-bake: plan %s: %s, %llu vertices in %d shards, up to %u passes (plan id %08x)\n", c.output.c_str(),
@@ -220,7 +229,7 @@ int runBakeShardCommand(std::span<const std::string> args, std::FILE* out, std::
   }
   const bool quiet = p.has("--quiet");
   LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, quiet, err, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
+  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
   bake::ProgressBar bar(err, !quiet);
   l.transfer.progress = [&bar](const bake::BakeProgress& pr) { bar.update(pr); };
   bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
@@ -261,7 +270,7 @@ int runMergeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
     if (Status s = checkOutputPath(*output, std::vector<std::string>{planPath}); !s.isOk()) return reportFailure(err, "merge", s);
   }
   LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, quiet, err, &l); !s.isOk()) return reportFailure(err, "merge", s);
+  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "merge", s);
   bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
   if (!output) {
     std::uint32_t pass = 0;

@@ -28,6 +28,7 @@
 #include "baker/scene/mesh_normals.h"
 #include "baker/scene/mesh_tangents.h"
 #include "native/file_io.h"
+#include "prt/checksum.h"
 
 namespace prt::bake {
 namespace {
@@ -948,7 +949,15 @@ Status SceneBuilder::finish(const std::string& fallbackName, Scene* out, std::ve
   return Status::ok();
 }
 
-Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::string>* warnings) {
+// tinygltf's own file reader, recording each file it reads (external buffers and images).
+bool readAndRecordFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* files) {
+  if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+  static_cast<std::vector<SceneFile>*>(files)->push_back({path, out->size(), crc32c(*out)});
+  return true;
+}
+
+Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::string>* warnings,
+                         std::vector<SceneFile>* files) {
   const std::string quoted = "'" + path + "'";
   auto failFile = [&](const std::string& problem) { return fail(quoted + ": " + problem); };
 
@@ -968,6 +977,8 @@ Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::s
   ImageDecodeLog imageLog;
   imageLog.model = &model;
   parser.SetImageLoader(&decodeGltfImage, &imageLog);
+  std::vector<SceneFile> read{{path, bytes.size(), crc32c(bytes)}};
+  parser.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecordFile, &tinygltf::WriteWholeFile, &read});
   std::string err, warn;
   std::vector<std::string> notes;
   bool parsed = false;
@@ -1010,18 +1021,19 @@ Status loadGltfUnguarded(const std::string& path, Scene* out, std::vector<std::s
   if (Status s = builder.addDefaultScene(); !s.isOk()) return failFile(s.message());
   if (Status s = builder.finish(fsPath.stem().string(), out, &collected); !s.isOk()) return failFile(s.message());
   if (warnings) warnings->insert(warnings->end(), collected.begin(), collected.end());
+  if (files) *files = std::move(read);
   return Status::ok();
 }
 
 }  // namespace
 
-Status loadGltf(const std::string& path, Scene* out, std::vector<std::string>* warnings) {
+Status loadGltf(const std::string& path, Scene* out, std::vector<std::string>* warnings, std::vector<SceneFile>* files) {
   if (out == nullptr) return fail("loadGltf: no output scene");
   *out = Scene();
   // tinygltf (nlohmann json inside) and the standard library may throw, bad_alloc above
   // all; nothing may escape, and `out` stays empty on any failure.
   try {
-    Status s = loadGltfUnguarded(path, out, warnings);
+    Status s = loadGltfUnguarded(path, out, warnings, files);
     if (!s.isOk()) *out = Scene();
     return s;
   } catch (const std::bad_alloc&) {

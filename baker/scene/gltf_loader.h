@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +48,15 @@ inline constexpr std::string_view kSupportedRequiredExtensions[] = {
 // ignored features) are appended to `warnings`, when given and the load succeeds, one line
 // each, counted rather than repeated. Errors (kInvalidArgument) name the file and the offending buffer,
 // accessor, mesh, node or extension. Never throws.
-Status loadGltf(const std::string& path, Scene* out, std::vector<std::string>* warnings = nullptr);
+// `files`, when given and the load succeeds, lists every file it read (the glTF, then its
+// external buffers and images as the parser opened them) with its size and CRC-32C, so a
+// sharded bake can tell later that the scene changed without loading it again.
+struct SceneFile {
+  std::string path;  // as opened: absolute when `path` is
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32c = 0;
+};
+Status loadGltf(const std::string& path, Scene* out, std::vector<std::string>* warnings = nullptr,
+                std::vector<SceneFile>* files = nullptr);
 
 }  // namespace prt::bake

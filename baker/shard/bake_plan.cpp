@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "baker/shard/byte_io.h"
+#include "baker/shard/prepared_scene.h"
 #include "baker/shard/shard_container.h"
 #include "baker/transfer/hit_record.h"
 #include "prt/checksum.h"
@@ -13,25 +14,13 @@ namespace {
 constexpr std::size_t kMaxPathBytes = 4096;
 constexpr std::uint32_t kMaxArgs = 1024;
 constexpr std::size_t kMaxArgBytes = 4096;
+constexpr std::uint32_t kMaxSceneFiles = 65536;
 
 Status corrupt(const std::string& what) { return Status::error(StatusCode::kCorrupt, "bake plan: " + what); }
 
 }  // namespace
 
-std::uint32_t sceneHash(const Scene& scene) {
-  std::vector<std::uint8_t> bytes;
-  ByteWriter w(&bytes);
-  w.u64(scene.positions.size());
-  for (const Vec3& p : scene.positions) w.floats(std::span<const float>({p.x, p.y, p.z}));
-  for (const Vec3& n : scene.normals) w.floats(std::span<const float>({n.x, n.y, n.z}));
-  for (const Rgb& a : scene.albedo) w.floats(std::span<const float>({a.r, a.g, a.b}));
-  w.u64(scene.indices.size());
-  w.raw(scene.indices.data(), scene.indices.size() * sizeof(std::uint32_t));
-  // Glossy bakes only (the split fills them): a changed roughness or specular factor changes
-  // the matrices without touching the albedo.
-  for (const SpecularMaterial& m : scene.specular) w.floats(std::span<const float>({m.f0.r, m.f0.g, m.f0.b, m.f90, m.exponent}));
-  return crc32c(bytes);
-}
+std::uint32_t sceneHash(const Scene& scene) { return crc32c(encodePreparedScene(scene)); }
 
 Status planRanges(std::uint64_t vertices, std::uint32_t shards, std::vector<VertexRange>* out) {
   const std::uint64_t blocks = (vertices + kBlockVertices - 1) / kBlockVertices;
@@ -60,6 +49,13 @@ std::vector<std::uint8_t> encodeBakePlan(BakePlan* plan) {
   w.u32(static_cast<std::uint32_t>(plan->bakeArgs.size()));
   for (const std::string& a : plan->bakeArgs) w.string(a);
   w.u32(plan->sceneHash);
+  w.string(plan->sceneName);
+  w.u32(static_cast<std::uint32_t>(plan->sceneFiles.size()));
+  for (const SceneFile& f : plan->sceneFiles) {
+    w.string(f.path);
+    w.u64(f.bytes);
+    w.u32(f.crc32c);
+  }
   w.u64(plan->vertices);
   w.u64(plan->triangles);
   w.u32(plan->order);
@@ -92,7 +88,16 @@ Status decodeBakePlan(std::span<const std::uint8_t> bytes, BakePlan* plan) {
   for (std::string& a : p.bakeArgs) {
     if (!r.string(kMaxArgBytes, &a)) return corrupt("a bake argument is cut short or too long");
   }
-  if (!r.u32(&p.sceneHash) || !r.u64(&p.vertices) || !r.u64(&p.triangles) || !r.u32(&p.order) || !r.u32(&p.passes) ||
+  std::uint32_t files = 0;
+  if (!r.u32(&p.sceneHash) || !r.string(kMaxPathBytes, &p.sceneName) || !r.u32(&files)) {
+    return corrupt("the scene hash, name or file count is cut short or too long");
+  }
+  if (files > kMaxSceneFiles || files > r.remaining() / 16) return corrupt(std::to_string(files) + " scene files do not fit the file");
+  p.sceneFiles.resize(files);
+  for (SceneFile& f : p.sceneFiles) {
+    if (!r.string(kMaxPathBytes, &f.path) || !r.u64(&f.bytes) || !r.u32(&f.crc32c)) return corrupt("a scene file's entry is cut short");
+  }
+  if (!r.u64(&p.vertices) || !r.u64(&p.triangles) || !r.u32(&p.order) || !r.u32(&p.passes) ||
       !r.u32(&shards)) {
     return corrupt("the scene and pass fields are cut short");
   }
@@ -128,5 +133,7 @@ std::string shardPath(const std::string& planPath, std::uint32_t pass, std::uint
 std::string mergedPassPath(const std::string& planPath, std::uint32_t pass) {
   return planPath + ".pass" + std::to_string(pass) + ".merged";
 }
+
+std::string preparedScenePath(const std::string& planPath) { return planPath + ".scene"; }
 
 }  // namespace prt::bake

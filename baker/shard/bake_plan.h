@@ -1,7 +1,8 @@
 // A sharded bake's plan (docs/scale-out.md): which scene, with which bake arguments, split
-// into which vertex ranges, over how many passes. Every shard and merge reads it and checks
-// that the scene it loads is the one planned (by hash), so a changed scene is refused
-// instead of baked into a mixture.
+// into which vertex ranges, over how many passes. Every shard and merge reads it, the
+// prepared scene stored beside it (prepared_scene.h) and checks that the scene's files are
+// still the ones planned (size and CRC-32C of each), so a changed scene is refused instead of
+// baked into a mixture.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "baker/scene/gltf_loader.h"
 #include "baker/scene/scene.h"
 #include "prt/status.h"
 
@@ -26,6 +28,8 @@ struct BakePlan {
   std::vector<std::string> bakeArgs;   // the bake's arguments as given to `plan` (no --shards)
   std::string workingDirectory;        // where `plan` ran: relative paths in bakeArgs are from there
   std::uint32_t sceneHash = 0;         // sceneHash() of the prepared scene
+  std::string sceneName;               // the loaded scene's name (the asset's default name)
+  std::vector<SceneFile> sceneFiles;   // every file the scene's load read; none for the built-in room
   std::uint64_t vertices = 0, triangles = 0;
   std::uint32_t order = 0;
   std::uint32_t passes = 1;            // 1 (direct) + the bounce limit when interreflection is stored
@@ -34,7 +38,7 @@ struct BakePlan {
 };
 
 // CRC-32C of the prepared scene's vertex count, positions, normals, albedo, indices and, when
-// it has them (glossy bakes), its vertices' specular materials.
+// it has them (glossy bakes), its vertices' specular materials: of encodePreparedScene's bytes.
 std::uint32_t sceneHash(const Scene& scene);
 
 // `shards` contiguous ranges of whole 64-vertex blocks over `vertices` vertices, sizes
@@ -53,5 +57,7 @@ Status decodeBakePlan(std::span<const std::uint8_t> bytes, BakePlan* plan);
 // beside the plan, "<plan>.pass<K>.shard<i>" and "<plan>.pass<K>.merged".
 std::string shardPath(const std::string& planPath, std::uint32_t pass, std::uint32_t shard);
 std::string mergedPassPath(const std::string& planPath, std::uint32_t pass);
+// "<plan>.scene": the prepared scene `plan` writes beside the plan.
+std::string preparedScenePath(const std::string& planPath);
 
 }  // namespace prt::bake

@@ -31,6 +31,14 @@ bool ByteReader::floats(std::uint64_t count, std::vector<float>* v) { return rea
 bool ByteReader::doubles(std::uint64_t count, std::vector<double>* v) { return readArray(this, count, v); }
 bool ByteReader::u32s(std::uint64_t count, std::vector<std::uint32_t>* v) { return readArray(this, count, v); }
 
+bool ByteReader::floatView(std::uint64_t count, std::span<const float>* v) {
+  const std::uint8_t* p = bytes_.data() + offset_;
+  if (count > remaining() / sizeof(float) || reinterpret_cast<std::uintptr_t>(p) % alignof(float) != 0) return false;
+  *v = std::span<const float>(reinterpret_cast<const float*>(p), static_cast<std::size_t>(count));
+  offset_ += static_cast<std::size_t>(count) * sizeof(float);
+  return true;
+}
+
 bool ByteReader::string(std::size_t maxBytes, std::string* s) {
   std::uint32_t n = 0;
   if (!u32(&n) || n > maxBytes || n > remaining()) return false;

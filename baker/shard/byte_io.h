@@ -45,6 +45,11 @@ class ByteReader {
   bool floats(std::uint64_t count, std::vector<float>* v);
   bool doubles(std::uint64_t count, std::vector<double>* v);
   bool u32s(std::uint64_t count, std::vector<std::uint32_t>* v);
+  // `count` floats viewed in place (no copy: the span lives as long as the reader's bytes);
+  // false when they are not all there or not 4-byte aligned in memory (a buffer from a
+  // vector or a mapped file, with the file's 4-byte fields before them, always is).
+  bool floatView(std::uint64_t count, std::span<const float>* v);
+  std::size_t offset() const { return offset_; }
   // A u32 byte count (at most maxBytes), then the bytes.
   bool string(std::size_t maxBytes, std::string* s);
   bool raw(void* data, std::size_t bytes);

@@ -1,5 +1,6 @@
 #include "baker/shard/shard_container.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "baker/shard/byte_io.h"
@@ -14,6 +15,7 @@ const char* magicFor(ShardFileKind kind) {
     case ShardFileKind::kPlan: return "PRTPLAN1";
     case ShardFileKind::kShard: return "PRTSHRD1";
     case ShardFileKind::kMergedPass: return "PRTPASS1";
+    case ShardFileKind::kPreparedScene: return "PRTSCEN1";
   }
   return "????????";
 }
@@ -23,6 +25,7 @@ const char* kindName(ShardFileKind kind) {
     case ShardFileKind::kPlan: return "bake plan";
     case ShardFileKind::kShard: return "bake shard";
     case ShardFileKind::kMergedPass: return "merged pass";
+    case ShardFileKind::kPreparedScene: return "prepared scene";
   }
   return "file";
 }
@@ -32,7 +35,17 @@ const char* kindName(ShardFileKind kind) {
 std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const std::uint8_t> payload) {
   std::vector<std::uint8_t> out;
   out.reserve(kShardHeaderBytes + payload.size());
-  ByteWriter w(&out);
+  out.resize(kShardHeaderBytes);
+  out.insert(out.end(), payload.begin(), payload.end());
+  sealShardFile(h, &out);
+  return out;
+}
+
+void sealShardFile(const ShardHeader& h, std::vector<std::uint8_t>* file) {
+  const std::span<const std::uint8_t> payload = std::span<const std::uint8_t>(*file).subspan(kShardHeaderBytes);
+  std::vector<std::uint8_t> header;
+  header.reserve(kShardHeaderBytes);
+  ByteWriter w(&header);
   w.raw(magicFor(h.kind), 8);
   w.u32(kShardFormatVersion);
   w.u32(h.planId);
@@ -42,9 +55,8 @@ std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const 
   w.u64(h.vertexEnd);
   w.u64(payload.size());
   w.u32(crc32c(payload));
-  w.u32(crc32c(out));  // bytes 0..51
-  w.raw(payload.data(), payload.size());
-  return out;
+  w.u32(crc32c(header));  // bytes 0..51
+  std::copy(header.begin(), header.end(), file->begin());
 }
 
 Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* h,
@@ -73,6 +85,7 @@ Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, 
   r.u64(&payloadBytes);
   r.u32(&payloadCrc);
   r.u32(&headerCrc);
+  h->payloadCrc = payloadCrc;
   h->kind = kind;
   if (crc32c(bytes.first(52)) != headerCrc) {
     return Status::error(StatusCode::kChecksumMismatch, "header checksum mismatch: the file is damaged");

@@ -12,10 +12,11 @@
 
 namespace prt::bake {
 
-enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass };
+enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass, kPreparedScene };
 
+// 3: the prepared scene beside the plan, and the scene's name and files in the plan;
 // 2: glossy payloads, and merged passes without the running sum (docs/scale-out.md, "Files").
-inline constexpr std::uint32_t kShardFormatVersion = 2;
+inline constexpr std::uint32_t kShardFormatVersion = 3;
 inline constexpr std::size_t kShardHeaderBytes = 56;
 inline constexpr std::uint32_t kNoShard = 0xFFFFFFFFu;  // the header's shard field in plans and merged passes
 
@@ -25,10 +26,15 @@ struct ShardHeader {
   std::uint32_t pass = 0;    // 0: the direct pass, b: bounce b
   std::uint32_t shard = kNoShard;
   std::uint64_t vertexBegin = 0, vertexEnd = 0;
+  std::uint32_t payloadCrc = 0;  // set by decodeShardFile: CRC-32C of the payload (checked)
 };
 
 // The file's bytes: header (with the payload's size and checksum) then `payload`.
 std::vector<std::uint8_t> encodeShardFile(const ShardHeader& header, std::span<const std::uint8_t> payload);
+
+// The same without copying the payload: *file holds kShardHeaderBytes (any values) then the
+// payload, appended there by its writer; the header is written over the first bytes.
+void sealShardFile(const ShardHeader& header, std::vector<std::uint8_t>* file);
 
 // Checks `bytes` as a file of `kind` and returns its header and payload (a view into bytes).
 // Errors, each naming the problem: kTruncated (shorter than its header or its declared

@@ -26,13 +26,25 @@ static_assert(kHitLayoutIsTheFiles, "the shard file's hit records are copied as 
 
 std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
+  appendDirectShard(s, &out);
+  return out;
+}
+
+void appendDirectShard(const DirectShard& s, std::vector<std::uint8_t>* out) {
+  std::size_t hits = 0, vertices = 0;
+  for (const HitBlock& b : s.blocks) {
+    hits += b.hits.size();
+    vertices += b.hitStart.size() - 1;
+  }
+  out->reserve(out->size() + 4 + (s.unshadowed.size() + s.shadowed.size() + s.glossyShadowed.size()) * 4 + 8 +
+               (s.hasHits ? vertices * 4 + hits * (s.glossy ? 16 : 12) : 0));
+  ByteWriter w(out);
   w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
   w.floats(s.unshadowed);
   w.floats(s.shadowed);
   w.u64(s.verticesOutsideLight);
   if (s.glossy) w.floats(s.glossyShadowed);
-  if (!s.hasHits) return out;
+  if (!s.hasHits) return;
   for (const HitBlock& b : s.blocks) {
     for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
   }
@@ -40,11 +52,10 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
   if (s.glossy) {
     for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
   }
-  return out;
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out) {
+                         std::size_t glossyEntries, std::uint64_t samplesPlanned, bool readHits, DirectShard* out) {
   ByteReader r(payload);
   std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
@@ -60,6 +71,8 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
     return corrupt("the glossy shadowed matrices (" + std::to_string(count * glossyEntries) + " floats) are cut short");
   }
   out->blocks.clear();
+  out->hitViews.clear();
+  out->hitStarts.clear();
   if (!out->hasHits) {
     if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
     return Status::ok();
@@ -75,57 +88,72 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
                    std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
   if (!readHits) return Status::ok();
-  out->blocks.resize(blocksOf(count));
-  for (std::size_t j = 0; j < out->blocks.size(); ++j) {
-    HitBlock& b = out->blocks[j];
-    const std::size_t first = j * kBlockVertices, last = std::min(count, first + kBlockVertices);
-    b.hitStart.assign(1, 0);
-    std::uint64_t hits = 0;
-    for (std::size_t v = first; v < last; ++v) {
-      hits += perVertex[v];
-      if (hits > 0xFFFFFFFFu) return corrupt("block " + std::to_string(j) + " holds more than 2^32 hits");
-      b.hitStart.push_back(static_cast<std::uint32_t>(hits));
-    }
-    b.hits.resize(static_cast<std::size_t>(hits));
-    // The records are Hit's own bytes (kHitLayoutIsTheFiles): one copy, then each is checked.
-    if (!r.raw(b.hits.data(), b.hits.size() * sizeof(Hit))) return corrupt("the hit records are cut short");
-    for (const Hit& h : b.hits) {
-      if (h.triangle >= triangles || !std::isfinite(h.weight)) {
-        return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
-                       " or has a weight that is not finite");
-      }
+  // The records, then (glossy) their sample indices, in place: Hit's own bytes (kHitLayoutIsTheFiles).
+  const std::span<const std::uint8_t> rest = payload.subspan(payload.size() - r.remaining());
+  if (reinterpret_cast<std::uintptr_t>(rest.data()) % alignof(Hit) != 0) {
+    return corrupt("the hit records are not 4-byte aligned in memory (read the file mapped or from an aligned buffer)");
+  }
+  const std::span<const Hit> hits(reinterpret_cast<const Hit*>(rest.data()), static_cast<std::size_t>(total));
+  const std::span<const std::uint32_t> samples =
+      out->glossy ? std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(rest.data() + total * 12),
+                                                   static_cast<std::size_t>(total))
+                  : std::span<const std::uint32_t>();
+  for (const Hit& h : hits) {
+    if (h.triangle >= triangles || !std::isfinite(h.weight)) {
+      return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
+                     " or has a weight that is not finite");
     }
   }
-  if (!out->glossy) return Status::ok();
-  for (HitBlock& b : out->blocks) {
-    if (!r.u32s(b.hits.size(), &b.hitSample)) return corrupt("the hits' sample indices are cut short");
-    for (std::uint32_t k : b.hitSample) {
-      if (k >= samples) {
-        return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samples));
-      }
+  for (std::uint32_t k : samples) {
+    if (k >= samplesPlanned) return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samplesPlanned));
+  }
+  const std::size_t blocks = blocksOf(count);
+  out->hitStarts.clear();
+  out->hitStarts.reserve(count + blocks);
+  out->hitViews.resize(blocks);
+  std::uint64_t first = 0;  // the block's first hit
+  for (std::size_t j = 0; j < blocks; ++j) {
+    const std::size_t v0 = j * kBlockVertices, v1 = std::min(count, v0 + kBlockVertices);
+    const std::size_t start = out->hitStarts.size();
+    std::uint64_t hitsOfBlock = 0;
+    out->hitStarts.push_back(0);
+    for (std::size_t v = v0; v < v1; ++v) {
+      hitsOfBlock += perVertex[v];
+      if (hitsOfBlock > 0xFFFFFFFFu) return corrupt("block " + std::to_string(j) + " holds more than 2^32 hits");
+      out->hitStarts.push_back(static_cast<std::uint32_t>(hitsOfBlock));
     }
+    HitBlockView& b = out->hitViews[j];
+    b.hitStart = std::span<const std::uint32_t>(out->hitStarts).subspan(start, v1 - v0 + 1);  // reserved: never moves
+    b.hits = hits.subspan(first, hitsOfBlock);
+    if (out->glossy) b.hitSample = samples.subspan(first, hitsOfBlock);
+    first += hitsOfBlock;
   }
   return Status::ok();
 }
 
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
-  w.floats(s.bounce);
-  w.doubles(s.blockEnergy);
-  w.floats(s.matrices);
+  appendBounceShard(s, &out);
   return out;
 }
 
+void appendBounceShard(const BounceShard& s, std::vector<std::uint8_t>* out) {
+  out->reserve(out->size() + (s.bounce.size() + s.matrices.size()) * 4 + s.blockEnergy.size() * 8);
+  ByteWriter w(out);
+  w.floats(s.bounce);
+  w.doubles(s.blockEnergy);
+  w.floats(s.matrices);
+}
+
 Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
-                         BounceShard* out) {
+                         BounceShardView* out) {
   ByteReader r(payload);
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * 3 * n2;
-  if (!r.floats(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
+  if (!r.floatView(floats, &out->bounce) || !r.doubles(blocksOf(count), &out->blockEnergy)) {
     return corrupt("the bounce's transfer or block energies are cut short");
   }
-  out->matrices.clear();
-  if (matrices && !r.floats(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
+  out->matrices = {};
+  if (matrices && !r.floatView(floats * n2, &out->matrices)) return corrupt("the glossy bounce's matrices are cut short");
   if (r.remaining() != 0) {
     return corrupt(std::to_string(r.remaining()) + " bytes after the " + (matrices ? "glossy matrices" : "block energies"));
   }
@@ -134,19 +162,26 @@ Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t coun
 
 std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
   std::vector<std::uint8_t> out;
-  ByteWriter w(&out);
-  w.u32(m.final ? 1 : 0);
-  w.u32(static_cast<std::uint32_t>(m.energies.size()));
-  w.doubles(m.energies);
-  w.u64(m.bounce.size());
-  w.floats(m.bounce);
-  w.u64(m.senderMatrices.size());
-  w.floats(m.senderMatrices);
+  appendMergedPass(m, &out);
   return out;
 }
 
+void appendMergedPass(const MergedPass& m, std::vector<std::uint8_t>* out) {
+  std::size_t floats = 0;
+  for (std::span<const float> part : m.bounce) floats += part.size();
+  out->reserve(out->size() + 8 + m.energies.size() * 8 + 16 + (floats + m.senderMatrices.size()) * 4);
+  ByteWriter w(out);
+  w.u32(m.final ? 1 : 0);
+  w.u32(static_cast<std::uint32_t>(m.energies.size()));
+  w.doubles(m.energies);
+  w.u64(floats);
+  for (std::span<const float> part : m.bounce) w.floats(part);
+  w.u64(m.senderMatrices.size());
+  w.floats(m.senderMatrices);
+}
+
 Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
-                        std::uint64_t senderFloats, MergedPass* out) {
+                        std::uint64_t senderFloats, MergedPassView* out) {
   ByteReader r(payload);
   std::uint32_t final = 0, energies = 0;
   std::uint64_t floats = 0;
@@ -158,13 +193,13 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
   if (floats != expected && floats != 0) {
     return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
   }
-  if (!r.floats(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
+  if (!r.floatView(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
   std::uint64_t senders = 0;
   if (!r.u64(&senders)) return corrupt("the glossy senders' matrix count is cut short");
   if (senders != senderFloats) {
     return corrupt("holds " + std::to_string(senders) + " floats of glossy senders' matrices, not " + std::to_string(senderFloats));
   }
-  if (!r.floats(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
+  if (!r.floatView(senders, &out->senderMatrices)) return corrupt("the glossy senders' matrices are cut short");
   if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the transfer");
   out->final = final == 1;
   return Status::ok();

@@ -11,6 +11,7 @@
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/transfer_range.h"
 #include "native/file_io.h"
+#include "native/mapped_file.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -25,11 +26,12 @@ std::string shardLabel(std::uint32_t pass, std::uint32_t shard) {
 std::string mergedLabel(std::uint32_t pass) { return "merged pass " + std::to_string(pass); }
 
 // Reads and checks one file of the plan: present, this kind, this plan, pass, shard and range.
+// The file is mapped, not copied (*payload views *file): the hit records are read in place.
 Status readPlanFile(const ShardContext& ctx, const std::string& path, const std::string& label, ShardFileKind kind,
-                    std::uint32_t pass, std::uint32_t shard, VertexRange range, std::vector<std::uint8_t>* bytes,
+                    std::uint32_t pass, std::uint32_t shard, VertexRange range, MappedFile* file,
                     std::span<const std::uint8_t>* payload) {
   const std::string named = label + " ('" + path + "')";
-  if (Status s = readFileBytes(path, kMaxShardFileBytes, bytes); !s.isOk()) {
+  if (Status s = MappedFile::open(path, kMaxShardFileBytes, file); !s.isOk()) {
     if (s.code() == StatusCode::kNotFound) {
       return Status::error(StatusCode::kNotFound, named + " is missing" +
                                                       (kind == ShardFileKind::kShard
@@ -41,7 +43,7 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
     return Status::error(s.code(), named + ": " + s.message());
   }
   ShardHeader h;
-  if (Status s = decodeShardFile(*bytes, kind, &h, payload); !s.isOk()) {
+  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload); !s.isOk()) {
     return Status::error(s.code(), named + " is corrupt: " + s.message());
   }
   if (h.planId != ctx.plan->id) {
@@ -59,8 +61,13 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
   return Status::ok();
 }
 
-Status writePlanFile(const std::string& path, const ShardHeader& h, const std::vector<std::uint8_t>& payload) {
-  const std::vector<std::uint8_t> file = encodeShardFile(h, payload);
+// Writes a file whose payload `append` appends after the header's room: the payload is
+// built in the file's own buffer, never copied into it.
+template <typename Append>
+Status writePlanFile(const std::string& path, const ShardHeader& h, Append append) {
+  std::vector<std::uint8_t> file(kShardHeaderBytes);
+  append(&file);
+  sealShardFile(h, &file);
   return writeFileAtomically(path, file);
 }
 
@@ -88,7 +95,7 @@ std::uint64_t senderFloats(const ShardContext& ctx, std::uint32_t pass) {
 
 // Appends the rows of `perVertex` (floats a vertex, for the vertices from `begin`) that
 // belong to glossy senders: shards in range order give the senders in sender order.
-void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_t begin, const std::vector<float>& rows,
+void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_t begin, std::span<const float> rows,
                       std::size_t perVertex, std::vector<float>* out) {
   for (std::size_t local = 0; local * perVertex < rows.size(); ++local) {
     if (senderIndex[begin + local] < 0) continue;
@@ -97,13 +104,13 @@ void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_
   }
 }
 
-// readHits: the bounce shards need the hit records; the merges only the transfer.
-Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, DirectShard* out) {
+// readHits: the bounce shards need the hit records (out->hitViews, views into *file); the
+// merges only the transfer.
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, MappedFile* file, DirectShard* out) {
   const VertexRange range = ctx.plan->shards[shard];
-  std::vector<std::uint8_t> bytes;
   std::span<const std::uint8_t> payload;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
-                                   shard, range, &bytes, &payload));
+                                   shard, range, file, &payload));
   if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles,
                                    glossyEntries(ctx), ctx.transfer->samples, readHits, out);
       !s.isOk()) {
@@ -116,12 +123,12 @@ Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHi
   return Status::ok();
 }
 
-Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, BounceShard* out) {
+// *out views *file.
+Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, MappedFile* file, BounceShardView* out) {
   const VertexRange range = ctx.plan->shards[shard];
-  std::vector<std::uint8_t> bytes;
   std::span<const std::uint8_t> payload;
   const std::string path = shardPath(ctx.planPath, pass, shard);
-  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, &bytes, &payload));
+  PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, shardLabel(pass, shard), ShardFileKind::kShard, pass, shard, range, file, &payload));
   if (Status s = decodeBounceShard(payload, range.end - range.begin, coefficients(ctx), glossyBounce(*ctx.transfer, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(pass, shard) + " ('" + path + "') is corrupt: " + s.message());
@@ -129,12 +136,12 @@ Status readBounceShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_
   return Status::ok();
 }
 
-Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* out) {
-  std::vector<std::uint8_t> bytes;
+// *out views *file.
+Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MappedFile* file, MergedPassView* out) {
   std::span<const std::uint8_t> payload;
   const std::string path = mergedPassPath(ctx.planPath, pass);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
-                                   {0, ctx.plan->vertices}, &bytes, &payload));
+                                   {0, ctx.plan->vertices}, file, &payload));
   if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), senderFloats(ctx, pass), out);
       !s.isOk()) {
     return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
@@ -148,11 +155,11 @@ Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MergedPass* o
 // Before pass `pass` >= 1: merged pass pass-1 (one read: it exists only when no earlier pass
 // ended the series), or *ended when it is the last, or when it is absent because an earlier
 // merged pass was the last (then passes after that one wrote nothing).
-Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MergedPass* previous) {
+Status passBefore(const ShardContext& ctx, std::uint32_t pass, bool* ended, MappedFile* file, MergedPassView* previous) {
   *ended = false;
   Status first;
   for (std::uint32_t j = pass; j-- > 0;) {
-    const Status s = readMergedPass(ctx, j, previous);
+    const Status s = readMergedPass(ctx, j, file, previous);
     if (s.code() == StatusCode::kNotFound) {
       if (first.isOk()) first = s;
       continue;
@@ -191,18 +198,6 @@ std::uint32_t plannedPasses(const BakeOptions& transfer) {
   return transfer.interreflection ? 1 + static_cast<std::uint32_t>(transfer.maxBounces) : 1;
 }
 
-Status checkPlannedScene(const BakePlan& plan, const Scene& scene) {
-  const std::uint32_t hash = sceneHash(scene);
-  if (hash == plan.sceneHash && scene.positions.size() == plan.vertices && scene.indices.size() / 3 == plan.triangles) {
-    return Status::ok();
-  }
-  char text[200];
-  std::snprintf(text, sizeof text, " changed since the plan was made (scene hash %08x, %zu vertices; the plan has %08x, %llu vertices): make a new plan",
-                hash, scene.positions.size(), plan.sceneHash, static_cast<unsigned long long>(plan.vertices));
-  return Status::error(StatusCode::kInvalidArgument,
-                       (plan.scenePath.empty() ? std::string("the built-in room") : "the scene '" + plan.scenePath + "'") + text);
-}
-
 Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, bool* skipped, PassStats* stats) {
   PRT_RETURN_IF_ERROR(checkPassShard(ctx, pass, shard));
   *skipped = false;
@@ -226,19 +221,21 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
     s.glossyShadowed = std::move(r.glossyShadowed);
     s.blocks = std::move(r.blocks);
     *stats = r.stats;
-    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeDirectShard(s));
+    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendDirectShard(s, f); });
   }
-  MergedPass previous;
-  PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+  MappedFile previousFile;
+  MergedPassView previous;
+  PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previousFile, &previous));
   if (*skipped) return Status::ok();
+  MappedFile directFile;
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &direct));
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &directFile, &direct));
   BounceShard out;
   const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
   PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
-                                        direct.blocks, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
+                                        direct.hitViews, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
                                         &out.bounce, &out.blockEnergy, stats));
-  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, encodeBounceShard(out));
+  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendBounceShard(out, f); });
 }
 
 Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, bool* final) {
@@ -246,6 +243,8 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   *skipped = false;
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   MergedPass merged;
+  std::vector<float> bounce0;           // pass 0: B^0, computed here
+  std::vector<MappedFile> shardFiles(shards);  // pass >= 1: the shards, whose B^b merged.bounce views
   // The glossy senders' part of this pass, which the next (glossy) bounce reads.
   const bool keepSenders = senderFloats(ctx, pass) > 0;
   std::size_t senders = 0;
@@ -253,8 +252,9 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   if (pass == 0) {
     std::vector<float> shadowed;
     for (std::uint32_t i = 0; i < shards; ++i) {
+      MappedFile file;
       DirectShard d;
-      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
       shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
       if (keepSenders) {
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, d.glossyShadowed, glossyEntries(ctx), &merged.senderMatrices);
@@ -262,19 +262,21 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     }
     double energy0 = 0.0;
     if (ctx.transfer->interreflection) {
-      firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &merged.bounce, &energy0);
+      firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &bounce0, &energy0);
+      merged.bounce = {bounce0};
     }
     merged.energies = {energy0};
   } else {
-    MergedPass previous;
-    PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previous));
+    MappedFile previousFile;
+    MergedPassView previous;
+    PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previousFile, &previous));
     if (*skipped) return Status::ok();
     double energy = 0.0;
     for (std::uint32_t i = 0; i < shards; ++i) {
-      BounceShard b;
-      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      BounceShardView b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &shardFiles[i], &b));
       for (double e : b.blockEnergy) energy += e;  // block order, as bakeTransfer sums them
-      merged.bounce.insert(merged.bounce.end(), b.bounce.begin(), b.bounce.end());
+      merged.bounce.push_back(b.bounce);
       if (keepSenders) {
         const std::size_t n2 = static_cast<std::size_t>(coefficients(ctx));
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, b.matrices, 3 * n2 * n2, &merged.senderMatrices);
@@ -291,25 +293,27 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   h.pass = pass;
   h.shard = kNoShard;
   h.vertexEnd = ctx.plan->vertices;
-  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, encodeMergedPass(merged));
+  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, [&](std::vector<std::uint8_t>* f) { appendMergedPass(merged, f); });
 }
 
 Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   *out = BakeResult{};
   out->order = ctx.transfer->order;
-  MergedPass last;
+  MappedFile lastFile;
+  MergedPassView last;
   std::uint32_t finalPass = 0;
   for (;; ++finalPass) {
     if (finalPass >= ctx.plan->passes) {
       return Status::error(StatusCode::kCorrupt, "no merged pass of the plan ends the bounce series");
     }
-    PRT_RETURN_IF_ERROR(readMergedPass(ctx, finalPass, &last));
+    PRT_RETURN_IF_ERROR(readMergedPass(ctx, finalPass, &lastFile, &last));
     if (last.final) break;
   }
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   for (std::uint32_t i = 0; i < shards; ++i) {
+    MappedFile file;
     DirectShard d;
-    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &d));
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
     out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
     out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
     out->glossyShadowed.insert(out->glossyShadowed.end(), d.glossyShadowed.begin(), d.glossyShadowed.end());
@@ -335,8 +339,9 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   // asset needs) and so that a lost or damaged one is named.
   for (std::uint32_t pass = 1; pass <= finalPass; ++pass) {
     for (std::uint32_t i = 0; i < shards; ++i) {
-      BounceShard b;
-      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &b));
+      MappedFile file;
+      BounceShardView b;
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &file, &b));
       float* total = &out->interreflected[ctx.plan->shards[i].begin * stride];
       for (std::size_t e = 0; e < b.bounce.size(); ++e) total[e] += b.bounce[e];
       if (glossyBounce(o, pass)) {

@@ -19,15 +19,12 @@ namespace prt::bake {
 struct ShardContext {
   const BakePlan* plan = nullptr;
   std::string planPath;
-  const Scene* scene = nullptr;            // prepared as bakeAsset prepares it (glossy split, prepareVertexBake)
+  const Scene* scene = nullptr;            // prepared as bakeAsset prepares it (glossy split, prepareVertexBake): the plan's prepared scene
   const BakeOptions* transfer = nullptr;   // as prepareVertexBake returns them
 };
 
 // The number of passes a bake with `transfer` runs at most: 1 + the bounce limit with interreflection, else 1.
 std::uint32_t plannedPasses(const BakeOptions& transfer);
-
-// kInvalidArgument naming both hashes when `scene` (prepared) is not the scene the plan was made for.
-Status checkPlannedScene(const BakePlan& plan, const Scene& scene);
 
 // Bakes shard `shard` of pass `pass` and writes it to shardPath(). Pass b >= 1 reads merged
 // pass b-1 and the shard's direct-pass hit records. *skipped: the bounce series ended before

@@ -244,9 +244,14 @@ void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOption
   } else {
     optimizeMeshOrder(scene);
   }
-  *transfer = options.transfer;
-  transfer->lighting = resolveLighting(*scene, options);
-  transfer->interreflection = options.storeInterreflected;
+  *transfer = vertexBakeOptions(options, *scene);
+}
+
+BakeOptions vertexBakeOptions(const AssetBakeOptions& options, const Scene& prepared) {
+  BakeOptions transfer = options.transfer;
+  transfer.lighting = resolveLighting(prepared, options);
+  transfer.interreflection = options.storeInterreflected;
+  return transfer;
 }
 
 Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,

@@ -144,6 +144,10 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
 void prepareVertexBake(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer,
                        std::vector<std::uint32_t>* triangleGroup = nullptr);
 
+// The options prepareVertexBake sets for a scene already in bake order (`prepared`): what a
+// sharded bake's shards use with the prepared scene the plan stored.
+BakeOptions vertexBakeOptions(const AssetBakeOptions& options, const Scene& prepared);
+
 // The asset bakeAsset makes of a finished vertex bake: the chosen passes of `result`, named
 // and lit as `options` and `lighting` say, encoded with options.compress (reported in
 // *compressed). Errors: the codec's, as bakeAsset reports them.

@@ -44,7 +44,7 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
   const auto t0 = std::chrono::steady_clock::now();
   ProgressReporter progress(*job.options, job.name, rangeEnd - rangeBegin);
   parallelFor(job.blocks.size(), job.threads, [&](std::size_t j, unsigned) {
-    const HitBlock& rec = job.blocks[j];
+    const HitBlockView& rec = job.blocks[j];
     const std::size_t begin = (job.firstBlock + j) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
     std::vector<float> gathered(stride);
     double e = 0.0;

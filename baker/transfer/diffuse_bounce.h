@@ -29,7 +29,7 @@ struct DiffuseBounceJob {
   const BakeOptions* options = nullptr;  // order, progress
   std::string name;                      // progress and PassStats name: "bounce N"
   std::size_t firstBlock = 0;            // blocks[j] is the direct pass's block firstBlock + j
-  std::span<const HitBlock> blocks;
+  std::span<const HitBlockView> blocks;
   const float* previous = nullptr;    // B^{b-1} of every vertex, [vertex][channel][coefficient]
   const float* fromGlossy = nullptr;  // nullptr, or per vertex of the blocks (as current) the light glossy senders add (glossy_bake.h)
   std::span<const double> vertexArea;

@@ -17,6 +17,9 @@
 // Declared by OpenBLAS's cblas.h too; repeated so that the build does not depend on which
 // cblas.h alternative (netlib or OpenBLAS) /usr/include points at.
 extern "C" void openblas_set_num_threads(int num_threads);
+extern "C" int openblas_get_num_threads(void);
+// OpenBLAS's own shutdown of its thread pool (what it runs at fork and exit), not in cblas.h.
+extern "C" int blas_thread_shutdown_(void);
 
 namespace prt::bake {
 namespace {
@@ -51,7 +54,16 @@ void vectorTimesDense(const float* __restrict t, const float* __restrict m, std:
 
 }  // namespace
 
-void useSingleThreadedBlas() { openblas_set_num_threads(1); }
+// Only when it is not single-threaded already: openblas_set_num_threads restarts the pool
+// that releaseBlasThreads ended.
+void useSingleThreadedBlas() {
+  if (openblas_get_num_threads() != 1) openblas_set_num_threads(1);
+}
+
+void releaseBlasThreads() {
+  useSingleThreadedBlas();
+  blas_thread_shutdown_();
+}
 
 GlossyShadowedKernel::GlossyShadowedKernel(int order, std::size_t maxRays) : order_(order), n2_(shCoeffCount(order)) {
   a_.resize(std::min(maxRays, kChunkRows) * static_cast<std::size_t>(n2_) + 1);
@@ -174,7 +186,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 
   parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
     Scratch& s = scratch[thread];
-    const HitBlock& rec = job.blocks[block];
+    const HitBlockView& rec = job.blocks[block];
     const std::size_t begin = (job.firstBlock + block) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
     const std::size_t blockVertices = end - begin;
     const std::size_t vertexDense = n2 * row3;
@@ -284,7 +296,7 @@ PassStats gatherGlossyBounce(const GlossyBounceJob& job) {
 }
 
 GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
-                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                std::span<const HitBlockView> blocks, const float* diffusePrevious,
                                 const std::vector<std::int32_t>* senderIndex) {
   GlossyBounceJob job;
   job.scene = &scene;

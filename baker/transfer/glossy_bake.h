@@ -50,6 +50,12 @@ namespace prt::bake {
 // single-threaded kernel on a fixed shape gives the same bits whatever options.threads.
 void useSingleThreadedBlas();
 
+// Makes the BLAS single-threaded and ends OpenBLAS's worker threads, which the library starts
+// when it loads and which spin (sched_yield) for about 2^28 cycles before they sleep: CPU the
+// baker never uses (it runs BLAS single-threaded), paid by every process, so by every shard
+// and merge of a sharded bake (docs/bench/scale-out.md). Call it once, first.
+void releaseBlasThreads();
+
 // Per-thread accumulator of the shadowed matrix of one vertex at a time (scratch reused).
 class GlossyShadowedKernel {
  public:
@@ -78,7 +84,7 @@ struct GlossyBounceJob {
   const Scene* scene = nullptr;
   int order = 0;
   int bounce = 0;                                 // b >= 1
-  std::span<const HitBlock> blocks;               // the direct pass's hits, kBlockVertices per block
+  std::span<const HitBlockView> blocks;               // the direct pass's hits, kBlockVertices per block
   // blocks[j] is the scene's block firstBlock + j: a sharded bake gathers one vertex range.
   // Every per-vertex output below is indexed from that block's first vertex.
   std::size_t firstBlock = 0;
@@ -114,7 +120,7 @@ struct SampleTable;
 // samples (`table`: directions, [sample][coefficient] basis, weight), B^{b-1}, the senders,
 // threads and progress from `options`. The caller adds the matrices it reads and writes.
 GlossyBounceJob glossyBounceJob(const Scene& scene, const BakeOptions& options, const SampleTable& table, int bounce,
-                                std::span<const HitBlock> blocks, const float* diffusePrevious,
+                                std::span<const HitBlockView> blocks, const float* diffusePrevious,
                                 const std::vector<std::int32_t>* senderIndex);
 
 // Gathers bounce `job.bounce` for the job's blocks (deterministic whatever job.threads).

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace prt::bake {
@@ -24,5 +25,21 @@ struct HitBlock {
   std::vector<Hit> hits;
   std::vector<std::uint32_t> hitSample;  // glossy bakes only: the sample index k of each hit (w_k)
 };
+
+// What the bounce gathers read of a block: views of a HitBlock, or of a sharded bake's
+// direct shard mapped in place (baker/shard), so neither copies the records.
+struct HitBlockView {
+  std::span<const std::uint32_t> hitStart;
+  std::span<const Hit> hits;
+  std::span<const std::uint32_t> hitSample;
+};
+
+// Views of `blocks`, which must outlive them.
+inline std::vector<HitBlockView> hitBlockViews(std::span<const HitBlock> blocks) {
+  std::vector<HitBlockView> views;
+  views.reserve(blocks.size());
+  for (const HitBlock& b : blocks) views.push_back({b.hitStart, b.hits, b.hitSample});
+  return views;
+}
 
 }  // namespace prt::bake

@@ -90,6 +90,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   // to the power it reflects under constant lighting, so it does not depend on how finely
   // each surface happens to be tessellated.
   const std::vector<double> vertexArea = vertexAreas(scene);
+  const std::vector<HitBlockView> views = hitBlockViews(blocks);
   const std::size_t stride = 3 * static_cast<std::size_t>(n2);
   std::vector<float> previous, current(vertexCount * stride);
   double energy0 = 0.0;
@@ -115,7 +116,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   for (int bounce = 1; bounce <= o.maxBounces; ++bounce) {
     const bool glossyThisBounce = glossyBounce && bounce <= o.glossyBounces;
     if (glossyThisBounce) {
-      GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, blocks, previous.data(), &senderIndex);
+      GlossyBounceJob job = glossyBounceJob(scene, o, table, bounce, views, previous.data(), &senderIndex);
       job.glossyPrevious = bounce == 1 ? out->glossyShadowed.data() : glossyPrevious.data();
       job.previousPacking = glossyPacking;
       job.glossyCurrent = bounce < o.glossyBounces ? glossyCurrent.data() : nullptr;
@@ -139,7 +140,7 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
     gather.scene = &scene;
     gather.options = &o;
     gather.name = "bounce " + std::to_string(bounce);
-    gather.blocks = blocks;
+    gather.blocks = views;
     gather.previous = previous.data();
     gather.fromGlossy = glossyThisBounce ? diffuseFromGlossy.data() : nullptr;
     gather.vertexArea = vertexArea;

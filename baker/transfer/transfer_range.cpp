@@ -17,7 +17,7 @@ namespace {
 // hit records by the caller): M^b into *glossy.bounce, and what the diffuse receivers gather
 // from the glossy senders into *fromGlossy ([vertex of the range][channel][coefficient]).
 Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
-                         std::span<const HitBlock> blocks, std::span<const float> diffusePrevious,
+                         std::span<const HitBlockView> blocks, std::span<const float> diffusePrevious,
                          const GlossyRangeBounce& glossy, std::vector<float>* fromGlossy, PassStats* stats) {
   const std::size_t vertexCount = scene.positions.size(), n2 = static_cast<std::size_t>(shCoeffCount(o.order));
   const std::size_t begin = firstBlock * kBlockVertices;
@@ -96,7 +96,7 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
 }
 
 Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
-                         std::span<const HitBlock> blocks, std::span<const float> previous,
+                         std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
                          PassStats* stats) {
   const std::size_t vertexCount = scene.positions.size();
@@ -111,7 +111,7 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
   }
   const std::size_t triangles = scene.indices.size() / 3;
   for (std::size_t j = 0; j < blocks.size(); ++j) {
-    const HitBlock& b = blocks[j];
+    const HitBlockView& b = blocks[j];
     const std::size_t vertices = std::min(kBlockVertices, end - (begin + j * kBlockVertices));
     if (b.hitStart.size() != vertices + 1 || b.hitStart.front() != 0 || b.hitStart.back() != b.hits.size()) {
       return Status::error(StatusCode::kCorrupt, "hit records of block " + std::to_string(firstBlock + j) + " do not fit its vertices");

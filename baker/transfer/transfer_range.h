@@ -50,7 +50,7 @@ struct GlossyRangeBounce {
 // block order they are bakeTransfer's bounce energy). kInvalidArgument or kCorrupt on sizes
 // or hit records that do not fit the scene.
 Status gatherBounceRange(const Scene& scene, const BakeOptions& options, int bounce, std::size_t firstBlock,
-                         std::span<const HitBlock> blocks, std::span<const float> previous,
+                         std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
                          PassStats* stats);
 

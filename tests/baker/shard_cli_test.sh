@@ -22,6 +22,13 @@ bake_all() {
   run merge --plan "$plan" -o "$out" --quiet
 }
 
+# flip_byte FILE OFFSET: replaces the byte at OFFSET with its complement (always a change).
+flip_byte() {
+  local b
+  b=$(od -An -tu1 -j "$2" -N1 "$1" | tr -d ' ')
+  printf "\\x$(printf %02x $((255 - b)))" | dd of="$1" bs=1 seek="$2" conv=notrunc status=none
+}
+
 # plan ... --json prints {"passes": P, ...}; prints P.
 plan_passes() { sed -n 's/.*"passes": \([0-9]*\).*/\1/p'; }
 
@@ -139,6 +146,38 @@ case_changed_scene() {
   expect_failure 4 "changed since the plan was made" "$bake" merge --plan box.plan --pass 0
   rm box.gltf
   expect_failure 3 "box.gltf" "$bake" bake-shard --plan box.plan --shard 0 --pass 0
+}
+
+case_prepared_scene() {
+  # A glTF with an external buffer and image: plan stores the prepared scene (room.plan.scene)
+  # and each scene file's size and CRC-32C; shards and merges read the former and check the latter.
+  cp "$models/glTF2/BoxTextured-glTF/"* .
+  run BoxTextured.gltf -o one.prt "${small[@]}"
+  run plan BoxTextured.gltf -o box.plan --shards 1 "${small[@]}"
+  [[ -s box.plan.scene ]] || fail "plan wrote no prepared scene"
+  touch BoxTextured0.bin  # a new time, the same bytes: still the planned scene
+  bake_all box.plan sharded.prt 1 3
+  cmp one.prt sharded.prt || fail "the box merged from its prepared scene differs from the one-machine bake (name included)"
+  # A changed byte in the external buffer (same size), then a missing image: refused, named.
+  cp BoxTextured0.bin saved.bin
+  flip_byte BoxTextured0.bin 100
+  expect_failure 4 "the scene '.*BoxTextured.gltf' changed since the plan was made \(its file '.*BoxTextured0.bin' is" \
+    "$bake" bake-shard --plan box.plan --shard 0 --pass 0
+  mv saved.bin BoxTextured0.bin
+  mv CesiumLogoFlat.png saved.png
+  expect_failure 3 "CesiumLogoFlat.png" "$bake" merge --plan box.plan --pass 0
+  mv saved.png CesiumLogoFlat.png
+  run merge --plan box.plan --pass 0 --quiet
+  # The prepared scene missing, damaged, or another plan's.
+  mv box.plan.scene saved.scene
+  expect_failure 3 "the prepared scene \('box.plan.scene'\) is missing" "$bake" bake-shard --plan box.plan --shard 0 --pass 1
+  cp saved.scene box.plan.scene
+  flip_byte box.plan.scene 200
+  expect_failure 4 "the prepared scene .* is corrupt: payload checksum mismatch" "$bake" merge --plan box.plan -o out.prt
+  run plan BoxTextured.gltf -o other.plan --shards 1 --order 3 --samples 64 --bounces 2 --seed 7 --quiet
+  cp other.plan.scene box.plan.scene
+  expect_failure 4 "the prepared scene .* belongs to another plan" "$bake" bake-shard --plan box.plan --shard 0 --pass 1
+  [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
 }
 
 case_usage() {

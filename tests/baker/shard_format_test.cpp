@@ -3,12 +3,15 @@
 // refused with an error, never a crash or a silent success.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "baker/shard/bake_plan.h"
+#include "baker/shard/prepared_scene.h"
 #include "baker/shard/shard_container.h"
 #include "baker/shard/shard_payloads.h"
+#include "prt/checksum.h"
 
 namespace prt::bake {
 namespace {
@@ -19,6 +22,8 @@ BakePlan samplePlan() {
   p.workingDirectory = "/data";
   p.bakeArgs = {"/data/scene.glb", "-o", "x.plan", "--order", "3"};
   p.sceneHash = 0x12345678u;
+  p.sceneName = "scene";
+  p.sceneFiles = {{"/data/scene.gltf", 1234, 0xabcdef01u}, {"/data/scene.bin", 99, 7}};
   p.vertices = 200;
   p.triangles = 300;
   p.order = 3;
@@ -50,6 +55,11 @@ TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
   EXPECT_EQ(q.scenePath, p.scenePath);
   EXPECT_EQ(q.bakeArgs, p.bakeArgs);
   EXPECT_EQ(q.sceneHash, p.sceneHash);
+  EXPECT_EQ(q.sceneName, "scene");
+  ASSERT_EQ(q.sceneFiles.size(), 2u);
+  EXPECT_EQ(q.sceneFiles[1].path, "/data/scene.bin");
+  EXPECT_EQ(q.sceneFiles[0].bytes, 1234u);
+  EXPECT_EQ(q.sceneFiles[0].crc32c, 0xabcdef01u);
   EXPECT_EQ(q.shards.size(), 3u);
   EXPECT_EQ(q.id, p.id);
   for (std::size_t n = 0; n < bytes.size(); ++n) {
@@ -64,6 +74,67 @@ TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
   longer.push_back(0);
   const Status s = decodeBakePlan(longer, &q);
   EXPECT_EQ(s.code(), StatusCode::kCorrupt) << s.message();
+}
+
+// Two triangles over four vertices, with specular materials when `glossy`.
+Scene sampleScene(bool glossy) {
+  Scene s;
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}};
+  s.normals.assign(4, Vec3{0, 0, 1});
+  s.albedo = {{0.1f, 0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}, {0.7f, 0.8f, 0.9f}, {1, 1, 1}};
+  s.indices = {0, 1, 2, 2, 1, 3};
+  if (glossy) s.specular = {{{0.04f, 0.04f, 0.04f}, 10.0f, 1.0f}, {}, {{0.9f, 0.6f, 0.3f}, 200.0f, 0.5f}, {}};
+  return s;
+}
+
+TEST(ShardFormat, PreparedSceneRoundTripsItsHashAndRefusesDamage) {
+  for (bool glossy : {false, true}) {
+    const Scene s = sampleScene(glossy);
+    const std::vector<std::uint8_t> payload = encodePreparedScene(s);
+    // The payload's checksum is the scene hash: the container's check is the plan's.
+    EXPECT_EQ(crc32c(payload), sceneHash(s));
+    Scene t;
+    ASSERT_TRUE(decodePreparedScene(payload, &t).isOk());
+    EXPECT_EQ(t.indices, s.indices);
+    EXPECT_EQ(sceneHash(t), sceneHash(s));
+    EXPECT_EQ(t.specular.size(), glossy ? 4u : 0u);
+    if (glossy) {
+      EXPECT_EQ(t.specular[2].exponent, 200.0f);
+      EXPECT_EQ(t.specular[2].f90, 0.5f);
+    }
+    for (std::size_t n = 0; n < payload.size(); ++n) {
+      // Every prefix: cut short, or (cut exactly before the materials) a valid scene without them.
+      Scene u;
+      const bool ok = decodePreparedScene(std::span(payload).first(n), &u).isOk();
+      EXPECT_EQ(ok, glossy && n == encodePreparedScene(sampleScene(false)).size()) << "prefix of " << n << " bytes";
+    }
+    std::vector<std::uint8_t> longer = payload;
+    longer.push_back(0);
+    EXPECT_EQ(decodePreparedScene(longer, &t).code(), StatusCode::kCorrupt);
+  }
+  // An index outside the vertices would read past them in every gather: refused.
+  Scene bad = sampleScene(false);
+  bad.indices[4] = 4;
+  Scene t;
+  const Status st = decodePreparedScene(encodePreparedScene(bad), &t);
+  EXPECT_EQ(st.code(), StatusCode::kCorrupt);
+  EXPECT_NE(st.message().find("index 4 is not below the 4 vertices"), std::string::npos) << st.message();
+  // In its container, any flipped byte is caught.
+  ShardHeader h;
+  h.kind = ShardFileKind::kPreparedScene;
+  h.planId = 3;
+  h.vertexEnd = 4;
+  const std::vector<std::uint8_t> file = encodeShardFile(h, encodePreparedScene(sampleScene(true)));
+  ShardHeader g;
+  std::span<const std::uint8_t> view;
+  ASSERT_TRUE(decodeShardFile(file, ShardFileKind::kPreparedScene, &g, &view).isOk());
+  EXPECT_EQ(g.payloadCrc, sceneHash(sampleScene(true)));
+  EXPECT_EQ(decodeShardFile(file, ShardFileKind::kShard, &g, &view).code(), StatusCode::kBadMagic);
+  for (std::size_t i = 0; i < file.size(); ++i) {
+    std::vector<std::uint8_t> b = file;
+    b[i] ^= 0x10;
+    EXPECT_FALSE(decodeShardFile(b, ShardFileKind::kPreparedScene, &g, &view).isOk()) << "byte " << i << " flipped";
+  }
 }
 
 TEST(ShardFormat, ShardFileOfAnotherKindIsNotRead) {
@@ -99,10 +170,19 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   DirectShard e;
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, true, &e).isOk());
   EXPECT_EQ(e.unshadowed, d.unshadowed);
-  ASSERT_EQ(e.blocks.size(), 2u);
-  EXPECT_EQ(e.blocks[0].hitStart, d.blocks[0].hitStart);
-  EXPECT_EQ(e.blocks[1].hits[0].triangle, 9u);
-  EXPECT_EQ(e.blocks[0].hits[1].v, 65535);
+  ASSERT_EQ(e.hitViews.size(), 2u);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitStart.begin(), e.hitViews[0].hitStart.end()), d.blocks[0].hitStart);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitStart.begin(), e.hitViews[1].hitStart.end()), d.blocks[1].hitStart);
+  ASSERT_EQ(e.hitViews[1].hits.size(), 1u);
+  EXPECT_EQ(e.hitViews[1].hits[0].triangle, 9u);
+  EXPECT_EQ(e.hitViews[0].hits[1].v, 65535);
+  // Views into the payload, not copies.
+  EXPECT_GE(reinterpret_cast<const std::uint8_t*>(e.hitViews[0].hits.data()), payload.data());
+  EXPECT_LT(reinterpret_cast<const std::uint8_t*>(e.hitViews[0].hits.data()), payload.data() + payload.size());
+  // A misaligned payload (a copy one byte in) is refused, not read misaligned.
+  std::vector<std::uint8_t> shifted(payload.size() + 1);
+  std::copy(payload.begin(), payload.end(), shifted.begin() + 1);
+  EXPECT_EQ(decodeDirectShard(std::span(shifted).subspan(1), 70, 4, 10, 0, 64, true, &e).code(), StatusCode::kCorrupt);
   // A triangle outside the scene.
   EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, 0, 64, true, &e).code(), StatusCode::kCorrupt);
   // Another vertex count or order.
@@ -116,7 +196,7 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, false, &f).isOk());
   EXPECT_EQ(f.shadowed, d.shadowed);
   EXPECT_TRUE(f.hasHits);
-  EXPECT_TRUE(f.blocks.empty());
+  EXPECT_TRUE(f.hitViews.empty());
   EXPECT_FALSE(decodeDirectShard(std::span(payload).first(payload.size() - 1), 70, 4, 10, 0, 64, false, &f).isOk());
   // In a file, any flipped byte is caught by a checksum.
   ShardHeader h;
@@ -142,9 +222,11 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   b.bounce.assign(70 * 12, 0.5f);
   b.blockEnergy = {1.0, 2.0};
   const std::vector<std::uint8_t> bp = encodeBounceShard(b);
-  BounceShard c;
+  BounceShardView c;
   ASSERT_TRUE(decodeBounceShard(bp, 70, 4, false, &c).isOk());
   EXPECT_EQ(c.blockEnergy, b.blockEnergy);
+  EXPECT_EQ(std::vector<float>(c.bounce.begin(), c.bounce.end()), b.bounce);
+  EXPECT_EQ(reinterpret_cast<const std::uint8_t*>(c.bounce.data()), bp.data());  // viewed in place
   EXPECT_FALSE(decodeBounceShard(bp, 64, 4, false, &c).isOk());
   EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, false, &c).isOk());
   EXPECT_FALSE(decodeBounceShard(bp, 70, 4, true, &c).isOk());  // a glossy bounce's matrices are missing
@@ -152,12 +234,16 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   MergedPass m;
   m.final = true;
   m.energies = {3.0, 1.0};
-  m.bounce.assign(70 * 12, 0.25f);
+  // Two parts (two shards' ranges), stored one after the other.
+  const std::vector<float> first(64 * 12, 0.25f), second(6 * 12, 0.5f);
+  m.bounce = {first, second};
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
-  MergedPass n;
+  MergedPassView n;
   ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, 0, &n).isOk());
   EXPECT_TRUE(n.final);
-  EXPECT_EQ(n.bounce, m.bounce);
+  std::vector<float> both = first;
+  both.insert(both.end(), second.begin(), second.end());
+  EXPECT_EQ(std::vector<float>(n.bounce.begin(), n.bounce.end()), both);
   EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, 0, &n).isOk());  // energies of another pass
   EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, 0, &n).isOk());
   EXPECT_FALSE(decodeMergedPass(mp, 1, 70, 4, 48, &n).isOk());  // glossy senders' matrices expected
@@ -180,8 +266,8 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 10, 64, true, &e).isOk());
   EXPECT_TRUE(e.glossy);
   EXPECT_EQ(e.glossyShadowed, d.glossyShadowed);
-  EXPECT_EQ(e.blocks[0].hitSample, d.blocks[0].hitSample);
-  EXPECT_EQ(e.blocks[1].hitSample, d.blocks[1].hitSample);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitSample.begin(), e.hitViews[0].hitSample.end()), d.blocks[0].hitSample);
+  EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitSample.begin(), e.hitViews[1].hitSample.end()), d.blocks[1].hitSample);
   EXPECT_EQ(decodeDirectShard(payload, 70, 4, 10, 10, 63, true, &e).code(), StatusCode::kCorrupt);  // sample 63 of 63
   EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 10, 16, 64, true, &e).isOk());  // another packing
   for (std::size_t n = 0; n < payload.size(); ++n) {
@@ -199,9 +285,9 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   b.blockEnergy = {1.0, 2.0};
   b.matrices.assign(70 * 3 * 16, 0.125f);
   const std::vector<std::uint8_t> bp = encodeBounceShard(b);
-  BounceShard c;
+  BounceShardView c;
   ASSERT_TRUE(decodeBounceShard(bp, 70, 4, true, &c).isOk());
-  EXPECT_EQ(c.matrices, b.matrices);
+  EXPECT_EQ(std::vector<float>(c.matrices.begin(), c.matrices.end()), b.matrices);
   EXPECT_FALSE(decodeBounceShard(bp, 70, 4, false, &c).isOk());  // matrices where none belong
   for (std::size_t n = 0; n < bp.size(); n += 13) {
     EXPECT_FALSE(decodeBounceShard(std::span(bp).first(n), 70, 4, true, &c).isOk()) << "prefix of " << n << " bytes";
@@ -209,12 +295,13 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
 
   MergedPass m;
   m.energies = {3.0};
-  m.bounce.assign(70 * 12, 0.25f);
+  const std::vector<float> bounce(70 * 12, 0.25f);
+  m.bounce = {bounce};
   m.senderMatrices.assign(5 * 10, 2.0f);
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
-  MergedPass n;
+  MergedPassView n;
   ASSERT_TRUE(decodeMergedPass(mp, 0, 70, 4, 50, &n).isOk());
-  EXPECT_EQ(n.senderMatrices, m.senderMatrices);
+  EXPECT_EQ(std::vector<float>(n.senderMatrices.begin(), n.senderMatrices.end()), m.senderMatrices);
   EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 0, &n).code(), StatusCode::kCorrupt);
   EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 60, &n).code(), StatusCode::kCorrupt);
   for (std::size_t len = 0; len < mp.size(); len += 29) {
