@@ -156,22 +156,31 @@ StatusCode statusCodeForErrno(int errorNumber) {
   }
 }
 
-Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out) {
+Status openFileForReading(const std::string& path, std::uint64_t maxBytes, int* fd, std::uint64_t* size) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer (it is then refused as not a
   // regular file); reads of regular files ignore the flag.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) return errnoError(path, errno == ENOENT ? "no such file" : "cannot open: " + errnoText());
+  const int f = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (f < 0) return errnoError(path, errno == ENOENT ? "no such file" : "cannot open: " + errnoText());
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
+  if (::fstat(f, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(f);
     return fileError(StatusCode::kInvalidArgument, path, "not a regular file");
   }
   if (static_cast<std::uint64_t>(st.st_size) > maxBytes) {
-    ::close(fd);
+    ::close(f);
     return fileError(StatusCode::kInvalidArgument, path, "file is " + std::to_string(st.st_size) + " bytes; at most " + std::to_string(maxBytes) +
                              " are accepted");
   }
-  out->resize(static_cast<std::size_t>(st.st_size));
+  *fd = f;
+  *size = static_cast<std::uint64_t>(st.st_size);
+  return Status::ok();
+}
+
+Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out) {
+  int fd = -1;
+  std::uint64_t size = 0;
+  if (Status s = openFileForReading(path, maxBytes, &fd, &size); !s.isOk()) return s;
+  out->resize(static_cast<std::size_t>(size));
   std::size_t done = 0;
   while (done < out->size()) {
     const ssize_t n = ::read(fd, out->data() + done, out->size() - done);

@@ -18,6 +18,10 @@ StatusCode statusCodeForErrno(int errorNumber);
 
 Status readFileBytes(const std::string& path, std::uint64_t maxBytes, std::vector<std::uint8_t>* out);
 
+// Opens `path` read-only for a whole-file read and sets *fd (the caller closes it) and *size;
+// fails as readFileBytes does (naming the path) before anything is read.
+Status openFileForReading(const std::string& path, std::uint64_t maxBytes, int* fd, std::uint64_t* size);
+
 // Checks that `output` may receive a new file without destroying anything else: it does not
 // exist yet, or it is a regular file (a symbolic link to one counts as that file) that is
 // not the same file (device and inode) as any of `inputs`. Fails naming the path otherwise:

@@ -42,23 +42,10 @@ void MappedFile::unmap() noexcept {
 
 Status MappedFile::open(const std::string& path, std::uint64_t maxBytes, MappedFile* out) {
   *out = MappedFile();
-  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is then refused below).
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) {
-    const int e = errno;
-    return fileError(statusCodeForErrno(e), path, e == ENOENT ? "no such file" : std::string("cannot open: ") + std::strerror(e));
-  }
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    return fileError(StatusCode::kInvalidArgument, path, "not a regular file");
-  }
-  if (static_cast<std::uint64_t>(st.st_size) > maxBytes) {
-    ::close(fd);
-    return fileError(StatusCode::kInvalidArgument, path,
-                     "file is " + std::to_string(st.st_size) + " bytes; at most " + std::to_string(maxBytes) + " are accepted");
-  }
-  const std::size_t size = static_cast<std::size_t>(st.st_size);
+  int fd = -1;
+  std::uint64_t fileSize = 0;
+  if (Status s = openFileForReading(path, maxBytes, &fd, &fileSize); !s.isOk()) return s;
+  const std::size_t size = static_cast<std::size_t>(fileSize);
   if (size == 0) {
     ::close(fd);
     return Status::ok();
