@@ -40,7 +40,7 @@ bake_room() {
 source scripts/demo_bake_settings.sh
 compress=$demo_compress
 bake_room "$root/default-room-glossy.prt" "glossy (shadowed and interreflected matrices)" --glossy \
-  --name default-room-glossy --compress "$compress"
+  --name default-room-glossy --compress "$compress" --compress-matrices "$demo_compress_matrices"
 bake_room "$root/default-room.prt" "distant lighting" --compress "$compress"
 bake_room "$root/default-room-local.prt" "spatially-varying lighting" --lighting local --name default-room-local \
   --compress "$compress"

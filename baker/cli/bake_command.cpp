@@ -31,7 +31,7 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--samples", true},  {"--bounces", true}, {"--bounce-threshold", true}, {"--sampling", true},
     {"--seed", true},     {"--threads", true}, {"--passes", true},  {"--quiet", false},
     {"--json", false},    {"--lighting", true}, {"--light-center", true}, {"--light-radius", true},
-    {"--name", true},     {"--compress", true}, {"--glossy", false}, {"--glossy-bounces", true},
+    {"--name", true},     {"--compress", true}, {"--compress-matrices", true}, {"--glossy", false}, {"--glossy-bounces", true},
     {"--specular-exponent", true}, {"--max-specular-exponent", true},
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
     {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
@@ -70,6 +70,9 @@ constexpr const char* kHelp =
     "  --compress SETTING        store the transfer with the transfer codec (docs/transfer-codec.md):\n"
     "                            f16, q16, q8, cpca8 or cpca16, CPCA with an optional target\n"
     "                            relative error, e.g. cpca8@0.02 (default: float32, uncompressed)\n"
+    "  --compress-matrices SETTING  the glossy matrix passes' setting, when it differs from\n"
+    "                            --compress (which it needs), e.g. cpca16b8@0.045; CPCA also takes\n"
+    "                            a basis limit, cpca16b8n8@0.045 (default: the --compress setting)\n"
     "  --glossy                  also bake glossy transfer matrices (docs/glossy.md): the base\n"
     "                            colour splits into (1 - metallic) x base (diffuse) and a Phong\n"
     "                            lobe of f0 = mix(0.04, base, metallic) and an exponent from\n"
@@ -397,6 +400,15 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
     }
     c->bake.compress = settings;
   }
+  if (const std::string* s = p.value("--compress-matrices")) {
+    if (!c->bake.compress) return usage("--compress-matrices needs --compress (the setting of the vector passes)");
+    if (!c->bake.transfer.glossy) return usage("--compress-matrices needs --glossy (there are no matrix passes without it)");
+    TransferCodecSettings settings;
+    if (Status st = parseTransferSetting(*s, TransferCodecSettings{}, &settings); !st.isOk()) {
+      return usage("--compress-matrices: " + st.message());
+    }
+    c->bake.compressMatrices = settings;
+  }
   c->quiet = p.has("--quiet");
   c->json = p.has("--json");
   return Status::ok();
@@ -542,8 +554,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                    report.verticesOutsideLight, report.vertices, describeLighting(report.lighting).c_str());
     }
     if (c.bake.compress && !c.quiet) {
-      std::fprintf(err, "prt-bake: %s: %s\n", transferSettingName(*c.bake.compress).c_str(),
-                   describeCompression(report.compressed).c_str());
+      const std::string setting = transferSettingName(*c.bake.compress) +
+                                  (c.bake.compressMatrices ? ", matrices " + transferSettingName(*c.bake.compressMatrices) : "");
+      std::fprintf(err, "prt-bake: %s: %s\n", setting.c_str(), describeCompression(report.compressed).c_str());
     }
     if (Status s = encodeAsset(asset, &bytes); !s.isOk()) return reportFailure(err, "", Status::error(s.code(), "cannot encode asset: " + s.message()));
   }

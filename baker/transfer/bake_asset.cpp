@@ -53,12 +53,14 @@ BakedAsset makeAsset(Scene&& scene, BakeResult&& r, const AssetBakeOptions& o, c
   return a;
 }
 
-// Encodes every pass with the codec; the floats are dropped once encoded.
-Status compressPasses(const TransferCodecSettings& settings, BakedAsset* a, std::vector<CompressedPass>* out) {
+// Encodes every pass with the codec, matrix passes with `matrices`; the floats are dropped once
+// encoded.
+Status compressPasses(const TransferCodecSettings& settings, const TransferCodecSettings& matrices, BakedAsset* a,
+                      std::vector<CompressedPass>* out) {
   // Matrix CPCA fits in glossy exit radiance's metric: rows weighted by the asset's sharpest
   // lobe (prt/glossy_codec_weights.h; docs/glossy.md "Compressing in the exit-radiance metric").
-  TransferCodecSettings matrixSettings = settings;
-  if (settings.encoding == TransferEncoding::kCpca) {
+  TransferCodecSettings matrixSettings = matrices;
+  if (matrices.encoding == TransferEncoding::kCpca) {
     if (Status s = glossyMatrixRowWeights(a->shOrder, a->specular, &matrixSettings.cpcaMatrixRowWeights); !s.isOk()) return s;
   }
   for (TransferPass& pass : a->passes) {
@@ -257,7 +259,9 @@ BakeOptions vertexBakeOptions(const AssetBakeOptions& options, const Scene& prep
 Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,
                            const LightingInfo& lighting, BakedAsset* asset, std::vector<CompressedPass>* compressed) {
   *asset = makeAsset(std::move(scene), std::move(result), options, lighting);
-  if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, compressed));
+  if (options.compress) {
+    PRT_RETURN_IF_ERROR(compressPasses(*options.compress, options.compressMatrices.value_or(*options.compress), asset, compressed));
+  }
   return Status::ok();
 }
 
@@ -320,7 +324,10 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
     asset->texelCoverage = std::move(texel.coverage);
     asset->texelNormals = std::move(texel.normals);
   }
-  if (options.compress) PRT_RETURN_IF_ERROR(compressPasses(*options.compress, asset, &report->compressed));
+  if (options.compress) {
+    PRT_RETURN_IF_ERROR(
+        compressPasses(*options.compress, options.compressMatrices.value_or(*options.compress), asset, &report->compressed));
+  }
   return Status::ok();
 }
 

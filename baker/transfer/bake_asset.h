@@ -74,6 +74,9 @@ struct AssetBakeOptions {
   GlossyMaterialOptions glossyMaterials;
   std::optional<std::string> name;                 // default: the scene's name
   std::optional<TransferCodecSettings> compress;   // default: float32, uncompressed
+  // The glossy matrix passes' setting, when it differs from `compress` (which must then be
+  // set): their size and the client's relight cost follow their own trade-off.
+  std::optional<TransferCodecSettings> compressMatrices;
   std::optional<TexelBakeSettings> texels;         // default: vertex passes only
 };
 

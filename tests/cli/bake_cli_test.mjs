@@ -142,6 +142,19 @@ const cases = {
       j.vertices.forEach((v, i) => v.radiance.forEach((x, c) => { num += (x - glossyA[i][c]) ** 2; den += glossyA[i][c] ** 2; }));
       check(Math.sqrt(num / den) < 0.05, `cpca16@0.01 glossy radiance relative RMS error ${Math.sqrt(num / den)}`);
     }
+    // --compress-matrices: the matrix passes take their own setting, the vector passes keep
+    // --compress's. q8 stores a byte per value and f16 two, so the vector passes' bytes are
+    // the same in both bakes and the matrix passes' about double.
+    const passBytes = (file) => (json(run(['info', file, '--json']))?.passes ?? []).map((p) => ({ form: p.form, kind: p.kind, bytes: p.bytes }));
+    const q8 = passBytes(bakeDefault('glossy-q8.prt', ['--glossy', '--compress', 'q8']).out);
+    const mixed = bakeDefault('glossy-q8-f16.prt', ['--glossy', '--compress', 'q8', '--compress-matrices', 'f16']);
+    const split = passBytes(mixed.out);
+    check(q8.length === 5 && split.length === 5, `passes: ${JSON.stringify(q8)} ${JSON.stringify(split)}`);
+    for (let i = 0; i < Math.min(q8.length, split.length); i++) {
+      const ratio = split[i].bytes / q8[i].bytes;
+      if (q8[i].form === 'matrix') check(ratio > 1.8 && ratio < 2.1, `${q8[i].kind} matrix pass: f16 / q8 bytes ${ratio}`);
+      else check(ratio === 1, `${q8[i].kind} vector pass changed with --compress-matrices: ${q8[i].bytes} -> ${split[i].bytes}`);
+    }
   },
 
   glossy_usage_errors() {
@@ -152,6 +165,9 @@ const cases = {
     expectExit([...base, '--glossy', '--specular-exponent', '-1'], 2, /--specular-exponent/);
     expectExit([...base, '--glossy', '--glossy-bounces', '2', '--passes', 'shadowed'], 2, /keep interreflected in --passes/);
     expectExit([...base, '--glossy', '--glossy-bounces', '5', '--bounces', '2'], 2, /exceeds --bounces 2/);
+    expectExit([...base, '--glossy', '--compress-matrices', 'f16'], 2, /--compress-matrices needs --compress/);
+    expectExit([...base, '--compress', 'q8', '--compress-matrices', 'f16'], 2, /--compress-matrices needs --glossy/);
+    expectExit([...base, '--glossy', '--compress', 'q8', '--compress-matrices', 'cpca16n40'], 2, /basis limit n<N> takes N from 0 to 32/);
     expectExit(['shade', out, '--light', 'constant', '--pass', 'glossy'], 2, /needs --view X,Y,Z/);
     expectExit(['shade', out, '--light', 'constant', '--view', '1,2,3'], 2, /--view needs a glossy --pass/);
     expectExit(['shade', out, '--light', 'constant', '--pass', 'glossy', '--view', '1,2'], 2, /--view expects X,Y,Z/);
