@@ -207,7 +207,10 @@ for (const kind of ['shadowed', 'interreflected']) {
   }
 }
 
-// ---- the TPFL term evaluates the lobe with glossy.vert's own functions ----
+// ---- the TPFL term takes Schlick's term with glossy.vert's own function ----
+// (glossy.vert writes the SH and lobe recurrences out per band count, texel_prt.frag keeps
+// their loop form; both are checked numerically against the same CPU code: above, and in
+// glossy_core_node_test and the browser tests.)
 {
   const shaderText = (name) => fs.readFileSync(path.join(here, '../../web/shaders', name), 'utf8');
   // A function's text from its signature to the closing brace at the start of a line.
@@ -215,8 +218,7 @@ for (const kind of ['shadowed', 'interreflected']) {
     const i = text.indexOf(signature);
     return i < 0 ? null : text.slice(i, text.indexOf('\n}\n', i) + 3);
   };
-  for (const signature of ['float shA(int i)', 'float shB(int i)', 'void shBasis(int order, vec3 d)', 'void phongBandScales(int bands, float s, out float g[8])',
-    'vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on)']) {
+  for (const signature of ['vec3 schlick(vec3 f0, float f90, float cosNormalView, bool on)']) {
     const a = fn(shaderText('glossy.vert'), signature), b = fn(shaderText('texel_prt.frag'), signature);
     check(a !== null && a === b, `${signature} differs between glossy.vert and texel_prt.frag`);
   }

@@ -19,8 +19,10 @@
 // shading normal n: the asset's texel normal (uNormals, bilinear, made unit) where normal maps
 // turned it (uShadingNormals), else the interpolated vertex normal: prt::tpflGlossyExitRadiance,
 // emulated by tpflGlossyCpu. The diffuse transfer needs no normal here: the baker folded the
-// mapped normal's cosine into it. shA .. schlick are glossy.vert's text (texel_core_node_test
-// checks it).
+// mapped normal's cosine into it. shBasis and phongBandScales are the loop form of the
+// recurrences glossy.vert writes out per band count (both emulated by glossy_texture.cpp's
+// glossyShBasis and prt/glossy_lobe.h, and tested against them); schlick is glossy.vert's text
+// (texel_core_node_test checks it).
 precision highp sampler2D;
 precision highp float;
 precision highp int;
