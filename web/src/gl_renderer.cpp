@@ -80,11 +80,8 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->matrices = glGetUniformLocation(p, "uMatrices");
   out->rowTexels = glGetUniformLocation(p, "uRowTexels");
   out->matrixTexels = glGetUniformLocation(p, "uMatrixTexels");
-  out->rows = glGetUniformLocation(p, "uRows");
   out->channel = glGetUniformLocation(p, "uChannel");
   out->vertices = glGetUniformLocation(p, "uVertices");
-  out->vectors = glGetUniformLocation(p, "uVectors");
-  out->bands = glGetUniformLocation(p, "uBands");
   out->fresnel = glGetUniformLocation(p, "uFresnel");
   out->eye = glGetUniformLocation(p, "uEye");
   out->shY00 = glGetUniformLocation(p, "uShY00");
@@ -291,9 +288,11 @@ Status GlRenderer::glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms
   const std::string transfer = row + "#define ACTIVE_TEXELS " + std::to_string(texelsForOrder(bands)) + "\n#define VECTORS " +
                                std::to_string(g.vectors) + "\n";
   const std::string view = "#define BANDS " + std::to_string(bands) + "\n";
-  PRT_RETURN_IF_ERROR(specialised("table", shaders::k_glossy_table_vert, table, &kNames[0], 0, &out->table));
+  static const char* const kTable = "vTable";
+  static const char* const kGlossy = "vGlossy";
+  PRT_RETURN_IF_ERROR(specialised("table", shaders::k_glossy_table_vert, table, &kTable, 1, &out->table));
   PRT_RETURN_IF_ERROR(specialised("transfer", shaders::k_glossy_transfer_vert, transfer, kNames, g.rowTexels, &out->transfer));
-  return specialised("view", shaders::k_glossy_vert, view, nullptr, 0, &out->view);
+  return specialised("view", shaders::k_glossy_vert, view, &kGlossy, 1, &out->view);
 }
 
 Status GlRenderer::specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
@@ -303,12 +302,8 @@ Status GlRenderer::specialised(const char* name, const char* vs, const std::stri
     *out = &it->second;
     return Status::ok();
   }
-  static const char* const kTable = "vTable";
-  static const char* const kGlossy = "vGlossy";
-  // The table and view programs capture one varying each; the transfer program `count`.
-  const char* const* names = count > 0 ? feedback : (std::string(name) == "table" ? &kTable : &kGlossy);
   Program p;
-  PRT_RETURN_IF_ERROR(link(withDefines(vs, defines).c_str(), shaders::k_discard_frag, &p, names, count > 0 ? count : 1));
+  PRT_RETURN_IF_ERROR(link(withDefines(vs, defines).c_str(), shaders::k_discard_frag, &p, feedback, count));
   *out = &specialised_.emplace(key, p).first->second;
   return Status::ok();
 }

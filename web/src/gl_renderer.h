@@ -165,7 +165,7 @@ class GlRenderer {
     GLint inverseViewProjection = -1;
     GLint table = -1, weights = -1, entries = -1, weightTexels = -1;
     // glossy_table.vert, glossy.vert
-    GLint matrices = -1, rowTexels = -1, matrixTexels = -1, rows = -1, vectors = -1, bands = -1;
+    GLint matrices = -1, rowTexels = -1, matrixTexels = -1;
     GLint channel = -1, vertices = -1;
     GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
     // background.frag
@@ -211,7 +211,7 @@ class GlRenderer {
   // at `bands` (1 .. g.bands).
   Status glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms* out);
   // `vs` with `defines` after its version line, linked once per (name, defines) into
-  // specialised_; `count` varyings of `feedback` captured (0: the shader's one, vTable or vGlossy).
+  // specialised_, capturing `count` varyings of `feedback` (interleaved when more than one).
   Status specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
                      const Program** out);
   // Makes the table and the transferred radiance of `g` for the bound lighting, at the band
