@@ -62,7 +62,8 @@ const settings = [
   { name: 'diffuse PRT, lights moving', set: { mode, order, glossy: { [mode]: 'diffuse' } }, relight: true },
   { name: 'diffuse + glossy, lights moving', set: { mode, order, glossy: { [mode]: 'both' } }, relight: true },
   { name: 'glossy: cluster table alone', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'table' },
-  { name: 'glossy: table + transferred radiance + view step', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'relight' },
+  { name: 'glossy: table + fused step (lights moving)', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'relight' },
+  { name: 'glossy: table + transferred radiance + view step', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'transfer' },
   { name: 'glossy: view step alone', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'view' },
 ];
 const best = Object.fromEntries(settings.map((s) => [s.name, Infinity]));

@@ -69,7 +69,22 @@ const readBack = (page) => page.evaluate(() => ({
   gpu: Array.from(window.prtApp.vertexGlossy()),
   cpu: Array.from(window.prtApp.glossyReference()),
   diffuse: Array.from(window.prtApp.vertexRadiance()),
+  step: window.prtApp.glossyStep,
 }));
+
+// The glossy radiance of both GPU steps for the settled view: a settled frame (lighting and
+// camera unchanged) takes the view step on the cached transferred radiance; one more frame
+// with the lighting marked changed (same values) takes the fused step from the cluster table.
+async function bothSteps(page) {
+  const view = await page.evaluate(() => ({ gpu: Array.from(window.prtApp.vertexGlossy()), step: window.prtApp.glossyStep }));
+  const fused = await page.evaluate(() => {
+    window.prtApp.timeFrames(1, true);
+    return { gpu: Array.from(window.prtApp.vertexGlossy()), step: window.prtApp.glossyStep };
+  });
+  check(view.step === 'view', `a settled frame's glossy step was '${view.step}', expected 'view'`);
+  check(fused.step === 'fused', `a relit frame's glossy step was '${fused.step}', expected 'fused'`);
+  return [view, fused];
+}
 
 const cases = {
   // The GPU's per-vertex glossy radiance equals the CPU reference, for a 1-channel symmetric
@@ -92,21 +107,23 @@ const cases = {
         for (const [order, yaw, orbit] of [[spec.bands, 0, 0], [2, 1.1, 0.7]]) {
           await page.evaluate((o) => window.prtApp.orbit(o, 0.2 * o), orbit);
           await capture(page, { mode: spec.mode, order, environment: 'forest', envRotation: [yaw, 0.3], glossy: { [spec.mode]: 'glossy' } });
-          const { gpu, cpu } = await readBack(page);
-          const { error, peak } = compare(gpu, cpu);
-          const name = `${spec.mode} ${spec.channels}-channel order ${order} yaw ${yaw} orbit ${orbit}`;
-          console.log(`  ${name}: GPU vs CPU glossy radiance max difference ${error.toExponential(2)} of the largest (${peak.toFixed(4)})`);
-          check(peak > 1e-3, `${name}: the reference glossy radiance is ${peak}, nothing to compare`);
-          check(error <= TOLERANCE, `${name}: GPU and CPU glossy radiance differ by ${error.toExponential(3)} (relative), allowed ${TOLERANCE}`);
-          // The floor's vertices (zero matrices) have no glossy term at all.
-          let zeroed = 0, zeros = 0;
-          for (let v = 0; v < cpu.length / 3; v++) {
-            if (cpu[3 * v] === 0 && cpu[3 * v + 1] === 0 && cpu[3 * v + 2] === 0) {
-              zeros++;
-              if (gpu[3 * v] === 0 && gpu[3 * v + 1] === 0 && gpu[3 * v + 2] === 0) zeroed++;
+          const { cpu } = await readBack(page);
+          for (const { gpu, step } of await bothSteps(page)) {
+            const { error, peak } = compare(gpu, cpu);
+            const name = `${spec.mode} ${spec.channels}-channel order ${order} yaw ${yaw} orbit ${orbit}, ${step} step`;
+            console.log(`  ${name}: GPU vs CPU glossy radiance max difference ${error.toExponential(2)} of the largest (${peak.toFixed(4)})`);
+            check(peak > 1e-3, `${name}: the reference glossy radiance is ${peak}, nothing to compare`);
+            check(error <= TOLERANCE, `${name}: GPU and CPU glossy radiance differ by ${error.toExponential(3)} (relative), allowed ${TOLERANCE}`);
+            // The floor's vertices (zero matrices) have no glossy term at all.
+            let zeroed = 0, zeros = 0;
+            for (let v = 0; v < cpu.length / 3; v++) {
+              if (cpu[3 * v] === 0 && cpu[3 * v + 1] === 0 && cpu[3 * v + 2] === 0) {
+                zeros++;
+                if (gpu[3 * v] === 0 && gpu[3 * v + 1] === 0 && gpu[3 * v + 2] === 0) zeroed++;
+              }
             }
+            check(zeros > 100 && zeroed === zeros, `${name}: ${zeroed} of ${zeros} non-glossy vertices have zero GPU glossy radiance`);
           }
-          check(zeros > 100 && zeroed === zeros, `${name}: ${zeroed} of ${zeros} non-glossy vertices have zero GPU glossy radiance`);
         }
       }
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
@@ -134,18 +151,19 @@ const cases = {
         for (const { orbit, envRotation } of steps) {
           await page.evaluate((o) => window.prtApp.orbit(o, 0), orbit);
           await capture(page, { mode, order: 4, environment: 'forest', envRotation, glossy: { [mode]: 'both' } });
-          const gpu = await page.evaluate(() => Array.from(window.prtApp.vertexGlossy()));
           const lighting = (await page.evaluate(() => window.prtApp.lightSH())).flat();
           const eye = await page.evaluate(() => window.prtApp.eye);
           const r = core.glossyAssetCheck(bytes, mode, lighting, eye, true);
           if (!check(typeof r === 'object', `${mode}: ${r}`)) continue;
-          const { error, peak } = compare(gpu, r.reference);
           const pageReference = await page.evaluate(() => Array.from(window.prtApp.glossyReference()));
           const { error: pageError } = compare(pageReference, r.reference);
-          console.log(`  ${mode} orbit ${orbit} environment ${envRotation}: GPU vs wasm reference ${error.toExponential(2)} of the peak (${peak.toFixed(4)}); page reference ${pageError.toExponential(2)}`);
-          check(peak > 1e-3, `${mode}: reference glossy radiance peaks at ${peak}`);
-          check(error <= TOLERANCE, `${mode} orbit ${orbit} environment ${envRotation}: GPU and wasm reference differ by ${error.toExponential(3)} of the peak, allowed ${TOLERANCE}`);
           check(pageError <= 1e-5, `${mode} orbit ${orbit} environment ${envRotation}: the page's reference differs from the wasm core's by ${pageError.toExponential(3)}`);
+          for (const { gpu, step } of await bothSteps(page)) {
+            const { error, peak } = compare(gpu, r.reference);
+            console.log(`  ${mode} orbit ${orbit} environment ${envRotation}, ${step} step: GPU vs wasm reference ${error.toExponential(2)} of the peak (${peak.toFixed(4)}); page reference ${pageError.toExponential(2)}`);
+            check(peak > 1e-3, `${mode}: reference glossy radiance peaks at ${peak}`);
+            check(error <= TOLERANCE, `${mode} orbit ${orbit} environment ${envRotation}, ${step} step: GPU and wasm reference differ by ${error.toExponential(3)} of the peak, allowed ${TOLERANCE}`);
+          }
         }
       }
       check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);

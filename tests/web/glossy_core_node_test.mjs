@@ -59,6 +59,11 @@ for (const spec of cases) {
       const eEm = worstError(r.emulated, r.referenceDouble), eRef = worstError(r.reference, r.referenceDouble);
       check(eEm < 1e-4, `${name}: emulated shaders differ from the double reference by ${eEm} (float reference: ${eRef})`);
       check(eRef < 1e-4, `${name}: float reference differs from double by ${eRef}`);
+      // The fused step (straight from the table, a group of vertices at a time) gives the same.
+      for (const size of ['1', '3', '8']) {
+        const f = r.fused[size];
+        check(f.length === 600 && worstError(f, r.referenceDouble) < 1e-4, `${name}: fused step, groups of ${size}, differs from the double reference by ${worstError(f, r.referenceDouble)}`);
+      }
       // The check has teeth: the glossy term is not zero everywhere, and varies between vertices.
       let energy = 0, spread = 0;
       for (let i = 0; i < r.referenceDouble.length; i++) {
@@ -85,6 +90,54 @@ for (const spec of cases) {
   let differs = 0;
   for (let i = 0; i < a.emulated.length; i++) differs = Math.max(differs, Math.abs(a.emulated[i] - c.emulated[i]));
   check(differs > 1e-4, 'Fresnel made no difference');
+}
+
+// Grouping for the fused step: every vertex in exactly one slot of a group of its own cluster,
+// clusters in order, a cluster's vertices in order, groups full but a cluster's last.
+{
+  const clusterOf = [];
+  let seed = 5;
+  for (let v = 0; v < 1000; v++) {
+    seed = (seed * 1103515245 + 12345) % 2147483648;
+    clusterOf.push(v % 97 === 0 ? 6 : seed % 6);  // cluster 6: 11 vertices; 7: none
+  }
+  for (const size of [1, 3, 8]) {
+    const g = core.glossyGroups(clusterOf, 8, size);
+    if (!check(typeof g === 'object', `groups of ${size}: ${g}`)) continue;
+    const seen = new Array(clusterOf.length).fill(0);
+    let ordered = true, sameCluster = true, packed = true, slotsAgree = true;
+    const perCluster = new Array(8).fill(0);
+    for (let k = 0; k < g.cluster.length; k++) {
+      if (k > 0 && g.cluster[k] < g.cluster[k - 1]) ordered = false;
+      let count = 0, last = -1;
+      for (let i = 0; i < 8; i++) {
+        const v = g.members[8 * k + i];
+        if (v < 0) continue;
+        if (i >= size || i !== count) packed = false;
+        count++;
+        seen[v]++;
+        if (clusterOf[v] !== g.cluster[k]) sameCluster = false;
+        if (v <= last) ordered = false;
+        last = v;
+        if (g.slot[v] !== k * size + i) slotsAgree = false;
+      }
+      perCluster[g.cluster[k]]++;
+      const next = g.cluster[k + 1];
+      if (count < size && next === g.cluster[k]) packed = false;  // only a cluster's last group is partly filled
+    }
+    check(seen.every((n) => n === 1), `groups of ${size}: a vertex is missing or repeated`);
+    check(ordered && sameCluster && packed && slotsAgree, `groups of ${size}: order ${ordered}, one cluster a group ${sameCluster}, packed ${packed}, slots ${slotsAgree}`);
+    const counts = new Array(8).fill(0);
+    for (const k of clusterOf) counts[k]++;
+    check(perCluster.every((n, k) => n === Math.ceil(counts[k] / size)), `groups of ${size}: ${perCluster} groups per cluster for ${counts} vertices`);
+  }
+  check(core.glossyGroups(clusterOf, 8, 1).groupSize === 8, 'mean cluster size 125: groups of 8');
+  check(core.glossyGroups([0, 1, 2, 3], 4, 1).groupSize === 1, 'a cluster a vertex: groups of 1');
+  check(core.glossyGroups([0, 0, 0, 1, 1, 1], 2, 1).groupSize === 2, 'three vertices a cluster: groups of 2');
+  for (const [ids, clusters, size, what] of [[[0, 1], 2, 0, 'size'], [[0, 1], 2, 9, 'size'], [[0, 5], 2, 4, 'cluster id']]) {
+    const e = core.glossyGroups(ids, clusters, size);
+    check(typeof e === 'string' && e.includes(what), `groups ${JSON.stringify([ids, clusters, size])}: ${e}`);
+  }
 }
 
 // Bad input is a named error, not a crash.

@@ -26,14 +26,15 @@ case $case_name in
     node - result.json <<'JS'
 const r = JSON.parse(require('fs').readFileSync(process.argv[2], 'utf8'));
 const want = ['lambert', 'diffuse PRT', 'diffuse PRT, lights moving', 'diffuse + glossy, camera moving',
-  'diffuse + glossy, lights moving', 'glossy: cluster table alone', 'glossy: table + transferred radiance + view step',
+  'diffuse + glossy, lights moving', 'glossy: cluster table alone', 'glossy: table + fused step (lights moving)',
+  'glossy: table + transferred radiance + view step',
   'glossy: view step alone'];
 const names = r.rows.map((x) => x.setting);
 if (JSON.stringify(names) !== JSON.stringify(want)) throw new Error(`rows ${JSON.stringify(names)}`);
 for (const x of r.rows) if (!(x.ms > 0 && Number.isFinite(x.ms))) throw new Error(`${x.setting}: ${x.ms} ms`);
 if (r.vertices !== 20434 || r.order !== 3 || r.glossy.bands !== 3 || r.glossy.channels !== 3) throw new Error(JSON.stringify(r));
 const c = r.glossy_check;
-if (!(c.peak > 0 && c.max_abs_error <= 1e-4 * c.peak)) throw new Error(`glossy check ${JSON.stringify(c)}`);
+if (!(c.peak > 0 && c.max_abs_error <= 1e-4 * c.peak) || JSON.stringify(c.steps) !== '["fused","view"]') throw new Error(`glossy check ${JSON.stringify(c)}`);
 if (!/OpenGL ES 3/.test(r.version)) throw new Error(`context ${r.version}`);
 console.log(`${r.renderer}: glossy error ${c.max_abs_error} of peak ${c.peak}`);
 JS

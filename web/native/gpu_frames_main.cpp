@@ -130,8 +130,8 @@ struct Setting {
 double timeSetting(ClientApp& app, const Options& o, const Setting& s, int n) {
   const auto t0 = std::chrono::steady_clock::now();
   if (s.glossyWork >= 0) {
-    constexpr int kRelight = 2, kViewOnly = 3;
-    if (s.glossyWork == kViewOnly && !app.shadeGlossyVertices(kRelight)) return std::nan("");
+    constexpr int kViewOnly = 3, kTransfer = 4;
+    if (s.glossyWork == kViewOnly && !app.shadeGlossyVertices(kTransfer)) return std::nan("");
     for (int i = 0; i < n; ++i) {
       if (!app.shadeGlossyVertices(s.glossyWork)) return std::nan("");
     }
@@ -215,8 +215,9 @@ int main(int argc, char** argv) {
     settings.push_back({"diffuse + glossy, camera moving", m, GlossyMix::kBoth});
     settings.push_back({"diffuse + glossy, lights moving", m, GlossyMix::kBoth, prt::TransferDomain::kVertex, true});
     settings.push_back({"glossy: cluster table alone", m, GlossyMix::kBoth, prt::TransferDomain::kVertex, false, 1});
+    settings.push_back({"glossy: table + fused step (lights moving)", m, GlossyMix::kBoth, prt::TransferDomain::kVertex, false, 2});
     settings.push_back({"glossy: table + transferred radiance + view step", m, GlossyMix::kBoth,
-                        prt::TransferDomain::kVertex, false, 2});
+                        prt::TransferDomain::kVertex, false, 4});
     settings.push_back({"glossy: view step alone", m, GlossyMix::kBoth, prt::TransferDomain::kVertex, false, 3});
   }
   const bool texel = app.hasSource(prt::TransferDomain::kTexel);
@@ -254,15 +255,24 @@ int main(int argc, char** argv) {
     app.setMode(m);
     app.setGlossyMix(m, GlossyMix::kBoth);
     app.orbit(0.3f, 0.1f);  // an eye of its own, off the timing runs' one
-    app.render(o.width, o.height);
-    const std::vector<float> gpu = app.vertexGlossy(), ref = app.glossyReference(m);
-    if (gpu.size() != ref.size() || ref.empty()) {
-      std::fprintf(stderr, "prt-gpu-frames: no glossy radiance to check (%zu GPU values, %zu reference)\n", gpu.size(), ref.size());
-      return 1;
-    }
-    for (std::size_t i = 0; i < ref.size(); ++i) {
-      checkError = std::max(checkError, static_cast<double>(std::fabs(gpu[i] - ref[i])));
-      checkPeak = std::max(checkPeak, static_cast<double>(std::fabs(ref[i])));
+    // Both glossy steps: a frame whose lighting changed (the fused step), then one where only
+    // the camera could have moved (the view step on the transferred radiance).
+    for (const char* step : {"fused", "view"}) {
+      if (std::string(step) == "fused") app.touchLighting();
+      app.render(o.width, o.height);
+      if (app.lastGlossyStep() != step) {
+        std::fprintf(stderr, "prt-gpu-frames: the glossy check's frame took the '%s' step, not '%s'\n", app.lastGlossyStep().c_str(), step);
+        return 1;
+      }
+      const std::vector<float> gpu = app.vertexGlossy(), ref = app.glossyReference(m);
+      if (gpu.size() != ref.size() || ref.empty()) {
+        std::fprintf(stderr, "prt-gpu-frames: no glossy radiance to check (%zu GPU values, %zu reference)\n", gpu.size(), ref.size());
+        return 1;
+      }
+      for (std::size_t i = 0; i < ref.size(); ++i) {
+        checkError = std::max(checkError, static_cast<double>(std::fabs(gpu[i] - ref[i])));
+        checkPeak = std::max(checkPeak, static_cast<double>(std::fabs(ref[i])));
+      }
     }
     if (!(checkError <= o.tolerance * checkPeak)) {
       std::fprintf(stderr, "prt-gpu-frames: the GPU's glossy radiance differs from the CPU reference by %g (peak %g, tolerance %g of it)\n",
@@ -282,7 +292,7 @@ int main(int argc, char** argv) {
     const auto shape = app.glossyShape(m);
     json << "  \"glossy\": {\"bands\": " << app.glossyBands(m) << ", \"clusters\": " << shape[0]
          << ", \"vectors\": " << shape[1] << ", \"channels\": " << shape[2] << "},\n";
-    json << "  \"glossy_check\": {\"max_abs_error\": " << checkError << ", \"peak\": " << checkPeak
+    json << "  \"glossy_check\": {\"steps\": [\"fused\", \"view\"], \"max_abs_error\": " << checkError << ", \"peak\": " << checkPeak
          << ", \"tolerance_of_peak\": " << o.tolerance << "},\n";
   }
   json << "  \"method\": " << jsonString(std::to_string(o.frames) +

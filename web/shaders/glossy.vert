@@ -13,6 +13,7 @@
 precision highp float;
 precision highp int;
 precision highp sampler2D;
+precision highp isampler2D;
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec3 aNormal;
@@ -32,7 +33,19 @@ uniform float uShK1;
 uniform vec4 uShA[16];
 uniform vec4 uShB[16];
 
+#ifdef GROUP
+// The fused form (GROUP vertices of one cluster a point; its main() is generated and appended
+// by glossyFusedMain, web/src/glossy_fused.cpp): the table straight times the lobe.
+layout(location = 4) in uint aCluster;   // the group's cluster
+layout(location = 7) in ivec4 aMembers0;  // vertex ids of members 0 .. 3 (-1: none)
+layout(location = 8) in ivec4 aMembers1;  // members 4 .. 7
+uniform sampler2D uTable;                 // RGBA32F, glossy_table.vert's output
+uniform isampler2D uWeights;              // RGBA8I / RGBA16I levels: texel v * uWeightTexels + j / 4
+uniform sampler2D uVertexData;            // RGBA32F, texels 3v .. 3v+2: (position, f90), (normal, s), (f0, 0)
+uniform int uWeightTexels;
+#else
 out vec3 vGlossy;
+#endif
 
 #define ROWS (BANDS * BANDS)
 #define TEXELS ((ROWS + 3) / 4)
@@ -68,29 +81,22 @@ ivec2 texelCoord(int i) { return ivec2(i & uTextureMask, i >> uTextureShift); }
 
 vec4 transferTexel(int i) { return texelFetch(uTransfer, texelCoord(i), 0); }
 
-// sum_i gy_i T_i over the transfer row at `row` (channel c of vertex v: row c * V + v).
-float channelSum(int row, vec4 gy[16]) {
-  float sum = 0.0;
-  int base = row * uRowTexels;
-  SUM(0) SUM(1) SUM(2) SUM(3) SUM(4) SUM(5) SUM(6) SUM(7) SUM(8) SUM(9) SUM(10) SUM(11) SUM(12) SUM(13) SUM(14) SUM(15)
-  return sum;
-}
 
-void main() {
-  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-  vGlossy = vec3(0.0);
-  // A matte vertex (f0 = f90 = 0: k_s = 0 at every angle) has no glossy term: exactly the 0
-  // that k_s times the sum below would give, without the basis and the fetches.
-  if (aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0)) return;
-  vec3 d = uEye - aPosition;
+// The lobe toward the eye at a vertex: gy_i = g_l(i)(s) y_i(R) for i < ROWS (zero beyond and
+// when false is returned) and Schlick's k_s. False when the vertex has no glossy term: matte
+// (f0 = f90 = 0: k_s = 0 at every angle, exactly the 0 the sum would give) or at the eye.
+bool lobeTowardEye(vec3 position, vec3 n, vec4 specular, float f90, out vec4 gy[16], out vec3 ks) {
+  gy[0] = vec4(0.0); gy[1] = vec4(0.0); gy[2] = vec4(0.0); gy[3] = vec4(0.0); gy[4] = vec4(0.0); gy[5] = vec4(0.0); gy[6] = vec4(0.0); gy[7] = vec4(0.0);
+  gy[8] = vec4(0.0); gy[9] = vec4(0.0); gy[10] = vec4(0.0); gy[11] = vec4(0.0); gy[12] = vec4(0.0); gy[13] = vec4(0.0); gy[14] = vec4(0.0); gy[15] = vec4(0.0);
+  ks = vec3(0.0);
+  if (f90 == 0.0 && specular.rgb == vec3(0.0)) return false;
+  vec3 d = uEye - position;
   float distance = length(d);
-  if (!(distance > 0.0)) return;
+  if (!(distance > 0.0)) return false;
   vec3 toEye = d * (1.0 / distance);
-  vec3 n = aNormal;
   vec3 r = n * (2.0 * dot(n, toEye)) - toEye;
   float rl = length(r);
   r = rl > 0.0 ? r * (1.0 / rl) : n;
-
   // y_i(R), bands 0 .. BANDS - 1 (Lisle & Huang, as prt/sh_basis.cpp).
   float y[64];
   y[0] = uShY00;
@@ -119,7 +125,7 @@ void main() {
 #endif
 
   float g[8];
-  float s = aSpecular.w;
+  float s = specular.w;
   float even = 1.0 / (s + 1.0), odd = 1.0 / (s + 2.0);
   g[0] = (s + 1.0) * even;
 #if BANDS > 1
@@ -145,10 +151,28 @@ void main() {
 #endif
 
   // The lobe's band scales folded into the basis once: gy_i = g_l(i) y_i(R), zero from ROWS on.
-  vec4 gy[16];
   GY_TEXEL(0) GY_TEXEL(1) GY_TEXEL(2) GY_TEXEL(3) GY_TEXEL(4) GY_TEXEL(5) GY_TEXEL(6) GY_TEXEL(7)
   GY_TEXEL(8) GY_TEXEL(9) GY_TEXEL(10) GY_TEXEL(11) GY_TEXEL(12) GY_TEXEL(13) GY_TEXEL(14) GY_TEXEL(15)
-  vec3 ks = schlick(aSpecular.rgb, aSpecularF90, dot(n, toEye), uFresnel == 1);
+  ks = schlick(specular.rgb, f90, dot(n, toEye), uFresnel == 1);
+  return true;
+}
+
+#ifndef GROUP
+// sum_i gy_i T_i over the transfer row at `row` (channel c of vertex v: row c * V + v).
+float channelSum(int row, vec4 gy[16]) {
+  float sum = 0.0;
+  int base = row * uRowTexels;
+  SUM(0) SUM(1) SUM(2) SUM(3) SUM(4) SUM(5) SUM(6) SUM(7) SUM(8) SUM(9) SUM(10) SUM(11) SUM(12) SUM(13) SUM(14) SUM(15)
+  return sum;
+}
+
+void main() {
+  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
+  vGlossy = vec3(0.0);
+  vec4 gy[16];
+  vec3 ks;
+  if (!lobeTowardEye(aPosition, aNormal, aSpecular, aSpecularF90, gy, ks)) return;
   vGlossy = vec3(ks.r * channelSum(gl_VertexID, gy), ks.g * channelSum(uVertices + gl_VertexID, gy),
                  ks.b * channelSum(2 * uVertices + gl_VertexID, gy));
 }
+#endif

@@ -12,7 +12,7 @@ const SOURCES = ['vertex', 'texel'];
 const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 // GlRenderer's GlossyWork (web/src/gl_renderer.h) by name, for timeGlossy.
-const GLOSSY_WORK = { table: 1, relight: 2, view: 3 };
+const GLOSSY_WORK = { table: 1, relight: 2, view: 3, transfer: 4 };
 
 const rows = (flat) => {
   const out = [];
@@ -115,6 +115,9 @@ export function installTestHook(page) {
     vertexGlossy() {
       return ready() ? Float32Array.from(page.app.vertexGlossy()) : null;
     },
+    // Which glossy step wrote vertexGlossy: 'fused' (the frame's lighting changed), 'view' (only
+    // the camera moved: the cached transferred radiance) or '' (none yet).
+    get glossyStep() { return ready() ? page.app.lastGlossyStep() : null; },
     glossyReference() {
       if (!ready() || !PASS_NAMES.includes(state.mode)) return null;
       return Float32Array.from(page.app.glossyReference(client.ShadingMode[state.mode]));
@@ -131,14 +134,16 @@ export function installTestHook(page) {
       page.refreshGui();
     },
     // Benchmark: the glossy work of the displayed pass alone, n times back to back, ended by a
-    // read-back: 'table' the per-cluster table alone; 'relight' table, transferred radiance
-    // and the per-vertex view step (a frame whose lighting changed); 'view' the view step
-    // alone on the cached transferred radiance (a frame where only the camera moved).
+    // read-back: 'table' the per-cluster table alone; 'relight' the table and the fused step
+    // (a frame whose lighting changed); 'transfer' the table, the transferred radiance and the
+    // view step (the first camera move after the lighting stopped changing, plus the table);
+    // 'view' the view step alone on the cached transferred radiance (a frame where only the
+    // camera moved).
     timeGlossy(n, work = 'relight') {
       if (!ready()) return NaN;
       const code = GLOSSY_WORK[work];
       if (code === undefined) throw new Error(`timeGlossy: work must be one of ${Object.keys(GLOSSY_WORK).join(', ')}`);
-      if (code === GLOSSY_WORK.view && !page.app.shadeGlossyVertices(GLOSSY_WORK.relight)) return NaN;
+      if (code === GLOSSY_WORK.view && !page.app.shadeGlossyVertices(GLOSSY_WORK.transfer)) return NaN;
       const t0 = performance.now();
       for (let i = 0; i < n; i++) if (!page.app.shadeGlossyVertices(code)) return NaN;
       page.app.finishGlossy(code);  // a read-back of what the last pass wrote

@@ -242,7 +242,7 @@ std::string ClientApp::uploadGlossy(TransferKind kind, CpcaMatrixTransfer cpca) 
   if (k > 2) return "glossy pass of an unknown kind";
   if (asset_.specular.size() != asset_.positions.size()) return "the asset has a glossy pass but no specular material per vertex";
   makeCurrent();
-  if (Status u = renderer_.uploadGlossyPass(kind, cpca, asset_.specular); !u.isOk()) return u.message();
+  if (Status u = renderer_.uploadGlossyPass(kind, cpca, asset_.specular, asset_.positions, asset_.normals); !u.isOk()) return u.message();
   glossyCpu_[k] = std::move(cpca);
   return "";
 }
@@ -548,7 +548,7 @@ void ClientApp::prepareLighting() {
 }
 
 bool ClientApp::shadeGlossyVertices(int work) {
-  if (!ok() || work < 0 || work > 3) return false;
+  if (!ok() || work < 0 || work > 4) return false;
   makeCurrent();
   prepareLighting();
   return renderer_.shadeGlossy(mode_, displayOrder_, camera_.eye(), lights_.lightingVersion(), fresnel_, static_cast<GlossyWork>(work));

@@ -123,6 +123,8 @@ class ClientApp {
   std::string streamGlossyPass(ShadingMode kind, int bands);
   // Schlick's Fresnel in the glossy term (on by default; off: k_s = f0, for comparisons).
   void setFresnel(bool on) { fresnel_ = on; }
+  // GlRenderer::lastGlossyStep: "fused", "view" or "".
+  std::string lastGlossyStep() const { return renderer_.lastGlossyStep(); }
   // Glossy radiance of every vertex in the last frame, flat RGB before exposure (GPU read-back).
   std::vector<float> vertexGlossy() const;
   // The CPU reference of the last frame's glossy term for pass `kind`: prt::glossyExitRadiance
@@ -217,8 +219,8 @@ class ClientApp {
   // (lighting updated first), without drawing; false when the mode has no pass.
   bool shadeVertices();
   // Benchmarks: the glossy work of the current mode alone (lighting updated first), as
-  // `work` (GlossyWork: 0 as a frame needs it, 1 the per-cluster table alone, 2 table,
-  // transferred radiance and view step, 3 the per-vertex view step alone).
+  // `work` (GlossyWork: 0 as a frame needs it, 1 the per-cluster table alone, 2 table and
+  // fused step, 3 the per-vertex view step alone, 4 table, transferred radiance and view step).
   bool shadeGlossyVertices(int work);
   // Waits for the glossy passes queued so far (a 1-value read-back of what they write).
   void finishGlossy(int work) const {

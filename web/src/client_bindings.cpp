@@ -171,6 +171,7 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("streamGlossyPass", &ClientApp::streamGlossyPass)
       .function("setFresnel", &ClientApp::setFresnel)
       .function("vertexGlossy", &vertexGlossy)
+      .function("lastGlossyStep", &ClientApp::lastGlossyStep)
       .function("glossyReference", &glossyReference)
       .function("useSyntheticGlossy", &ClientApp::useSyntheticGlossy)
       .function("shadeGlossyVertices", &ClientApp::shadeGlossyVertices)

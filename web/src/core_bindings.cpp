@@ -15,6 +15,7 @@
 #include "analytic_lights.h"
 #include "emitters.h"
 #include "glossy_synthetic.h"
+#include "glossy_fused.h"
 #include "glossy_texture.h"
 #include "prt/asset.h"
 #include "prt/cube_sh_weights.h"
@@ -199,6 +200,14 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
   const std::vector<float> table = prt::web::glossyTableCpu(packed, light.data(), activeBands);
   const std::vector<float> transfer = prt::web::glossyTransferCpu(packed, table, activeBands);
   const std::vector<float> emulated = prt::web::glossyRadianceCpu(packed, transfer, activeBands, positions, normals, eyePoint, fresnel);
+  // The fused step (glossy_fused.h) at group sizes 1, 3 and 8: the same radiance from the table.
+  val fused = val::object();
+  for (int size : {1, 3, prt::web::kMaxGlossyGroup}) {
+    prt::web::GlossyGroups groups;
+    if (prt::Status st = prt::web::groupGlossyVertices(packed.clusterOf, packed.clusters, size, &groups); !st.isOk()) return val(st.toString());
+    fused.set(std::to_string(size),
+              val::array(prt::web::glossyFusedCpu(packed, groups, table, activeBands, positions, normals, eyePoint, fresnel)));
+  }
   std::vector<float> expanded(static_cast<std::size_t>(vertices) * static_cast<std::size_t>(s.channels) * prt::matrixEntryCount(s.bands, s.packing));
   if (prt::Status st = prt::cpcaMatrixReconstruct(cpca, expanded); !st.isOk()) return val(st.toString());
   std::vector<float> local;
@@ -229,11 +238,32 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
   }
   val out = val::object();
   out.set("emulated", val::array(emulated));
+  out.set("fused", fused);
   out.set("reference", val::array(reference));
   out.set("referenceDouble", val::array(std::vector<float>(referenceDouble.begin(), referenceDouble.end())));
   out.set("basisExact", basisExact);
   out.set("expansionsAgree", local == expanded);  // glossy_synthetic's expansion is the codec's, bit for bit
   out.set("tableTexels", packed.tableTexels);
+  return out;
+}
+
+// groupGlossyVertices (glossy_fused.h) on cluster ids `clusterOf`: {size, cluster, members,
+// slot} as arrays, or a string naming the error. Safe on any ids.
+val glossyGroups(const val& clusterOf, int clusters, int size) {
+  const std::vector<double> raw = emscripten::convertJSArrayToNumberVector<double>(clusterOf);
+  std::vector<std::uint16_t> ids(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!(raw[i] >= 0 && raw[i] <= 65535)) return val(std::string("cluster ids must be 0 .. 65535"));
+    ids[i] = static_cast<std::uint16_t>(raw[i]);
+  }
+  prt::web::GlossyGroups g;
+  if (prt::Status s = prt::web::groupGlossyVertices(ids, clusters, size, &g); !s.isOk()) return val(s.toString());
+  val out = val::object();
+  out.set("size", g.size);
+  out.set("cluster", val::array(g.cluster));
+  out.set("members", val::array(g.members));
+  out.set("slot", val::array(g.slot));
+  out.set("groupSize", prt::web::glossyGroupSize(ids.size(), static_cast<std::size_t>(std::max(clusters, 1))));
   return out;
 }
 
@@ -449,6 +479,7 @@ EMSCRIPTEN_BINDINGS(prt_core) {
   emscripten::function("timeTransferDecode", &timeTransferDecode);
   emscripten::function("glossySyntheticCheck", &glossySyntheticCheck);
   emscripten::function("glossyAssetCheck", &glossyAssetCheck);
+  emscripten::function("glossyGroups", &glossyGroups);
   emscripten::constant("kMaxGlossyOrder", prt::web::kMaxGlossyOrder);
   emscripten::function("evalBasis", &evalBasis);
   emscripten::function("rotateCoefficients", &rotateCoefficients);

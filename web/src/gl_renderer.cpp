@@ -7,6 +7,7 @@
 #include "client_limits.h"
 #include "gl_program.h"
 #include "gl_readback.h"
+#include "glossy_fused.h"
 #include "lighting_block.h"
 #include "transfer_texture.h"
 #include "web_shaders.h"
@@ -88,6 +89,8 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->shK1 = glGetUniformLocation(p, "uShK1");
   out->shA = glGetUniformLocation(p, "uShA");
   out->shB = glGetUniformLocation(p, "uShB");
+  out->vertexData = glGetUniformLocation(p, "uVertexData");
+  out->fused = glGetUniformLocation(p, "uFused");
   return Status::ok();
 }
 
@@ -127,11 +130,12 @@ void GlRenderer::releasePass(PassTexture* p) {
 }
 
 void GlRenderer::releaseGlossy(GlossyPass* g) {
-  for (GLuint* t : {&g->matrices, &g->weights, &g->table, &g->transfer})
+  for (GLuint* t : {&g->matrices, &g->weights, &g->table, &g->transfer, &g->vertexData, &g->fused})
     if (*t) glDeleteTextures(1, t);
-  for (GLuint* b : {&g->tableBuffer, &g->transferBuffer, &g->clusterIds, &g->specular})
+  for (GLuint* b : {&g->tableBuffer, &g->transferBuffer, &g->clusterIds, &g->specular, &g->groupData, &g->fusedBuffer, &g->slots})
     if (*b) glDeleteBuffers(1, b);
-  if (g->vao) glDeleteVertexArrays(1, &g->vao);
+  for (GLuint* a : {&g->vao, &g->fusedVao})
+    if (*a) glDeleteVertexArrays(1, a);
   *g = {};
 }
 
@@ -197,15 +201,24 @@ Status GlRenderer::uploadCpcaPass(TransferKind kind, const CpcaTransfer& cpca) {
   return Status::ok();
 }
 
-Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular) {
+Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular,
+                                    std::span<const Vec3> positions, std::span<const Vec3> normals) {
   const auto k = static_cast<std::size_t>(kind);
-  if (k > 2 || indexCount_ == 0 || cpca.vertexCount != static_cast<std::uint32_t>(vertexCount_)) {
+  if (k > 2 || indexCount_ == 0 || cpca.vertexCount != static_cast<std::uint32_t>(vertexCount_) ||
+      positions.size() != cpca.vertexCount || normals.size() != cpca.vertexCount) {
     return Status::error(StatusCode::kInvalidArgument, "uploadGlossyPass: no geometry, or pass kind or vertex count out of range");
   }
   GLint maxSize = 2048;  // the WebGL2 minimum
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   GlossyTextures packed;
   if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
+  GlossyGroups groups;
+  if (Status s = groupGlossyVertices(packed.clusterOf, packed.clusters, glossyGroupSize(packed.clusterOf.size(), static_cast<std::size_t>(packed.clusters)), &groups); !s.isOk()) return s;
+  const std::vector<float> vertexData = packGlossyVertexData(positions, normals, packed.specular);
+  const std::size_t slotCount = groups.groups() * static_cast<std::size_t>(groups.size);
+  int vertexDataHeight = 0, fusedHeight = 0;
+  if (Status s = textureRowsFor(3 * positions.size(), maxSize, "glossy vertex data", &vertexDataHeight); !s.isOk()) return s;
+  if (Status s = textureRowsFor(slotCount, maxSize, "glossy fused radiance", &fusedHeight); !s.isOk()) return s;
   GlossyPass& g = glossy_[k];
   releaseGlossy(&g);
   g.bands = packed.bands;
@@ -218,6 +231,9 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   g.tableTexels = packed.tableTexels;
   g.tableHeight = packed.tableHeight;
   g.transferHeight = packed.transferHeight;
+  g.groups = static_cast<int>(groups.groups());
+  g.groupSize = groups.size;
+  g.fusedHeight = fusedHeight;
   // The programs of the packed order (the one displayed unless the order slider is lowered;
   // a lowered order links its own on first use).
   GlossyPrograms programs;
@@ -257,7 +273,38 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   glVertexAttribIPointer(4, 1, GL_UNSIGNED_SHORT, sizeof(std::uint16_t), nullptr);
   g.specular = makeBuffer(GL_ARRAY_BUFFER, packed.specular.data(), packed.specular.size() * sizeof(float));
   specularAttributePointers(static_cast<GLsizei>(kGlossySpecularFloats));
+  g.slots = makeBuffer(GL_ARRAY_BUFFER, groups.slot.data(), groups.slot.size() * sizeof(std::uint32_t));
+  glEnableVertexAttribArray(9);
+  glVertexAttribIPointer(9, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  // The fused step's points: per group its cluster and kMaxGlossyGroup member ids.
+  std::vector<std::int32_t> groupData(groups.groups() * (1 + kMaxGlossyGroup));
+  for (std::size_t i = 0; i < groups.groups(); ++i) {
+    groupData[i * (1 + kMaxGlossyGroup)] = static_cast<std::int32_t>(groups.cluster[i]);
+    std::copy_n(&groups.members[i * kMaxGlossyGroup], kMaxGlossyGroup, &groupData[i * (1 + kMaxGlossyGroup) + 1]);
+  }
+  glGenVertexArrays(1, &g.fusedVao);
+  glBindVertexArray(g.fusedVao);
+  g.groupData = makeBuffer(GL_ARRAY_BUFFER, groupData.data(), groupData.size() * sizeof(std::int32_t));
+  constexpr GLsizei kGroupStride = (1 + kMaxGlossyGroup) * sizeof(std::int32_t);
+  glEnableVertexAttribArray(4);
+  glVertexAttribIPointer(4, 1, GL_UNSIGNED_INT, kGroupStride, nullptr);
+  glEnableVertexAttribArray(7);
+  glVertexAttribIPointer(7, 4, GL_INT, kGroupStride, reinterpret_cast<const void*>(sizeof(std::int32_t)));
+  glEnableVertexAttribArray(8);
+  glVertexAttribIPointer(8, 4, GL_INT, kGroupStride, reinterpret_cast<const void*>(5 * sizeof(std::int32_t)));
   glBindVertexArray(0);
+  std::vector<float> vertexTexels(static_cast<std::size_t>(kTransferTextureWidth) * vertexDataHeight * 4, 0.0f);
+  std::copy(vertexData.begin(), vertexData.end(), vertexTexels.begin());
+  glGenTextures(1, &g.vertexData);
+  glBindTexture(GL_TEXTURE_2D, g.vertexData);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, vertexDataHeight, 0, GL_RGBA, GL_FLOAT, vertexTexels.data());
+  glGenTextures(1, &g.fused);
+  glBindTexture(GL_TEXTURE_2D, g.fused);
+  setNearestClamp(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, fusedHeight, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  g.fusedBuffer = makeBuffer(GL_ARRAY_BUFFER, nullptr, static_cast<std::size_t>(kTransferTextureWidth) * fusedHeight * 4 * sizeof(float));
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   if (Status s = glErrorStatus("this scene's glossy transfer", "uploading a glossy pass"); !s.isOk()) {
     releaseGlossy(&g);
@@ -288,28 +335,36 @@ Status GlRenderer::glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms
   const std::string transfer = row + "#define ACTIVE_TEXELS " + std::to_string(texelsForOrder(bands)) + "\n#define VECTORS " +
                                std::to_string(g.vectors) + "\n";
   const std::string view = "#define BANDS " + std::to_string(bands) + "\n";
+  const std::string fused = view + "#define GROUP " + std::to_string(g.groupSize) + "\n" + row + "#define VECTORS " +
+                            std::to_string(g.vectors) + "\n";
   static const char* const kTable = "vTable";
   static const char* const kGlossy = "vGlossy";
+  static const char* const kFused[kMaxGlossyGroup] = {"vG0", "vG1", "vG2", "vG3", "vG4", "vG5", "vG6", "vG7"};
   PRT_RETURN_IF_ERROR(specialised("table", shaders::k_glossy_table_vert, table, &kTable, 1, &out->table));
   PRT_RETURN_IF_ERROR(specialised("transfer", shaders::k_glossy_transfer_vert, transfer, kNames, g.rowTexels, &out->transfer));
-  return specialised("view", shaders::k_glossy_vert, view, &kGlossy, 1, &out->view);
+  PRT_RETURN_IF_ERROR(specialised("view", shaders::k_glossy_vert, view, &kGlossy, 1, &out->view));
+  PRT_RETURN_IF_ERROR(specialised("gather", shaders::k_glossy_gather_vert, "", &kGlossy, 1, &out->gather));
+  const int groupSize = g.groupSize, rowTexels = g.rowTexels, vectors = g.vectors;
+  return specialised("fused", shaders::k_glossy_vert, fused, kFused, groupSize, &out->fused,
+                     [=] { return glossyFusedMain(groupSize, bands, rowTexels, vectors); });
 }
 
 Status GlRenderer::specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
-                               const Program** out) {
+                               const Program** out, const std::function<std::string()>& appendix) {
   const std::string key = std::string(name) + "\n" + defines;
   if (const auto it = specialised_.find(key); it != specialised_.end()) {
     *out = &it->second;
     return Status::ok();
   }
   Program p;
-  PRT_RETURN_IF_ERROR(link(withDefines(vs, defines).c_str(), shaders::k_discard_frag, &p, feedback, count));
+  const std::string source = withDefines(vs, defines) + (appendix ? appendix() : std::string());
+  PRT_RETURN_IF_ERROR(link(source.c_str(), shaders::k_discard_frag, &p, feedback, count));
   *out = &specialised_.emplace(key, p).first->second;
   return Status::ok();
 }
 
-void GlRenderer::relightGlossy(GlossyPass& g, bool tableOnly, const GlossyPrograms& programs) {
-  // 1. The table: every cluster's (1 + N') matrices times the lighting, one point per texel.
+void GlRenderer::glossyTable(GlossyPass& g, const GlossyPrograms& programs) {
+  // Every cluster's (1 + N') matrices times the lighting, one point per texel.
   const Program& table = *programs.table;
   glUseProgram(table.id);
   glActiveTexture(GL_TEXTURE0);
@@ -325,11 +380,13 @@ void GlRenderer::relightGlossy(GlossyPass& g, bool tableOnly, const GlossyProgra
   glBindTexture(GL_TEXTURE_2D, g.table);
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.tableHeight, GL_RGBA, GL_FLOAT, nullptr);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  g.transferValid = false;
-  if (tableOnly) return;
-  // 2. Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
+}
+
+void GlRenderer::glossyTransfer(GlossyPass& g, const GlossyPrograms& programs) {
+  // Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
   const Program& t = *programs.transfer;
   glUseProgram(t.id);
+  glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, g.table);
   glUniform1i(t.table, 0);
   glActiveTexture(GL_TEXTURE1);
@@ -348,7 +405,72 @@ void GlRenderer::relightGlossy(GlossyPass& g, bool tableOnly, const GlossyProgra
   glBindTexture(GL_TEXTURE_2D, g.transfer);
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.transferHeight, GL_RGBA, GL_FLOAT, nullptr);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  g.transferValid = true;
+}
+
+namespace {
+
+// The uniforms glossy.vert's lobe takes (both of its forms): the eye, Fresnel on or off and
+// the SH recurrence's constants.
+template <typename ProgramT>
+void setLobeUniforms(const ProgramT& p, glm::vec3 eye, bool fresnel) {
+  glUniform1i(p.fresnel, fresnel ? 1 : 0);
+  glUniform3f(p.eye, eye.x, eye.y, eye.z);
+  const ShRecurrenceConstants& sh = shRecurrenceConstants();
+  glUniform1f(p.shY00, sh.y00);
+  glUniform1f(p.shK1, sh.k1);
+  glUniform4fv(p.shA, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.a);
+  glUniform4fv(p.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
+}
+
+}  // namespace
+
+void GlRenderer::glossyFused(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel) {
+  // Per group of a cluster's vertices: their exit radiance straight from the table.
+  const Program& f = *programs.fused;
+  glUseProgram(f.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.table);
+  glUniform1i(f.table, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, g.weights);
+  glUniform1i(f.weights, 1);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, g.vertexData);
+  glUniform1i(f.vertexData, 2);
+  setTextureLayout(f.textureMask, f.textureShift);
+  glUniform1i(f.weightTexels, g.weightTexels);
+  setLobeUniforms(f, eye, fresnel);
+  glBindVertexArray(g.fusedVao);
+  capture(g.fusedBuffer, g.groups);
+  glActiveTexture(GL_TEXTURE0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.fusedBuffer);
+  glBindTexture(GL_TEXTURE_2D, g.fused);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.fusedHeight, GL_RGBA, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  // Back into vertex order, one fetch a vertex.
+  const Program& gather = *programs.gather;
+  glUseProgram(gather.id);
+  glUniform1i(gather.fused, 0);
+  setTextureLayout(gather.textureMask, gather.textureShift);
+  glBindVertexArray(g.vao);
+  capture(glossyBuffer_, vertexCount_);
+  lastGlossyStep_ = "fused";
+}
+
+void GlRenderer::glossyView(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel) {
+  // Per vertex: lobe convolution, y_i(R) toward the eye, Schlick, on the cached T.
+  const Program& view = *programs.view;
+  glUseProgram(view.id);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.transfer);
+  glUniform1i(view.transfer, 0);
+  setTextureLayout(view.textureMask, view.textureShift);
+  glUniform1i(view.rowTexels, g.rowTexels);
+  glUniform1i(view.vertices, vertexCount_);
+  setLobeUniforms(view, eye, fresnel);
+  glBindVertexArray(g.vao);
+  capture(glossyBuffer_, vertexCount_);
+  lastGlossyStep_ = "view";
 }
 
 bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, unsigned lightingVersion, bool fresnel,
@@ -359,32 +481,48 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   const int bands = std::clamp(displayOrder, 1, g.bands);
   GlossyPrograms programs;
   if (!glossyPrograms(g, bands, &programs).isOk()) return false;
-  const bool stale = !g.transferValid || g.transferVersion != lightingVersion || g.transferBands != bands;
-  if (work == GlossyWork::kTableOnly || work == GlossyWork::kRelight || (work == GlossyWork::kAsNeeded && stale)) {
-    relightGlossy(g, work == GlossyWork::kTableOnly, programs);
-    g.transferVersion = lightingVersion;
-    g.transferBands = bands;
-    if (work == GlossyWork::kTableOnly) return true;
+  const bool tableStale = !g.tableValid || g.tableVersion != lightingVersion || g.tableBands != bands;
+  const auto remakeTable = [&] {
+    glossyTable(g, programs);
+    g.tableValid = true;
+    g.tableVersion = lightingVersion;
+    g.tableBands = bands;
+    g.transferValid = false;
+  };
+  switch (work) {
+    case GlossyWork::kTableOnly:
+      remakeTable();
+      return true;
+    case GlossyWork::kRelight:
+      remakeTable();
+      glossyFused(g, programs, eye, fresnel);
+      return true;
+    case GlossyWork::kTransfer:
+      remakeTable();
+      glossyTransfer(g, programs);
+      g.transferValid = true;
+      glossyView(g, programs, eye, fresnel);
+      return true;
+    case GlossyWork::kViewOnly:
+      if (!g.transferValid || tableStale) return false;
+      glossyView(g, programs, eye, fresnel);
+      return true;
+    case GlossyWork::kAsNeeded:
+      break;
   }
-  if (!g.transferValid) return false;  // kViewOnly before any relight
-  // 3. Per vertex: lobe convolution, y_i(R) toward the eye, Schlick, on the cached T.
-  const Program& view = *programs.view;
-  glUseProgram(view.id);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, g.transfer);
-  glUniform1i(view.transfer, 0);
-  setTextureLayout(view.textureMask, view.textureShift);
-  glUniform1i(view.rowTexels, g.rowTexels);
-  glUniform1i(view.vertices, vertexCount_);
-  glUniform1i(view.fresnel, fresnel ? 1 : 0);
-  glUniform3f(view.eye, eye.x, eye.y, eye.z);
-  const ShRecurrenceConstants& sh = shRecurrenceConstants();
-  glUniform1f(view.shY00, sh.y00);
-  glUniform1f(view.shK1, sh.k1);
-  glUniform4fv(view.shA, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.a);
-  glUniform4fv(view.shB, kMaxGlossyOrder * kMaxGlossyOrder / 4, sh.b);
-  glBindVertexArray(g.vao);
-  capture(glossyBuffer_, vertexCount_);
+  // A frame whose lighting changed takes the fused step: it fetches each table texel once a
+  // group, where T and the view step would fetch it once a vertex and then T again. While only
+  // the camera moves, T (made once from the current table) and the view step cost less.
+  if (tableStale) {
+    remakeTable();
+    glossyFused(g, programs, eye, fresnel);
+    return true;
+  }
+  if (!g.transferValid) {
+    glossyTransfer(g, programs);
+    g.transferValid = true;
+  }
+  glossyView(g, programs, eye, fresnel);
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <GLES3/gl3.h>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -76,10 +77,12 @@ struct FrameParams {
 
 // How much of the glossy work shadeGlossy does (docs/web-client.md, "Glossy rendering").
 enum class GlossyWork {
-  kAsNeeded = 0,  // table and transferred radiance only if the lighting changed, then the view step
+  kAsNeeded = 0,   // lighting changed: table and fused step; else the view step (on T, made first if stale)
   kTableOnly = 1,  // the per-cluster table alone (benchmarks)
-  kRelight = 2,    // all three steps, as a frame whose lighting changed (benchmarks)
+  kRelight = 2,    // table and fused step, as a frame whose lighting changed (benchmarks)
   kViewOnly = 3,   // the per-vertex view step alone, on the cached transferred radiance (benchmarks)
+  kTransfer = 4,   // table, transferred radiance and view step (benchmarks; as kAsNeeded's first
+                   // camera move after the lighting stopped changing, without the table)
 };
 
 class GlRenderer {
@@ -108,7 +111,9 @@ class GlRenderer {
   // (glossy_texture.h), holding cpca.bands shells, with one specular material per vertex;
   // replaces a previous glossy pass of that kind. Needs geometry first; a pass that does not
   // fit changes nothing.
-  Status uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular);
+  // `positions` and `normals` are the geometry's (the fused step reads them a group at a time).
+  Status uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer& cpca, std::span<const SpecularMaterial> specular,
+                          std::span<const Vec3> positions, std::span<const Vec3> normals);
   // Bands the glossy pass of `mode` holds; 0 when absent (and for Lambert).
   int glossyOrder(ShadingMode mode) const;
   // Glossy pass of `mode`: {clusters, basis matrices per cluster, channels}; zeros when absent.
@@ -122,6 +127,9 @@ class GlRenderer {
   // Waits for the glossy passes queued so far: a 1-value read-back of the table buffer of
   // `mode` (kTableOnly) or of the glossy radiance buffer (benchmarks).
   void finishGlossy(ShadingMode mode, GlossyWork work) const;
+  // Which step wrote the glossy radiance last: "fused" (a frame whose lighting changed),
+  // "view" (on the cached transferred radiance) or "" (none yet). Tests check both.
+  const char* lastGlossyStep() const { return lastGlossyStep_; }
   // The glossy radiance the last frame computed, RGB per vertex (synchronous read-back).
   std::vector<float> readGlossy(std::size_t vertices) const;
   int passOrder(ShadingMode mode) const;  // bands the uploaded pass holds; 0 when absent
@@ -168,6 +176,7 @@ class GlRenderer {
     GLint matrices = -1, rowTexels = -1, matrixTexels = -1;
     GLint channel = -1, vertices = -1;
     GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
+    GLint vertexData = -1, fused = -1;  // glossy.vert's fused form, glossy_gather.vert
     // background.frag
     GLint backgroundMode = -1, environmentImage = -1, environmentRotation = -1, environmentTint = -1;
   };
@@ -175,14 +184,22 @@ class GlRenderer {
   // table and the transferred radiance (each captured into its buffer, copied into its
   // texture) with the lighting version and bands they were made for, and a VAO feeding
   // glossy_transfer.vert and glossy.vert (position, normal, cluster id, specular material).
+  // The fused step (glossy_fused.h) reads the vertices a group at a time (groupData, fusedVao:
+  // cluster and members per group; vertexData: position, normal, material per vertex), captures
+  // one vec4 per group slot (fusedBuffer, copied into `fused`), which glossy_gather.vert reads
+  // back into vertex order by each vertex's slot (slots, attribute 9 of vao).
   struct GlossyPass {
     GLuint matrices = 0, weights = 0, table = 0, tableBuffer = 0, transfer = 0, transferBuffer = 0;
     GLuint clusterIds = 0, specular = 0, vao = 0;
+    GLuint groupData = 0, fusedVao = 0, vertexData = 0, fusedBuffer = 0, fused = 0, slots = 0;
     int bands = 0, channels = 0, clusters = 0, vectors = 0, weightTexels = 0, matrixTexels = 0, rowTexels = 0;
     int tableTexels = 0, tableHeight = 0, transferHeight = 0;
-    bool transferValid = false;
-    unsigned transferVersion = 0;
-    int transferBands = 0;
+    int groups = 0, groupSize = 0, fusedHeight = 0;
+    // The table holds the lighting of tableVersion at tableBands when tableValid; T was made
+    // from that table when transferValid.
+    bool tableValid = false, transferValid = false;
+    unsigned tableVersion = 0;
+    int tableBands = 0;
   };
   static void releaseGlossy(GlossyPass* g);
   struct PassTexture {
@@ -206,17 +223,24 @@ class GlRenderer {
     const Program* table = nullptr;     // glossy_table.vert: ROW_TEXELS, ROWS
     const Program* transfer = nullptr;  // glossy_transfer.vert: ROW_TEXELS, ACTIVE_TEXELS, VECTORS
     const Program* view = nullptr;      // glossy.vert: BANDS
+    const Program* fused = nullptr;     // glossy.vert + glossyFusedMain: BANDS, GROUP
+    const Program* gather = nullptr;    // glossy_gather.vert
   };
   // Links (once per shape, kept for the context's life) and returns the programs of pass `g`
   // at `bands` (1 .. g.bands).
   Status glossyPrograms(const GlossyPass& g, int bands, GlossyPrograms* out);
-  // `vs` with `defines` after its version line, linked once per (name, defines) into
-  // specialised_, capturing `count` varyings of `feedback` (interleaved when more than one).
+  // `vs` with `defines` after its version line (and `appendix()` after its end, when given),
+  // linked once per (name, defines) into specialised_, capturing `count` varyings of `feedback`
+  // (interleaved when more than one). The defines must determine the appendix.
   Status specialised(const char* name, const char* vs, const std::string& defines, const char* const* feedback, int count,
-                     const Program** out);
-  // Makes the table and the transferred radiance of `g` for the bound lighting, at the band
-  // count `programs` were linked for.
-  void relightGlossy(GlossyPass& g, bool tableOnly, const GlossyPrograms& programs);
+                     const Program** out, const std::function<std::string()>& appendix = {});
+  // The glossy steps of `g` for the bound lighting (docs/web-client.md, "Glossy rendering"):
+  // the per-cluster table; T from the table; the fused step (exit radiance toward `eye`
+  // straight from the table, into the glossy buffer); the view step (the same from T).
+  void glossyTable(GlossyPass& g, const GlossyPrograms& programs);
+  void glossyTransfer(GlossyPass& g, const GlossyPrograms& programs);
+  void glossyFused(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel);
+  void glossyView(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel);
   void release();
   void releaseGeometry();
   void makeGeometry(const BakedAsset& asset);  // buffers and VAOs; the caller checks for GL errors
@@ -241,6 +265,7 @@ class GlRenderer {
   // vao_ draws triangles (position, albedo, normal, radiance); feedbackVao_ feeds the PRT
   // pass (position, albedo) without the radiance buffer it writes, as WebGL2 requires.
   GLuint vao_ = 0, feedbackVao_ = 0, positions_ = 0, albedo_ = 0, normals_ = 0, indices_ = 0, radianceBuffer_ = 0;
+  const char* lastGlossyStep_ = "";
   GLuint glossyBuffer_ = 0;  // glossy radiance per vertex (attribute 5 of vao_)
   GLuint backgroundVao_ = 0, feedback_ = 0, backgroundImage_ = 0;
   GLsizei vertexCount_ = 0;

@@ -264,6 +264,27 @@ std::vector<float> glossyTransferCpu(const GlossyTextures& p, const std::vector<
   return transfer;
 }
 
+bool glossyLobeTowardEye(int bands, const float* spec, Vec3 position, Vec3 n, Vec3 eye, bool fresnel, float* gy, Rgb* ks) {
+  const int rows = bands * bands;
+  std::fill(gy, gy + rows, 0.0f);
+  *ks = Rgb{0.0f, 0.0f, 0.0f};
+  if (spec[4] == 0.0f && spec[0] == 0.0f && spec[1] == 0.0f && spec[2] == 0.0f) return false;
+  const Vec3 d = eye - position;
+  const float distance = length(d);
+  if (!(distance > 0.0f)) return false;
+  const Vec3 toEye = d * (1.0f / distance);
+  Vec3 r = reflectView(toEye, n);
+  const float rl = length(r);
+  r = rl > 0.0f ? r * (1.0f / rl) : n;
+  float y[kMaxGlossyOrder * kMaxGlossyOrder], g[kMaxGlossyOrder];
+  glossyShBasis(bands, r, y);
+  phongLobeBandScalesUnchecked(bands, spec[3], g);
+  // The lobe's band scales folded into the basis once, as glossy.vert does.
+  for (int i = 0; i < rows; ++i) gy[i] = g[bandOf(i)] * y[i];
+  *ks = fresnel ? schlickFresnel({spec[0], spec[1], spec[2]}, spec[4], dot(n, toEye)) : Rgb{spec[0], spec[1], spec[2]};
+  return true;
+}
+
 std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<float>& transfer, int activeBands,
                                      std::span<const Vec3> positions, std::span<const Vec3> normals, Vec3 eye, bool fresnel) {
   const int bands = std::clamp(activeBands, 1, p.bands);
@@ -271,23 +292,10 @@ std::vector<float> glossyRadianceCpu(const GlossyTextures& p, const std::vector<
   const std::size_t V = p.clusterOf.size(), R = static_cast<std::size_t>(p.rowTexels);
   std::vector<float> out(3 * V, 0.0f);
   if (positions.size() != V || normals.size() != V || transfer.size() != static_cast<std::size_t>(p.transferTexels) * 4) return out;
-  float y[kMaxGlossyOrder * kMaxGlossyOrder], g[kMaxGlossyOrder];
+  float gy[kMaxGlossyOrder * kMaxGlossyOrder];
   for (std::size_t v = 0; v < V; ++v) {
-    const Vec3 d = eye - positions[v];
-    const float distance = length(d);
-    const float* spec = &p.specular[kGlossySpecularFloats * v];
-    if (!(distance > 0.0f)) continue;
-    const Vec3 toEye = d * (1.0f / distance);
-    const Vec3 n = normals[v];
-    Vec3 r = reflectView(toEye, n);
-    const float rl = length(r);
-    r = rl > 0.0f ? r * (1.0f / rl) : n;
-    glossyShBasis(bands, r, y);
-    phongLobeBandScalesUnchecked(bands, spec[3], g);
-    // The lobe's band scales folded into the basis once, as glossy.vert does.
-    float gy[kMaxGlossyOrder * kMaxGlossyOrder];
-    for (int i = 0; i < rows; ++i) gy[i] = g[bandOf(i)] * y[i];
-    const Rgb ks = fresnel ? schlickFresnel({spec[0], spec[1], spec[2]}, spec[4], dot(n, toEye)) : Rgb{spec[0], spec[1], spec[2]};
+    Rgb ks;
+    if (!glossyLobeTowardEye(bands, &p.specular[kGlossySpecularFloats * v], positions[v], normals[v], eye, fresnel, gy, &ks)) continue;
     const float k[3] = {ks.r, ks.g, ks.b};
     for (std::size_t c = 0; c < 3; ++c) {
       float sum = 0.0f;

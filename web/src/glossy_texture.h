@@ -111,6 +111,13 @@ std::vector<float> glossyTableCpu(const GlossyTextures& packed, const float* lig
 // whole T: f0 = f90 = 0, no glossy term), in the shader's order.
 std::vector<float> glossyTransferCpu(const GlossyTextures& packed, const std::vector<float>& table, int activeBands);
 
+// glossy.vert's lobeTowardEye on the CPU: gy_i = g_l(i)(s) y_i(R) (i < bands^2; R the mirror
+// direction of the view from `position` toward `eye` about the unit normal `n`) and k_s
+// (Schlick's term when `fresnel`, else f0) for the specular material `spec`
+// (kGlossySpecularFloats floats). False, with gy and k_s zero, for a matte material (f0 = f90 =
+// 0) or a vertex at the eye: no glossy term.
+bool glossyLobeTowardEye(int bands, const float* spec, Vec3 position, Vec3 n, Vec3 eye, bool fresnel, float* gy, Rgb* ks);
+
 // glossy.vert on the CPU from the transferred radiance: glossy exit radiance toward `eye`, RGB
 // per vertex (a vertex at the eye gets 0); Fresnel as in glossyExitRadiance when `fresnel`.
 std::vector<float> glossyRadianceCpu(const GlossyTextures& packed, const std::vector<float>& transfer, int activeBands,
