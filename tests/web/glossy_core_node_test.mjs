@@ -102,7 +102,7 @@ for (const spec of cases) {
     clusterOf.push(v % 97 === 0 ? 6 : seed % 6);  // cluster 6: 11 vertices; 7: none
   }
   for (const size of [1, 3, 8]) {
-    const g = core.glossyGroups(clusterOf, 8, size);
+    const g = core.glossyGroups(clusterOf, 8, size, 4, 2);
     if (!check(typeof g === 'object', `groups of ${size}: ${g}`)) continue;
     const seen = new Array(clusterOf.length).fill(0);
     let ordered = true, sameCluster = true, packed = true, slotsAgree = true;
@@ -131,11 +131,13 @@ for (const spec of cases) {
     for (const k of clusterOf) counts[k]++;
     check(perCluster.every((n, k) => n === Math.ceil(counts[k] / size)), `groups of ${size}: ${perCluster} groups per cluster for ${counts} vertices`);
   }
-  check(core.glossyGroups(clusterOf, 8, 1).groupSize === 8, 'mean cluster size 125: groups of 8');
-  check(core.glossyGroups([0, 1, 2, 3], 4, 1).groupSize === 1, 'a cluster a vertex: groups of 1');
-  check(core.glossyGroups([0, 0, 0, 1, 1, 1], 2, 1).groupSize === 2, 'three vertices a cluster: groups of 2');
+  check(core.glossyGroups(clusterOf, 8, 1, 29, 7).groupSize === 8, 'mean cluster size 125, the dragon\'s shape: groups of 8');
+  check(core.glossyGroups([0, 1, 2, 3], 4, 1, 29, 7).groupSize === 1, 'a cluster a vertex: groups of 1');
+  check(core.glossyGroups([0, 0, 0, 1, 1, 1], 2, 1, 29, 7).groupSize === 2, 'three vertices a cluster: groups of 2');
+  // 65 * 3 * 16 = 3120 dot products a member: groups of 2 stay within kMaxGlossyFusedDots (8192).
+  check(core.glossyGroups(clusterOf, 8, 1, 64, 16).groupSize === 2, 'order 8, N\' = 64: groups of 2');
   for (const [ids, clusters, size, what] of [[[0, 1], 2, 0, 'size'], [[0, 1], 2, 9, 'size'], [[0, 5], 2, 4, 'cluster id']]) {
-    const e = core.glossyGroups(ids, clusters, size);
+    const e = core.glossyGroups(ids, clusters, size, 4, 2);
     check(typeof e === 'string' && e.includes(what), `groups ${JSON.stringify([ids, clusters, size])}: ${e}`);
   }
 }

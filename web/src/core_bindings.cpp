@@ -248,8 +248,9 @@ val glossySyntheticCheck(const val& spec, int vertices, const val& eye, const va
 }
 
 // groupGlossyVertices (glossy_fused.h) on cluster ids `clusterOf`: {size, cluster, members,
-// slot} as arrays, or a string naming the error. Safe on any ids.
-val glossyGroups(const val& clusterOf, int clusters, int size) {
+// slot} as arrays and {groupSize}, glossyGroupSize for these ids at `vectors` and `rowTexels`;
+// or a string naming the error. Safe on any ids.
+val glossyGroups(const val& clusterOf, int clusters, int size, int vectors, int rowTexels) {
   const std::vector<double> raw = emscripten::convertJSArrayToNumberVector<double>(clusterOf);
   std::vector<std::uint16_t> ids(raw.size());
   for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -263,7 +264,7 @@ val glossyGroups(const val& clusterOf, int clusters, int size) {
   out.set("cluster", val::array(g.cluster));
   out.set("members", val::array(g.members));
   out.set("slot", val::array(g.slot));
-  out.set("groupSize", prt::web::glossyGroupSize(ids.size(), static_cast<std::size_t>(std::max(clusters, 1))));
+  out.set("groupSize", prt::web::glossyGroupSize(ids.size(), static_cast<std::size_t>(std::max(clusters, 1)), vectors, rowTexels));
   return out;
 }
 

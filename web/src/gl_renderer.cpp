@@ -213,7 +213,7 @@ Status GlRenderer::uploadGlossyPass(TransferKind kind, const CpcaMatrixTransfer&
   GlossyTextures packed;
   if (Status s = packGlossy(cpca, specular, maxSize, &packed); !s.isOk()) return s;
   GlossyGroups groups;
-  if (Status s = groupGlossyVertices(packed.clusterOf, packed.clusters, glossyGroupSize(packed.clusterOf.size(), static_cast<std::size_t>(packed.clusters)), &groups); !s.isOk()) return s;
+  if (Status s = groupGlossyVertices(packed.clusterOf, packed.clusters, glossyGroupSize(packed.clusterOf.size(), static_cast<std::size_t>(packed.clusters), packed.vectors, packed.rowTexels), &groups); !s.isOk()) return s;
   const std::vector<float> vertexData = packGlossyVertexData(positions, normals, packed.specular);
   const std::size_t slotCount = groups.groups() * static_cast<std::size_t>(groups.size);
   int vertexDataHeight = 0, fusedHeight = 0;

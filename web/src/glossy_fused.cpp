@@ -8,9 +8,13 @@
 
 namespace prt::web {
 
-int glossyGroupSize(std::size_t vertices, std::size_t clusters) {
+int glossyGroupSize(std::size_t vertices, std::size_t clusters, int vectors, int rowTexels) {
+  const std::size_t dotsPerMember = static_cast<std::size_t>(1 + std::max(vectors, 0)) * 3 * static_cast<std::size_t>(std::max(rowTexels, 1));
   int size = 1;
-  while (size < kMaxGlossyGroup && static_cast<std::size_t>(2 * size) * clusters <= vertices) size *= 2;
+  while (size < kMaxGlossyGroup && static_cast<std::size_t>(2 * size) * clusters <= vertices &&
+         static_cast<std::size_t>(2 * size) * dotsPerMember <= static_cast<std::size_t>(kMaxGlossyFusedDots)) {
+    size *= 2;
+  }
   return size;
 }
 

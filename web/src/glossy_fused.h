@@ -21,12 +21,18 @@ namespace prt::web {
 
 // Most vertices one fused point handles (two ivec4 member attributes).
 inline constexpr int kMaxGlossyGroup = 8;
-// The group size the renderer uses for `vertices` in `clusters` clusters: the largest of 1, 2,
-// 4 and 8 (kMaxGlossyGroup) not above the mean cluster size, so that partly filled groups (a
-// cluster's last) stay a small share. Larger groups fetch less per vertex (docs/bench/glossy.md,
-// "Fused relight": 8 measured fastest on the dragon); a plain matrix pass (a cluster a vertex)
-// gets 1.
-int glossyGroupSize(std::size_t vertices, std::size_t clusters);
+// Most dot products glossyFusedMain writes out, (1 + N') * 3 * rows texels * group size: keeps
+// the generated shader (and its compile time) bounded at large N' and orders (the dragon's
+// K = 128, N' = 29, order 5 at groups of 8: 5040).
+inline constexpr int kMaxGlossyFusedDots = 8192;
+
+// The group size the renderer uses for `vertices` in `clusters` clusters of a pass with
+// `vectors` basis matrices and `rowTexels` texels a table row: the largest of 1, 2, 4 and 8
+// (kMaxGlossyGroup) not above the mean cluster size, so that partly filled groups (a cluster's
+// last) stay a small share, and within kMaxGlossyFusedDots. Larger groups fetch less per vertex
+// (docs/bench/glossy.md, "Fused relight": 8 measured fastest in SwiftShader); a plain matrix
+// pass (a cluster a vertex) gets 1.
+int glossyGroupSize(std::size_t vertices, std::size_t clusters, int vectors, int rowTexels);
 
 // Vertices grouped by cluster for the fused step: group g holds cluster `cluster[g]` and the
 // vertex ids members[kMaxGlossyGroup * g + i], i < group size (-1 past a cluster's last
