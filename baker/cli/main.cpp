@@ -16,6 +16,7 @@
 #include "native/file_io.h"
 #include "baker/cli/compress_command.h"
 #include "baker/cli/probe_command.h"
+#include "baker/cli/rtt_command.h"
 #include "baker/cli/shard_commands.h"
 #include "baker/transfer/glossy_bake.h"
 
@@ -40,6 +41,7 @@ constexpr const char* kHelp =
     "  plan       split a bake into shards for several machines (docs/scale-out.md)\n"
     "  bake-shard bake one shard of one pass of a plan\n"
     "  merge      check and merge a pass's shards, or every shard into the asset\n"
+    "  rtt        bake a radiance transfer texture of a meso-scale patch (docs/bi-scale.md)\n"
     "\n"
     "Bake options: 'prt-bake --default --help'.\n"
     "\n"
@@ -73,12 +75,13 @@ int run(const std::vector<std::string>& args) {
   if (command == "plan") return prt::runPlanCommand(rest, stdout, stderr);
   if (command == "bake-shard") return prt::runBakeShardCommand(rest, stdout, stderr);
   if (command == "merge") return prt::runMergeCommand(rest, stdout, stderr);
+  if (command == "rtt") return prt::runRttCommand(rest, stdout, stderr);
   // Anything else is a bake: `prt-bake SCENE -o ASSET ...` or `prt-bake --default ...`,
   // except a bare word that is neither a file nor a glTF name: most likely a mistyped command.
   const bool looksLikeScene = command[0] == '-' || command.find('.') != std::string::npos ||
                               command.find('/') != std::string::npos || access(command.c_str(), F_OK) == 0;
   if (!looksLikeScene) {
-    return usageError("unknown command '" + command + "' (commands: probe, info, shade, compress-report, plan, bake-shard, merge; or a SCENE.gltf/.glb to bake)");
+    return usageError("unknown command '" + command + "' (commands: probe, info, shade, compress-report, plan, bake-shard, merge, rtt; or a SCENE.gltf/.glb to bake)");
   }
   return prt::runBakeCommand(args, stdout, stderr);
 }

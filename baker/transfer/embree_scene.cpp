@@ -12,7 +12,7 @@ EmbreeScene::~EmbreeScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-Status EmbreeScene::build(const Scene& scene, EmbreeScene* out) {
+Status EmbreeScene::build(const Scene& scene, EmbreeScene* out, bool robust) {
   if (scene.indices.empty() || scene.indices.size() % 3 != 0) {
     return Status::error(StatusCode::kInvalidArgument, "scene has no triangles");
   }
@@ -23,6 +23,7 @@ Status EmbreeScene::build(const Scene& scene, EmbreeScene* out) {
   }
   out->scene_ = rtcNewScene(out->device_);
   rtcSetSceneBuildQuality(out->scene_, RTC_BUILD_QUALITY_HIGH);
+  if (robust) rtcSetSceneFlags(out->scene_, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(out->device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   const std::size_t vertexCount = scene.positions.size();
   const std::size_t triangleCount = scene.indices.size() / 3;

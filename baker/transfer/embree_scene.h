@@ -16,8 +16,10 @@ class EmbreeScene {
   ~EmbreeScene();
 
   // Builds the BVH over `scene` (positions and indices are copied into Embree buffers;
-  // `scene` may be freed afterwards). Errors name Embree's error code.
-  static Status build(const Scene& scene, EmbreeScene* out);
+  // `scene` may be freed afterwards). Errors name Embree's error code. `robust`: Embree's
+  // watertight traversal (RTC_SCENE_FLAG_ROBUST), for rays aimed exactly at vertices and
+  // edges (the RTT bake's view rays through grid points), at some speed.
+  static Status build(const Scene& scene, EmbreeScene* out, bool robust = false);
 
   RTCScene handle() const { return scene_; }
   // Length of the bounding-box diagonal (metres): the scale ray offsets are relative to.

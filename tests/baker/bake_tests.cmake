@@ -40,3 +40,11 @@ add_executable(prt_bake_cli_output_tests ${CMAKE_CURRENT_LIST_DIR}/cli_output_te
 target_link_libraries(prt_bake_cli_output_tests PRIVATE prt_bake_cli GTest::gtest_main)
 target_compile_options(prt_bake_cli_output_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME bake_cli_output_tests COMMAND prt_bake_cli_output_tests)
+
+# Radiance transfer textures (docs/bi-scale.md): a flat patch's closed form, the white
+# furnace, a brute-force integral over a patch with pits.
+add_executable(prt_rtt_bake_tests ${CMAKE_CURRENT_LIST_DIR}/rtt_bake_test.cpp)
+target_include_directories(prt_rtt_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_rtt_bake_tests PRIVATE prt_rtt GTest::gtest_main)
+target_compile_options(prt_rtt_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME rtt_bake_tests COMMAND prt_rtt_bake_tests)

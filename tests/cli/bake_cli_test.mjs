@@ -59,6 +59,50 @@ function bakeDefault(name, extra = []) {
 }
 
 const cases = {
+  // prt-bake rtt: a built-in patch baked to a file whose header and size match the options,
+  // the same bytes twice (any thread count), a grey flat patch's coefficient 0 = rho/pi * pi y00.
+  rtt() {
+    const out = work('weave.rtt');
+    const r = expectExit(['rtt', '--patch', 'weave', '--size', '32', '--spatial', '8', '--views', '4', '-o', out, '--json', '--quiet'], 0);
+    const j = json(r);
+    if (!j) return;
+    check(j.order === 5 && j.channels === 1 && j.spatial === 8 && j.views === 4 && j.light_directions === 128 && j.bounces === 1,
+      `summary ${r.stdout}`);
+    const bytes = fs.readFileSync(out);
+    check(bytes.length === 40 + 4 * 8 * 8 * 4 * 4 * 25 + 4 && j.bytes === bytes.length, `${bytes.length} bytes, summary says ${j.bytes}`);
+    check(bytes.subarray(0, 8).toString('latin1') === 'PRTRTT1\n', 'magic');
+    const again = work('weave-1thread.rtt');
+    expectExit(['rtt', '--patch', 'weave', '--size', '32', '--spatial', '8', '--views', '4', '--threads', '1', '-o', again, '--quiet'], 0);
+    check(Buffer.compare(bytes, fs.readFileSync(again)) === 0, 'the RTT differs between 2 threads and 1');
+    const flat = work('flat.rtt');
+    expectExit(['rtt', '--patch', 'flat', '--size', '8', '--albedo', '0.5', '--views', '1', '--spatial', '2', '-o', flat, '--quiet'], 0);
+    const f = fs.readFileSync(flat);
+    check(f.length === 40 + 4 * 2 * 2 * 25 + 4, `--views 1 --spatial 2: ${f.length} bytes`);
+    const b0 = f.readFloatLE(40);
+    check(Math.abs(b0 - 0.5 * 0.28209479) < 1e-5, `flat patch B_0 ${b0}, expected rho/pi * pi y00 = ${0.5 * 0.28209479}`);
+    const text = expectExit(['rtt', '--patch', 'holes', '--size', '16', '--spatial', '4', '--views', '2', '-o', work('holes.rtt')], 0);
+    check(/direct/.test(text.stderr) && /views/.test(text.stderr), `progress on stderr: ${JSON.stringify(text.stderr)}`);
+    check(/RTT of holes, 4x4 positions x 2x2 views, order 5, 1 channel/.test(text.stdout), `summary line: ${text.stdout}`);
+  },
+  // Bad command lines and inputs are named; nothing is written.
+  rtt_usage_errors() {
+    const out = work('x.rtt');
+    expectExit(['rtt', '-o', out], 2, /exactly one of --patch/);
+    expectExit(['rtt', '--patch', 'weave', '--height', 'h.png', '-o', out], 2, /exactly one of --patch/);
+    expectExit(['rtt', '--patch', 'weave'], 2, /missing -o/);
+    expectExit(['rtt', '--patch', 'plaid', '-o', out], EXIT_INVALID_INPUT, /unknown patch 'plaid'/);
+    expectExit(['rtt', '--patch', 'weave', '--views', '0', '-o', out], 2, /--views/);
+    expectExit(['rtt', '--patch', 'weave', '--order', '9', '-o', out], 2, /--order/);
+    expectExit(['rtt', '--patch', 'weave', '--albedo', '1.5', '-o', out], 2, /--albedo/);
+    expectExit(['rtt', '--patch', 'weave', '--albedo-map', 'a.png', '-o', out], 2, /--albedo-map goes with --height/);
+    expectExit(['rtt', '--height', work('missing.png'), '-o', out], EXIT_NOT_FOUND, /missing\.png/);
+    fs.writeFileSync(work('junk.png'), 'not an image');
+    expectExit(['rtt', '--height', work('junk.png'), '-o', out], EXIT_INVALID_INPUT);
+    expectExit(['rtt', '--patch', 'weave', '--size', '16', '-o', workDir], EXIT_INVALID_INPUT);
+    check(!fs.existsSync(out), 'a failed rtt bake left an output file');
+    const help = run(['rtt', '--help']);
+    check(help.code === 0 && /--light-polar/.test(help.stdout) && /Exit status/.test(help.stdout), 'rtt --help');
+  },
   texel_info() {
     // `info` on an asset with transfer textures (no bake writes them yet: the generator does,
     // and says what it wrote): each pass's domain, the texel count and the atlases.

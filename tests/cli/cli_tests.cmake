@@ -59,7 +59,7 @@ foreach(case IN ITEMS default_scene determinism bad_assets bad_scenes usage_erro
                      lighting_usage_errors white_furnace output_safety durable_write signal_window glossy
                      glossy_usage_errors texels texel_usage_errors texel_unwrap texel_unwrap_errors texel_glossy
                      texel_normal_glossy
-                     texture_sets texture_sets_density texture_sets_default texture_sets_limit compress_svg)
+                     texture_sets texture_sets_density texture_sets_default texture_sets_limit compress_svg rtt rtt_usage_errors)
   add_test(NAME bake_cli_${case}
            COMMAND ${PRT_NODE} ${CMAKE_CURRENT_LIST_DIR}/bake_cli_test.mjs ${case} $<TARGET_FILE:prt-bake>
                    ${CMAKE_CURRENT_BINARY_DIR}/bake_cli_work/${case})
