@@ -7,6 +7,10 @@
 #include <vector>
 
 #include "baker/rtt/periodic_tracer.h"
+#include "baker/test_scenes.h"
+#include "baker/transfer/transfer_bake.h"
+#include "prt/asset.h"
+#include "prt/bi_scale.h"
 #include "baker/rtt/rtt_bake.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_zonal.h"
@@ -236,6 +240,78 @@ TEST(RttBake, AlbedoMapGivesChannels) {
   EXPECT_NEAR(at(r, 0, 0, 0, 0, 2)[0] / at(r, 0, 0, 0, 0, 0)[0], 0.1f / 0.9f, 1e-5f);
   albedo.rgb[0] = 1.5f;
   EXPECT_EQ(makeImagePatch(height, 0.1f, &albedo, 0.5f, &patch).code(), StatusCode::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace prt::bake
+
+namespace prt::bake {
+namespace {
+
+// Reduction: bi-scale with a flat RTT of albedo rho is plain diffuse PRT of the same bake,
+// rho times the shadowed transfer vector dotted with the lighting, up to the order-5
+// truncation of the clamped cosine that the RTT holds (the matrix M carries the visibility,
+// the RTT the cosine); whatever the tangent directions (a flat RTT is zonal about +z).
+TEST(BiScale, FlatRttIsDiffusePrtOfTheSameBake) {
+  Scene scene;
+  test::addPlane(&scene, 1.0f, 8, 0.0f, {0.5f, 0.5f, 0.5f});
+  test::addSphere(&scene, {0.0f, 0.6f, 0.0f}, 0.35f, 16, 8, {0.5f, 0.5f, 0.5f});
+  BakeOptions o;
+  o.order = 5;
+  o.samples = 2048;
+  o.seed = 3;
+  o.glossy = true;
+  o.glossyBounces = 0;
+  o.interreflection = false;
+  o.threads = 2;
+  BakeResult r;
+  ASSERT_TRUE(bakeTransfer(scene, o, &r).isOk());
+  HeightPatch flat;
+  ASSERT_TRUE(makeProceduralPatch("flat", 8, 0.7f, &flat).isOk());
+  RttSettings s;
+  s.spatial = 2;
+  s.views = 4;
+  Rtt rtt;
+  ASSERT_TRUE(bakeRtt(flat, s, {}, &rtt).isOk());
+
+  const std::size_t V = scene.positions.size();
+  std::vector<TangentFrame> frames(V), turned(V);
+  std::vector<float> uv(2 * V);
+  for (std::size_t v = 0; v < V; ++v) {
+    const Vec3 n = scene.normals[v];
+    const Vec3 helper = std::fabs(n.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    Vec3 t = cross(helper, n);
+    t = t * (1.0f / length(t));
+    frames[v] = {t, n};
+    const Vec3 b = cross(n, t);
+    turned[v] = {(t * 0.6f) + (b * 0.8f), n};  // another tangent in the same plane
+    uv[2 * v] = 0.37f * static_cast<float>(v % 7);
+    uv[2 * v + 1] = 0.11f * static_cast<float>(v % 5);
+  }
+  std::vector<Rgb> light(25);
+  for (int i = 0; i < 25; ++i) light[i] = {0.8f - 0.03f * i, 0.2f + 0.01f * i, (i % 3) * 0.1f};
+  light[0] = {1.5f, 1.2f, 0.9f};
+  const Vec3 eye{0.4f, 2.0f, 1.5f};
+  const MatrixPacking packing = matrixPackingFor(TransferKind::kShadowed, LightingModel::kDistant);
+  std::vector<float> biScale(3 * V), biScaleTurned(3 * V);
+  ASSERT_TRUE(biScaleExitRadiance(rtt, r.glossyShadowed, 5, packing, 1, scene.positions, frames, uv, eye, true, light, biScale).isOk());
+  ASSERT_TRUE(
+      biScaleExitRadiance(rtt, r.glossyShadowed, 5, packing, 1, scene.positions, turned, uv, eye, true, light, biScaleTurned).isOk());
+  double worst = 0.0, peak = 0.0, turnedWorst = 0.0;
+  for (std::size_t v = 0; v < V; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      double diffuse = 0.0;
+      for (int i = 0; i < 25; ++i) diffuse += r.shadowed[v * 25 + i] * (c == 0 ? light[i].r : (c == 1 ? light[i].g : light[i].b));
+      diffuse *= 0.7;
+      worst = std::max(worst, std::fabs(diffuse - biScale[3 * v + c]));
+      peak = std::max(peak, std::fabs(diffuse));
+      turnedWorst = std::max(turnedWorst, static_cast<double>(std::fabs(biScale[3 * v + c] - biScaleTurned[3 * v + c])));
+    }
+  }
+  std::printf("flat-RTT bi-scale vs diffuse PRT: worst %.2e of peak %.3f; tangent turned: %.1e\n", worst, peak, turnedWorst);
+  EXPECT_GT(peak, 0.1);
+  EXPECT_LT(worst, 0.02 * peak) << "beyond the clamped cosine's order-5 truncation";
+  EXPECT_LT(turnedWorst, 1e-5 * peak);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "prt/bi_scale.h"
 #include "prt/rtt.h"
 
 namespace prt {
@@ -45,6 +46,37 @@ TEST(RttViewMap, CellsCoverEqualSolidAngles) {
   }
   const double expected = static_cast<double>(kSamples) / (kViews * kViews);  // 4000, sigma about 63
   for (int c : count) EXPECT_NEAR(c, expected, 0.08 * expected);
+}
+
+// rttLookup: nearest spatial sample, bilinear across views, the centre view when view
+// dependence is off. Coefficient 0 encodes (x, y, a, b) linearly, so bilinear is exact.
+TEST(RttLookup, NearestInSpaceBilinearInView) {
+  Rtt r;
+  r.order = 1;
+  r.channels = 1;
+  r.spatial = 4;
+  r.views = 4;
+  r.coeffs.resize(r.coeffCount());
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a) r.coeffs[static_cast<std::size_t>(((y * 4 + x) * 4 + b) * 4 + a)] = 1000.0f * y + 100.0f * x + 10.0f * b + a;
+  float out = 0;
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      rttLookup(r, (2 + 0.3f) / 4, (1 + 0.9f) / 4, rttViewDirection(a, b, 4), true, &out);
+      EXPECT_NEAR(out, 1000.0f + 200.0f + 10.0f * b + a, 2e-3f) << "view " << a << "," << b;
+    }
+  rttLookup(r, 1.0f + 0.1f / 4, -1.0f + 3.5f / 4, {0, 0, 1}, false, &out);  // wraps: x 0, y 3
+  EXPECT_NEAR(out, 3000.0f + 15.0f + 1.5f, 1e-3f) << "the centre view: between samples 1 and 2 both ways";
+  // The direction halfway between samples (1, 2) and (2, 2): on the square's middle column
+  // (a = 2, halfway between their centres 1.5 and 2.5), its b wherever the map puts it.
+  float a = 0, b = 0;
+  const Vec3 mid = rttViewDirection(1, 2, 4) + rttViewDirection(2, 2, 4);
+  rttViewCoordinates(mid * (1.0f / length(mid)), 4, &a, &b);
+  rttLookup(r, 0.1f, 0.1f, mid * (1.0f / length(mid)), true, &out);
+  EXPECT_NEAR(a, 2.0f, 1e-4f);
+  EXPECT_NEAR(out, 10.0f * (b - 0.5f) + 1.5f, 2e-3f);
 }
 
 Rtt smallRtt() {
