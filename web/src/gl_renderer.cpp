@@ -363,6 +363,35 @@ Status GlRenderer::specialised(const char* name, const char* vs, const std::stri
   return Status::ok();
 }
 
+namespace {
+
+// Copies `rows` rows of kTransferTextureWidth RGBA32F texels from `buffer` into `texture`,
+// GPU to GPU; leaves texture unit 0 active.
+void copyBufferToTexture(GLuint buffer, GLuint texture, int rows) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, rows, GL_RGBA, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+
+// Binds a glossy pass's table (unit 0) and weight levels (unit 1) for the bound program `p`,
+// with the textures' layout and the weight texels a vertex: what the transferred radiance
+// and the fused step both read.
+template <typename ProgramT, typename PassT>
+void bindTableAndWeights(const ProgramT& p, const PassT& g) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, g.table);
+  glUniform1i(p.table, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, g.weights);
+  glUniform1i(p.weights, 1);
+  setTextureLayout(p.textureMask, p.textureShift);
+  glUniform1i(p.weightTexels, g.weightTexels);
+}
+
+}  // namespace
+
 void GlRenderer::glossyTable(GlossyPass& g, const GlossyPrograms& programs) {
   // Every cluster's (1 + N') matrices times the lighting, one point per texel.
   const Program& table = *programs.table;
@@ -375,36 +404,21 @@ void GlRenderer::glossyTable(GlossyPass& g, const GlossyPrograms& programs) {
   glUniform1i(table.channels, g.channels);
   glBindVertexArray(tableVao_);
   capture(g.tableBuffer, static_cast<GLsizei>(g.tableTexels));
-  // Into the table texture, GPU to GPU.
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.tableBuffer);
-  glBindTexture(GL_TEXTURE_2D, g.table);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.tableHeight, GL_RGBA, GL_FLOAT, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  copyBufferToTexture(g.tableBuffer, g.table, g.tableHeight);
 }
 
 void GlRenderer::glossyTransfer(GlossyPass& g, const GlossyPrograms& programs) {
   // Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
   const Program& t = *programs.transfer;
   glUseProgram(t.id);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, g.table);
-  glUniform1i(t.table, 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, g.weights);
-  glUniform1i(t.weights, 1);
-  setTextureLayout(t.textureMask, t.textureShift);
-  glUniform1i(t.weightTexels, g.weightTexels);
+  bindTableAndWeights(t, g);
   glBindVertexArray(g.vao);
   const GLsizeiptr channelBytes = static_cast<GLsizeiptr>(vertexCount_) * g.rowTexels * 4 * static_cast<GLsizeiptr>(sizeof(float));
   for (int c = 0; c < 3; ++c) {
     glUniform1i(t.channel, c);
     capture(g.transferBuffer, vertexCount_, c * channelBytes, channelBytes);
   }
-  glActiveTexture(GL_TEXTURE0);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.transferBuffer);
-  glBindTexture(GL_TEXTURE_2D, g.transfer);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.transferHeight, GL_RGBA, GL_FLOAT, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  copyBufferToTexture(g.transferBuffer, g.transfer, g.transferHeight);
 }
 
 namespace {
@@ -428,25 +442,14 @@ void GlRenderer::glossyFused(GlossyPass& g, const GlossyPrograms& programs, glm:
   // Per group of a cluster's vertices: their exit radiance straight from the table.
   const Program& f = *programs.fused;
   glUseProgram(f.id);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, g.table);
-  glUniform1i(f.table, 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, g.weights);
-  glUniform1i(f.weights, 1);
+  bindTableAndWeights(f, g);
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, g.vertexData);
   glUniform1i(f.vertexData, 2);
-  setTextureLayout(f.textureMask, f.textureShift);
-  glUniform1i(f.weightTexels, g.weightTexels);
   setLobeUniforms(f, eye, fresnel);
   glBindVertexArray(g.fusedVao);
   capture(g.fusedBuffer, g.groups);
-  glActiveTexture(GL_TEXTURE0);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, g.fusedBuffer);
-  glBindTexture(GL_TEXTURE_2D, g.fused);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, g.fusedHeight, GL_RGBA, GL_FLOAT, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  copyBufferToTexture(g.fusedBuffer, g.fused, g.fusedHeight);
   // Back into vertex order, one fetch a vertex.
   const Program& gather = *programs.gather;
   glUseProgram(gather.id);
