@@ -5,7 +5,7 @@ set(PRT_WEB_DIR ${CMAKE_CURRENT_LIST_DIR})
 # GL-free: decoding, packing, emitters (also the Node test module's).
 set(PRT_WEB_CORE_SOURCES
   ${PRT_WEB_DIR}/src/transfer_texture.cpp ${PRT_WEB_DIR}/src/texel_texture.cpp ${PRT_WEB_DIR}/src/texel_glossy.cpp
-  ${PRT_WEB_DIR}/src/cpca_texture.cpp ${PRT_WEB_DIR}/src/glossy_texture.cpp ${PRT_WEB_DIR}/src/glossy_fused.cpp ${PRT_WEB_DIR}/src/glossy_synthetic.cpp
+  ${PRT_WEB_DIR}/src/cpca_texture.cpp ${PRT_WEB_DIR}/src/glossy_texture.cpp ${PRT_WEB_DIR}/src/glossy_fused.cpp ${PRT_WEB_DIR}/src/rtt_texture.cpp ${PRT_WEB_DIR}/src/glossy_synthetic.cpp
   ${PRT_WEB_DIR}/src/asset_stream.cpp ${PRT_WEB_DIR}/src/emitters.cpp ${PRT_WEB_DIR}/src/analytic_lights.cpp
   ${PRT_WEB_DIR}/src/cube_faces.cpp)
 
