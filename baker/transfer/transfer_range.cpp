@@ -1,6 +1,7 @@
 #include "baker/transfer/transfer_range.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "baker/transfer/diffuse_bounce.h"
@@ -116,11 +117,14 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
     if (b.hitStart.size() != vertices + 1 || b.hitStart.front() != 0 || b.hitStart.back() != b.hits.size()) {
       return Status::error(StatusCode::kCorrupt, "hit records of block " + std::to_string(firstBlock + j) + " do not fit its vertices");
     }
+    // The one check of each record's values (a sharded bake's decoder only checks sizes): the
+    // triangle is an index, so it must be in range; a weight that is not finite would make
+    // every later bounce NaN.
     for (const Hit& h : b.hits) {
-      if (h.triangle >= triangles) {
+      if (h.triangle >= triangles || !std::isfinite(h.weight)) {
         return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(firstBlock + j) +
                                                        " names triangle " + std::to_string(h.triangle) + " of " +
-                                                       std::to_string(triangles));
+                                                       std::to_string(triangles) + " or has a weight that is not finite");
       }
     }
     if (glossy && (b.hitSample.size() != b.hits.size() ||

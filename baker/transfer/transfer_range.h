@@ -48,7 +48,8 @@ struct GlossyRangeBounce {
 // M^{bounce-1}: writes B^bounce of the range's vertices into *current (with the light the
 // glossy senders add, as bakeTransfer) and each block's energy into *blockEnergy (summed in
 // block order they are bakeTransfer's bounce energy). kInvalidArgument or kCorrupt on sizes
-// or hit records that do not fit the scene.
+// or hit records that do not fit the scene (a triangle out of range, a weight not finite, a
+// glossy hit's sample index out of range): the one check of the records a sharded bake reads.
 Status gatherBounceRange(const Scene& scene, const BakeOptions& options, int bounce, std::size_t firstBlock,
                          std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
