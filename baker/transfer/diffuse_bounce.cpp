@@ -2,12 +2,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
+namespace {
+
+// Whether every record names a triangle below `triangles` (an index into the scene) with a finite weight.
+bool recordsFit(std::span<const Hit> hits, std::size_t triangles) {
+  bool fit = true;
+  for (const Hit& h : hits) fit &= h.triangle < triangles && std::isfinite(h.weight);  // no branch per record
+  return fit;
+}
+
+}  // namespace
 
 std::vector<double> vertexAreas(const Scene& scene) {
   const std::vector<Vec3> faceNormal = faceNormals(scene);
@@ -46,6 +57,10 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
   parallelFor(job.blocks.size(), job.threads, [&](std::size_t j, unsigned) {
     const HitBlockView& rec = job.blocks[j];
     const std::size_t begin = (job.firstBlock + j) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    if (job.checkTriangles > 0 && !recordsFit(rec.hits, job.checkTriangles)) {
+      job.badBlocks[j] = 1;
+      return;
+    }
     std::vector<float> gathered(stride);
     double e = 0.0;
     for (std::size_t v = begin; v < end; ++v) {

@@ -48,6 +48,11 @@ Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, s
   return Status::ok();
 }
 
+Status badRecords(std::size_t block, std::size_t triangles) {
+  return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(block) + " names a triangle not below " +
+                                                 std::to_string(triangles) + " or has a weight that is not finite");
+}
+
 }  // namespace
 
 Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t begin, std::size_t end, DirectRange* out) {
@@ -117,15 +122,13 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
     if (b.hitStart.size() != vertices + 1 || b.hitStart.front() != 0 || b.hitStart.back() != b.hits.size()) {
       return Status::error(StatusCode::kCorrupt, "hit records of block " + std::to_string(firstBlock + j) + " do not fit its vertices");
     }
-    // The one check of each record's values (a sharded bake's decoder only checks sizes): the
-    // triangle is an index, so it must be in range; a weight that is not finite would make
-    // every later bounce NaN.
-    for (const Hit& h : b.hits) {
-      if (h.triangle >= triangles || !std::isfinite(h.weight)) {
-        return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(firstBlock + j) +
-                                                       " names triangle " + std::to_string(h.triangle) + " of " +
-                                                       std::to_string(triangles) + " or has a weight that is not finite");
-      }
+    // The records' values (a sharded bake's decoder checks only sizes): the triangle is an
+    // index, so it must be in range, and a weight that is not finite would make every later
+    // bounce NaN. A glossy bounce reads them first, so they are checked here; a diffuse
+    // one checks each block in the gather, while it is in cache.
+    if (glossy && std::any_of(b.hits.begin(), b.hits.end(),
+                              [&](const Hit& h) { return h.triangle >= triangles || !std::isfinite(h.weight); })) {
+      return badRecords(firstBlock + j, triangles);
     }
     if (glossy && (b.hitSample.size() != b.hits.size() ||
                    std::any_of(b.hitSample.begin(), b.hitSample.end(), [&](std::uint32_t k) { return k >= o.samples; }))) {
@@ -152,7 +155,16 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.current = current->data();
   job.blockEnergy = blockEnergy->data();
   job.threads = threads;
+  std::vector<std::uint8_t> badBlocks;
+  if (!glossy) {
+    badBlocks.assign(blocks.size(), 0);
+    job.checkTriangles = triangles;
+    job.badBlocks = badBlocks.data();
+  }
   *stats = gatherDiffuseBounce(job);
+  for (std::size_t j = 0; j < badBlocks.size(); ++j) {
+    if (badBlocks[j]) return badRecords(firstBlock + j, triangles);
+  }
   stats->seconds += glossyStats.seconds;
   return Status::ok();
 }

@@ -229,7 +229,7 @@ TEST(ShardFormat, HitRecordsAreCheckedByTheirReader) {
   o.threads = 1;
   const std::vector<float> previous(4 * 3 * 4, 1.0f);
   const std::vector<std::uint32_t> hitStart = {0, 1, 1, 1, 1};
-  const std::vector<std::uint32_t> pastSamples = {64};
+  const std::vector<std::uint32_t> pastSamples = {64}, aSample = {0};
   auto gather = [&](Hit hit, const std::vector<std::uint32_t>* samples) {
     const std::vector<Hit> hits = {hit};
     HitBlockView view{hitStart, hits, samples ? std::span<const std::uint32_t>(*samples) : std::span<const std::uint32_t>()};
@@ -245,6 +245,11 @@ TEST(ShardFormat, HitRecordsAreCheckedByTheirReader) {
   EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::quiet_NaN()}, nullptr).code(), StatusCode::kCorrupt);
   EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::infinity()}, nullptr).code(), StatusCode::kCorrupt);
   EXPECT_EQ(gather({1, 100, 200, 0.5f}, &pastSamples).code(), StatusCode::kCorrupt);  // sample 64 of 64
+  // A glossy bounce checks the records before its glossy gather reads them (which would
+  // otherwise refuse these empty senders' matrices with kInvalidArgument).
+  EXPECT_EQ(gather({2, 100, 200, 0.5f}, &aSample).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::quiet_NaN()}, &aSample).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, 0.5f}, &aSample).code(), StatusCode::kInvalidArgument);
 }
 
 TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
