@@ -70,8 +70,12 @@ std::array<std::uint8_t, kShardHeaderBytes> shardFileHeader(const ShardHeader& h
   return out;
 }
 
+Status payloadChecksumMismatch() {
+  return Status::error(StatusCode::kChecksumMismatch, "payload checksum mismatch: the file is damaged");
+}
+
 Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* h,
-                       std::span<const std::uint8_t>* payload) {
+                       std::span<const std::uint8_t>* payload, PayloadCheck check) {
   const std::string what = kindName(kind);
   const Status notThis = Status::error(StatusCode::kBadMagic, std::string("not a ") + what + " (its first bytes are not " +
                                                                  magicFor(kind) + ")");
@@ -114,9 +118,7 @@ Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, 
     return Status::error(StatusCode::kCorrupt, std::to_string(available - payloadBytes) + " bytes after the payload");
   }
   *payload = bytes.subspan(kShardHeaderBytes);
-  if (crc32c(*payload) != payloadCrc) {
-    return Status::error(StatusCode::kChecksumMismatch, "payload checksum mismatch: the file is damaged");
-  }
+  if (check == PayloadCheck::kNow && crc32c(*payload) != payloadCrc) return payloadChecksumMismatch();
   return Status::ok();
 }
 

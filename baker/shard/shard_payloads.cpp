@@ -119,7 +119,8 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
   }
   if (transfer) return Status::ok();
   // The records, then (glossy) their sample indices, in place: Hit's own bytes (kHitLayoutIsTheFiles).
-  const std::span<const std::uint8_t> rest = payload.subspan(payload.size() - r.remaining());
+  out->hitsOffset = payload.size() - r.remaining();
+  const std::span<const std::uint8_t> rest = payload.subspan(out->hitsOffset);
   if (reinterpret_cast<std::uintptr_t>(rest.data()) % alignof(Hit) != 0) {
     return corrupt("the hit records are not 4-byte aligned in memory (read the file mapped or from an aligned buffer)");
   }

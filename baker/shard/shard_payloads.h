@@ -27,6 +27,7 @@ struct DirectShard {
   // bounce shard reads 12 bytes a hit, ~160 hits a vertex, again every bounce.
   std::vector<HitBlockView> hitViews;
   std::vector<std::uint32_t> hitStarts;
+  std::size_t hitsOffset = 0;  // kHits: where the records begin in the payload (the blocks' records follow one another)
 };
 
 // Pass b >= 1 of vertices [begin, end): B^b there, each block's energy and, for a glossy

@@ -13,6 +13,7 @@
 #include "baker/transfer/transfer_range.h"
 #include "native/file_io.h"
 #include "native/mapped_file.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -28,9 +29,11 @@ std::string mergedLabel(std::uint32_t pass) { return "merged pass " + std::to_st
 
 // Reads and checks one file of the plan: present, this kind, this plan, pass, shard and range.
 // The file is mapped, not copied (*payload views *file): the hit records are read in place.
+// check, *payloadCrc: as decodeShardFile's (kByCaller: the caller verifies *payloadCrc).
 Status readPlanFile(const ShardContext& ctx, const std::string& path, const std::string& label, ShardFileKind kind,
                     std::uint32_t pass, std::uint32_t shard, VertexRange range, MappedFile* file,
-                    std::span<const std::uint8_t>* payload) {
+                    std::span<const std::uint8_t>* payload, PayloadCheck check = PayloadCheck::kNow,
+                    std::uint32_t* payloadCrc = nullptr) {
   const std::string named = label + " ('" + path + "')";
   if (Status s = MappedFile::open(path, kMaxShardFileBytes, file); !s.isOk()) {
     if (s.code() == StatusCode::kNotFound) {
@@ -44,9 +47,10 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
     return Status::error(s.code(), named + ": " + s.message());
   }
   ShardHeader h;
-  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload); !s.isOk()) {
+  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload, check); !s.isOk()) {
     return Status::error(s.code(), named + " is corrupt: " + s.message());
   }
+  if (payloadCrc) *payloadCrc = h.payloadCrc;
   if (h.planId != ctx.plan->id) {
     char text[120];
     std::snprintf(text, sizeof text, " belongs to another plan (plan id %08x, this plan is %08x)", h.planId, ctx.plan->id);
@@ -103,14 +107,24 @@ void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_
   }
 }
 
+// A direct shard's payload whose checksum its reader verifies (PayloadCheck::kByCaller).
+struct DeferredChecksum {
+  std::span<const std::uint8_t> payload;
+  std::uint32_t expected = 0;
+};
+
 // kHits: the bounce shards need the hit records (out->hitViews, views into *file); the
-// merges (kTransfer) only the transfer.
+// merges (kTransfer) only the transfer. With `deferred` (kHits only) the payload's checksum
+// is left to the caller (verifyDeferred), which reads every byte of the records anyway.
 Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShardPart part, MappedFile* file,
-                       DirectShard* out) {
+                       DirectShard* out, DeferredChecksum* deferred = nullptr) {
   const VertexRange range = ctx.plan->shards[shard];
   std::span<const std::uint8_t> payload;
+  std::uint32_t expected = 0;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
-                                   shard, range, file, &payload));
+                                   shard, range, file, &payload, deferred ? PayloadCheck::kByCaller : PayloadCheck::kNow,
+                                   &expected));
+  if (deferred) *deferred = {payload, expected};
   if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), glossyEntries(ctx), part, out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
@@ -120,6 +134,28 @@ Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShard
                                                    "') does not match the plan's interreflection or glossy setting");
   }
   return Status::ok();
+}
+
+Status damagedDirectShard(const ShardContext& ctx, std::uint32_t shard) {
+  const Status s = payloadChecksumMismatch();
+  return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
+}
+
+// The deferred checksum of direct shard `shard` (read with kHits): the bytes before its
+// records, each block's records from their checksums as the gather took them (`hitCrc`),
+// the bytes after (a glossy shard's sample indices). A mismatch names the file, as an
+// immediate check would.
+Status verifyDeferred(const ShardContext& ctx, std::uint32_t shard, const DirectShard& direct,
+                      const DeferredChecksum& deferred, std::span<const std::uint32_t> hitCrc) {
+  std::uint32_t crc = crc32c(deferred.payload.first(direct.hitsOffset));
+  std::size_t at = direct.hitsOffset;
+  for (std::size_t j = 0; j < direct.hitViews.size(); ++j) {
+    const std::size_t bytes = direct.hitViews[j].hits.size_bytes();
+    crc = crc32cCombine(crc, hitCrc[j], bytes);
+    at += bytes;
+  }
+  crc = crc32c(deferred.payload.subspan(at), crc);
+  return crc == deferred.expected ? Status::ok() : damagedDirectShard(ctx, shard);
 }
 
 // *out views *file.
@@ -255,12 +291,21 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
   PRT_RETURN_IF_ERROR(previousBounce(ctx, pass, previous, &previousStorage, &previousB));
   MappedFile directFile;
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, DirectShardPart::kHits, &directFile, &direct));
+  DeferredChecksum deferred;
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, DirectShardPart::kHits, &directFile, &direct, &deferred));
   BounceShard out;
   const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
-  PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
-                                        direct.hitViews, previousB, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
-                                        &out.bounce, &out.blockEnergy, stats));
+  std::vector<std::uint32_t> hitCrc;
+  const Status gathered = gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
+                                            direct.hitViews, previousB, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
+                                            &out.bounce, &out.blockEnergy, &hitCrc, stats);
+  if (!gathered.isOk()) {
+    // Records refused before their checksum was verified: a damaged file says so by name.
+    if (crc32c(deferred.payload) != deferred.expected) return damagedDirectShard(ctx, shard);
+    return gathered;
+  }
+  // Nothing computed from the records is written before their file's checksum is verified.
+  PRT_RETURN_IF_ERROR(verifyDeferred(ctx, shard, direct, deferred, hitCrc));
   PayloadParts payload;
   bounceShardParts(out, &payload);
   return writePlanFile(shardPath(ctx.planPath, pass, shard), h, payload);

@@ -6,6 +6,7 @@
 
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -16,6 +17,11 @@ bool recordsFit(std::span<const Hit> hits, std::size_t triangles) {
   bool fit = true;
   for (const Hit& h : hits) fit &= h.triangle < triangles && std::isfinite(h.weight);  // no branch per record
   return fit;
+}
+
+// The records' bytes as a file holds them (Hit is the file's layout: baker/shard).
+std::span<const std::uint8_t> recordBytes(std::span<const Hit> hits) {
+  return {reinterpret_cast<const std::uint8_t*>(hits.data()), hits.size_bytes()};
 }
 
 }  // namespace
@@ -57,9 +63,12 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
   parallelFor(job.blocks.size(), job.threads, [&](std::size_t j, unsigned) {
     const HitBlockView& rec = job.blocks[j];
     const std::size_t begin = (job.firstBlock + j) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
-    if (job.checkTriangles > 0 && !recordsFit(rec.hits, job.checkTriangles)) {
-      job.badBlocks[j] = 1;
-      return;
+    if (job.checkTriangles > 0) {
+      if (!recordsFit(rec.hits, job.checkTriangles)) {
+        job.badBlocks[j] = 1;
+        return;
+      }
+      if (job.hitCrc) job.hitCrc[j] = crc32c(recordBytes(rec.hits));
     }
     std::vector<float> gathered(stride);
     double e = 0.0;

@@ -43,6 +43,10 @@ struct DiffuseBounceJob {
   // badBlocks. 0: the bake's own records, not checked.
   std::size_t checkTriangles = 0;
   std::uint8_t* badBlocks = nullptr;  // with checkTriangles: one per block, set to 1 for a block that failed
+  // With checkTriangles, optional: one per block, the CRC-32C of its records' bytes, taken
+  // as they are checked, so that the caller verifies their file's checksum from the pieces
+  // (crc32cCombine) without another pass over them.
+  std::uint32_t* hitCrc = nullptr;
 };
 
 // Gathers bounce b for the job's blocks: Bb_ci(x) = rho_c(x) sum_hits w Bb-1_ci(h) (+ fromGlossy).

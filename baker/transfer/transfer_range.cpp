@@ -9,6 +9,7 @@
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/parallel_for.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -46,6 +47,10 @@ Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.diffuseFromGlossy = fromGlossy->data();
   *stats = gatherGlossyBounce(job);
   return Status::ok();
+}
+
+std::span<const std::uint8_t> recordBytes(std::span<const Hit> hits) {
+  return {reinterpret_cast<const std::uint8_t*>(hits.data()), hits.size_bytes()};
 }
 
 Status badRecords(std::size_t block, std::size_t triangles) {
@@ -104,7 +109,7 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
 Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
                          std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
-                         PassStats* stats) {
+                         std::vector<std::uint32_t>* hitCrc, PassStats* stats) {
   const std::size_t vertexCount = scene.positions.size();
   const std::size_t stride = 3 * static_cast<std::size_t>(shCoeffCount(o.order));
   const std::size_t begin = firstBlock * kBlockVertices;
@@ -116,6 +121,7 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
                                                            " does not fit the scene");
   }
   const std::size_t triangles = scene.indices.size() / 3;
+  if (hitCrc) hitCrc->assign(blocks.size(), 0);
   for (std::size_t j = 0; j < blocks.size(); ++j) {
     const HitBlockView& b = blocks[j];
     const std::size_t vertices = std::min(kBlockVertices, end - (begin + j * kBlockVertices));
@@ -130,6 +136,7 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
                               [&](const Hit& h) { return h.triangle >= triangles || !std::isfinite(h.weight); })) {
       return badRecords(firstBlock + j, triangles);
     }
+    if (glossy && hitCrc) (*hitCrc)[j] = crc32c(recordBytes(b.hits));
     if (glossy && (b.hitSample.size() != b.hits.size() ||
                    std::any_of(b.hitSample.begin(), b.hitSample.end(), [&](std::uint32_t k) { return k >= o.samples; }))) {
       return Status::error(StatusCode::kCorrupt, "the hits' sample indices of block " + std::to_string(firstBlock + j) +
@@ -160,6 +167,7 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
     badBlocks.assign(blocks.size(), 0);
     job.checkTriangles = triangles;
     job.badBlocks = badBlocks.data();
+    job.hitCrc = hitCrc ? hitCrc->data() : nullptr;
   }
   *stats = gatherDiffuseBounce(job);
   for (std::size_t j = 0; j < badBlocks.size(); ++j) {

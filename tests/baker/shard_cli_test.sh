@@ -108,6 +108,20 @@ case_missing() {
 
 case_corrupt() {
   baked_plan
+  # A flipped byte in the hit records (near the end), then in the transfer before them: a bounce
+  # shard verifies the direct shard's checksum from the blocks' checksums it took while reading
+  # the records, and refuses it by name before writing anything.
+  cp room.plan.pass0.shard1 saved.shard
+  flip_byte room.plan.pass0.shard1 $(($(stat -c %s room.plan.pass0.shard1) - 100))
+  expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
+    bash -c "rm room.plan.pass1.shard1 && '$bake' bake-shard --plan room.plan --shard 1 --pass 1"
+  [[ ! -e room.plan.pass1.shard1 ]] || fail "a bounce shard was written from damaged hit records"
+  cp saved.shard room.plan.pass0.shard1
+  run bake-shard --plan room.plan --shard 1 --pass 1 --quiet
+  flip_byte room.plan.pass0.shard1 1000
+  expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
+    "$bake" bake-shard --plan room.plan --shard 1 --pass 2
+  cp saved.shard room.plan.pass0.shard1
   # One flipped byte in the hit records of shard 1's direct pass.
   printf '\xff' | dd of=room.plan.pass0.shard1 bs=1 seek=100000 conv=notrunc status=none
   expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \

@@ -237,8 +237,14 @@ TEST(ShardFormat, HitRecordsAreCheckedByTheirReader) {
     std::vector<double> energy;
     PassStats stats;
     const GlossyRangeBounce glossy{{}, &matrices};
-    return gatherBounceRange(scene, o, 1, 0, std::span(&view, 1), previous, samples ? &glossy : nullptr, &current, &energy,
-                             &stats);
+    std::vector<std::uint32_t> crc;
+    const Status s = gatherBounceRange(scene, o, 1, 0, std::span(&view, 1), previous, samples ? &glossy : nullptr, &current,
+                                       &energy, &crc, &stats);
+    // Each block's records' checksum, taken as they were read (the caller's deferred check).
+    if (s.isOk()) {
+      EXPECT_EQ(crc, std::vector<std::uint32_t>{crc32c({reinterpret_cast<const std::uint8_t*>(hits.data()), 12})});
+    }
+    return s;
   };
   EXPECT_TRUE(gather({1, 100, 200, 0.5f}, nullptr).isOk());
   EXPECT_EQ(gather({2, 100, 200, 0.5f}, nullptr).code(), StatusCode::kCorrupt);  // triangle 2 of 2
