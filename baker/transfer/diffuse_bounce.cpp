@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
@@ -10,21 +9,6 @@
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
-namespace {
-
-// Whether every record names a triangle below `triangles` (an index into the scene) with a finite weight.
-bool recordsFit(std::span<const Hit> hits, std::size_t triangles) {
-  bool fit = true;
-  for (const Hit& h : hits) fit &= h.triangle < triangles && std::isfinite(h.weight);  // no branch per record
-  return fit;
-}
-
-// The records' bytes as a file holds them (Hit is the file's layout: baker/shard).
-std::span<const std::uint8_t> recordBytes(std::span<const Hit> hits) {
-  return {reinterpret_cast<const std::uint8_t*>(hits.data()), hits.size_bytes()};
-}
-
-}  // namespace
 
 std::vector<double> vertexAreas(const Scene& scene) {
   const std::vector<Vec3> faceNormal = faceNormals(scene);
@@ -64,11 +48,11 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
     const HitBlockView& rec = job.blocks[j];
     const std::size_t begin = (job.firstBlock + j) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
     if (job.checkTriangles > 0) {
-      if (!recordsFit(rec.hits, job.checkTriangles)) {
+      if (!hitRecordsFit(rec.hits, job.checkTriangles)) {
         job.badBlocks[j] = 1;
         return;
       }
-      if (job.hitCrc) job.hitCrc[j] = crc32c(recordBytes(rec.hits));
+      if (job.hitCrc) job.hitCrc[j] = crc32c(hitRecordBytes(rec.hits));
     }
     std::vector<float> gathered(stride);
     double e = 0.0;

@@ -1,7 +1,6 @@
 #include "baker/transfer/transfer_range.h"
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 
 #include "baker/transfer/diffuse_bounce.h"
@@ -47,10 +46,6 @@ Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.diffuseFromGlossy = fromGlossy->data();
   *stats = gatherGlossyBounce(job);
   return Status::ok();
-}
-
-std::span<const std::uint8_t> recordBytes(std::span<const Hit> hits) {
-  return {reinterpret_cast<const std::uint8_t*>(hits.data()), hits.size_bytes()};
 }
 
 Status badRecords(std::size_t block, std::size_t triangles) {
@@ -132,11 +127,8 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
     // index, so it must be in range, and a weight that is not finite would make every later
     // bounce NaN. A glossy bounce reads them first, so they are checked here; a diffuse
     // one checks each block in the gather, while it is in cache.
-    if (glossy && std::any_of(b.hits.begin(), b.hits.end(),
-                              [&](const Hit& h) { return h.triangle >= triangles || !std::isfinite(h.weight); })) {
-      return badRecords(firstBlock + j, triangles);
-    }
-    if (glossy && hitCrc) (*hitCrc)[j] = crc32c(recordBytes(b.hits));
+    if (glossy && !hitRecordsFit(b.hits, triangles)) return badRecords(firstBlock + j, triangles);
+    if (glossy && hitCrc) (*hitCrc)[j] = crc32c(hitRecordBytes(b.hits));
     if (glossy && (b.hitSample.size() != b.hits.size() ||
                    std::any_of(b.hitSample.begin(), b.hitSample.end(), [&](std::uint32_t k) { return k >= o.samples; }))) {
       return Status::error(StatusCode::kCorrupt, "the hits' sample indices of block " + std::to_string(firstBlock + j) +
