@@ -203,6 +203,12 @@ Status checkOutputPath(const std::string& output, std::span<const std::string> i
 
 Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
                            std::span<const std::string> inputs) {
+  const std::span<const std::uint8_t> whole[] = {bytes};
+  return writePartsAtomically(path, whole, inputs);
+}
+
+Status writePartsAtomically(const std::string& path, std::span<const std::span<const std::uint8_t>> parts,
+                            std::span<const std::string> inputs) {
   std::string target;
   if (Status s = resolveOutput(path, inputs, &target); !s.isOk()) return s;
   const std::string pattern = target + ".prt-partial-XXXXXX";
@@ -228,12 +234,14 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
   };
 
   if (::fchmod(fd, 0644) != 0) return abandon("cannot set the temporary file's mode");
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return abandon("write failed");
-    done += static_cast<std::size_t>(n);
+  for (const std::span<const std::uint8_t> bytes : parts) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return abandon("write failed");
+      done += static_cast<std::size_t>(n);
+    }
   }
   if (::fsync(fd) != 0) return abandon("flush failed");
   const int closed = ::close(fd);

@@ -39,4 +39,10 @@ Status checkOutputPath(const std::string& output, std::span<const std::string> i
 Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
                            std::span<const std::string> inputs = {});
 
+// writeFileAtomically of a file given as pieces written one after another (why: a large
+// file made of arrays that live elsewhere is written without first copying them into one
+// buffer, a copy that cost as much as the write for a sharded bake's 100 MB shard files).
+Status writePartsAtomically(const std::string& path, std::span<const std::span<const std::uint8_t>> parts,
+                            std::span<const std::string> inputs = {});
+
 }  // namespace prt

@@ -33,34 +33,49 @@ const char* kindName(ShardFileKind kind) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeShardFile(const ShardHeader& h, std::span<const std::uint8_t> payload) {
-  std::vector<std::uint8_t> out;
-  out.reserve(kShardHeaderBytes + payload.size());
-  out.resize(kShardHeaderBytes);
-  out.insert(out.end(), payload.begin(), payload.end());
-  sealShardFile(h, &out);
+  const std::span<const std::uint8_t> whole[] = {payload};
+  const std::array<std::uint8_t, kShardHeaderBytes> header = shardFileHeader(h, whole);
+  std::vector<std::uint8_t> out(kShardHeaderBytes + payload.size());
+  std::copy(header.begin(), header.end(), out.begin());
+  std::copy(payload.begin(), payload.end(), out.begin() + kShardHeaderBytes);
   return out;
 }
 
-void sealShardFile(const ShardHeader& h, std::vector<std::uint8_t>* file) {
-  const std::span<const std::uint8_t> payload = std::span<const std::uint8_t>(*file).subspan(kShardHeaderBytes);
-  std::vector<std::uint8_t> header;
-  header.reserve(kShardHeaderBytes);
-  ByteWriter w(&header);
-  w.raw(magicFor(h.kind), 8);
-  w.u32(kShardFormatVersion);
-  w.u32(h.planId);
-  w.u32(h.pass);
-  w.u32(h.shard);
-  w.u64(h.vertexBegin);
-  w.u64(h.vertexEnd);
-  w.u64(payload.size());
-  w.u32(crc32c(payload));
-  w.u32(crc32c(header));  // bytes 0..51
-  std::copy(header.begin(), header.end(), file->begin());
+std::array<std::uint8_t, kShardHeaderBytes> shardFileHeader(const ShardHeader& h,
+                                                            std::span<const std::span<const std::uint8_t>> payloadParts) {
+  std::uint64_t size = 0;
+  std::uint32_t crc = 0;
+  for (const std::span<const std::uint8_t> part : payloadParts) {
+    size += part.size();
+    crc = crc32c(part, crc);
+  }
+  std::array<std::uint8_t, kShardHeaderBytes> out{};
+  std::size_t at = 0;
+  auto put = [&](const void* v, std::size_t n) {  // little-endian: this host's (byte_io.h)
+    std::memcpy(out.data() + at, v, n);
+    at += n;
+  };
+  const std::uint32_t version = kShardFormatVersion;
+  put(magicFor(h.kind), 8);
+  put(&version, 4);
+  put(&h.planId, 4);
+  put(&h.pass, 4);
+  put(&h.shard, 4);
+  put(&h.vertexBegin, 8);
+  put(&h.vertexEnd, 8);
+  put(&size, 8);
+  put(&crc, 4);
+  const std::uint32_t headerCrc = crc32c(std::span<const std::uint8_t>(out).first(at));  // bytes 0..51
+  put(&headerCrc, 4);
+  return out;
+}
+
+Status payloadChecksumMismatch() {
+  return Status::error(StatusCode::kChecksumMismatch, "payload checksum mismatch: the file is damaged");
 }
 
 Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, ShardHeader* h,
-                       std::span<const std::uint8_t>* payload) {
+                       std::span<const std::uint8_t>* payload, PayloadCheck check) {
   const std::string what = kindName(kind);
   const Status notThis = Status::error(StatusCode::kBadMagic, std::string("not a ") + what + " (its first bytes are not " +
                                                                  magicFor(kind) + ")");
@@ -103,9 +118,7 @@ Status decodeShardFile(std::span<const std::uint8_t> bytes, ShardFileKind kind, 
     return Status::error(StatusCode::kCorrupt, std::to_string(available - payloadBytes) + " bytes after the payload");
   }
   *payload = bytes.subspan(kShardHeaderBytes);
-  if (crc32c(*payload) != payloadCrc) {
-    return Status::error(StatusCode::kChecksumMismatch, "payload checksum mismatch: the file is damaged");
-  }
+  if (check == PayloadCheck::kNow && crc32c(*payload) != payloadCrc) return payloadChecksumMismatch();
   return Status::ok();
 }
 

@@ -1,6 +1,6 @@
 #include "baker/shard/shard_payloads.h"
 
-#include <cmath>
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -22,53 +22,83 @@ constexpr bool kHitLayoutIsTheFiles = sizeof(Hit) == 12 && offsetof(Hit, triangl
                                       offsetof(Hit, v) == 6 && offsetof(Hit, weight) == 8;
 static_assert(kHitLayoutIsTheFiles, "the shard file's hit records are copied as Hit structs");
 
-}  // namespace
+// An array's bytes, as the file stores them (little-endian: this host's, byte_io.h).
+template <typename T>
+std::span<const std::uint8_t> bytesOf(std::span<const T> v) {
+  return {reinterpret_cast<const std::uint8_t*>(v.data()), v.size_bytes()};
+}
+template <typename T>
+std::span<const std::uint8_t> bytesOf(const std::vector<T>& v) {
+  return bytesOf(std::span<const T>(v));
+}
 
-std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
+std::vector<std::uint8_t> joined(const PayloadParts& p) {
+  std::size_t size = 0;
+  for (const std::span<const std::uint8_t> part : p.parts) size += part.size();
   std::vector<std::uint8_t> out;
-  appendDirectShard(s, &out);
+  out.reserve(size);
+  for (const std::span<const std::uint8_t> part : p.parts) out.insert(out.end(), part.begin(), part.end());
   return out;
 }
 
-void appendDirectShard(const DirectShard& s, std::vector<std::uint8_t>* out) {
-  std::size_t hits = 0, vertices = 0;
-  for (const HitBlock& b : s.blocks) {
-    hits += b.hits.size();
-    vertices += b.hitStart.size() - 1;
-  }
-  out->reserve(out->size() + 4 + (s.unshadowed.size() + s.shadowed.size() + s.glossyShadowed.size()) * 4 + 8 +
-               (s.hasHits ? vertices * 4 + hits * (s.glossy ? 16 : 12) : 0));
-  ByteWriter w(out);
+}  // namespace
+
+void directShardParts(const DirectShard& s, PayloadParts* out) {
+  std::size_t vertices = 0;
+  for (const HitBlock& b : s.blocks) vertices += b.hitStart.size() - 1;
+  // The small fields first, all of them, so no part's view into scratch moves: the flags,
+  // the count outside the light, each vertex's hit count.
+  out->scratch.clear();
+  out->scratch.reserve(4 + 8 + (s.hasHits ? vertices * 4 : 0));
+  ByteWriter w(&out->scratch);
   w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
-  w.floats(s.unshadowed);
-  w.floats(s.shadowed);
   w.u64(s.verticesOutsideLight);
-  if (s.glossy) w.floats(s.glossyShadowed);
-  if (!s.hasHits) return;
-  for (const HitBlock& b : s.blocks) {
-    for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
+  if (s.hasHits) {
+    for (const HitBlock& b : s.blocks) {
+      for (std::size_t v = 0; v + 1 < b.hitStart.size(); ++v) w.u32(b.hitStart[v + 1] - b.hitStart[v]);
+    }
   }
-  for (const HitBlock& b : s.blocks) w.raw(b.hits.data(), b.hits.size() * sizeof(Hit));
+  const std::span<const std::uint8_t> scratch = out->scratch;
+  std::vector<std::span<const std::uint8_t>>& p = out->parts;
+  p = {scratch.first(4), bytesOf(s.unshadowed), bytesOf(s.shadowed), scratch.subspan(4, 8)};
+  if (s.glossy) p.push_back(bytesOf(s.glossyShadowed));
+  if (!s.hasHits) return;
+  p.push_back(scratch.subspan(12));
+  for (const HitBlock& b : s.blocks) p.push_back(bytesOf(b.hits));
   if (s.glossy) {
-    for (const HitBlock& b : s.blocks) w.raw(b.hitSample.data(), b.hitSample.size() * sizeof(std::uint32_t));
+    for (const HitBlock& b : s.blocks) p.push_back(bytesOf(b.hitSample));
   }
 }
 
-Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samplesPlanned, bool readHits, DirectShard* out) {
+std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
+  PayloadParts parts;
+  directShardParts(s, &parts);
+  return joined(parts);
+}
+
+Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::size_t glossyEntries,
+                         DirectShardPart part, DirectShard* out) {
   ByteReader r(payload);
   std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
+  const std::uint64_t glossyFloats = static_cast<std::uint64_t>(count) * glossyEntries;
   if (!r.u32(&flags)) return corrupt("the flags are cut short");
   if ((flags & ~(kHasHits | kGlossy)) != 0) return corrupt("unknown flags " + std::to_string(flags));
-  if (!r.floats(floats, &out->unshadowed) || !r.floats(floats, &out->shadowed) || !r.u64(&out->verticesOutsideLight)) {
-    return corrupt("the direct pass's transfer (" + std::to_string(floats) + " floats each) is cut short");
-  }
   out->hasHits = (flags & kHasHits) != 0;
   out->glossy = (flags & kGlossy) != 0;
+  out->unshadowed.clear();
+  out->shadowed.clear();
   out->glossyShadowed.clear();
-  if (out->glossy && !r.floats(static_cast<std::uint64_t>(count) * glossyEntries, &out->glossyShadowed)) {
-    return corrupt("the glossy shadowed matrices (" + std::to_string(count * glossyEntries) + " floats) are cut short");
+  // The bounce shards skip the transfer (viewed, not copied: its size is still checked).
+  std::span<const float> skipped;
+  const bool transfer = part == DirectShardPart::kTransfer;
+  if (!(transfer ? r.floats(floats, &out->unshadowed) && r.floats(floats, &out->shadowed)
+                 : r.floatView(floats, &skipped) && r.floatView(floats, &skipped)) ||
+      !r.u64(&out->verticesOutsideLight)) {
+    return corrupt("the direct pass's transfer (" + std::to_string(floats) + " floats each) is cut short");
+  }
+  if (out->glossy && !(transfer ? r.floats(glossyFloats, &out->glossyShadowed) : r.floatView(glossyFloats, &skipped))) {
+    return corrupt("the glossy shadowed matrices (" + std::to_string(glossyFloats) + " floats) are cut short");
   }
   out->blocks.clear();
   out->hitViews.clear();
@@ -87,9 +117,10 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
     return corrupt("the hit counts add up to " + std::to_string(total) + " hits, the file holds " +
                    std::to_string(r.remaining()) + " bytes of them (" + std::to_string(hitBytes) + " a hit)");
   }
-  if (!readHits) return Status::ok();
+  if (transfer) return Status::ok();
   // The records, then (glossy) their sample indices, in place: Hit's own bytes (kHitLayoutIsTheFiles).
-  const std::span<const std::uint8_t> rest = payload.subspan(payload.size() - r.remaining());
+  out->hitsOffset = payload.size() - r.remaining();
+  const std::span<const std::uint8_t> rest = payload.subspan(out->hitsOffset);
   if (reinterpret_cast<std::uintptr_t>(rest.data()) % alignof(Hit) != 0) {
     return corrupt("the hit records are not 4-byte aligned in memory (read the file mapped or from an aligned buffer)");
   }
@@ -98,17 +129,7 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
       out->glossy ? std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(rest.data() + total * 12),
                                                    static_cast<std::size_t>(total))
                   : std::span<const std::uint32_t>();
-  for (const Hit& h : hits) {
-    if (h.triangle >= triangles || !std::isfinite(h.weight)) {
-      return corrupt("a hit record names triangle " + std::to_string(h.triangle) + " of " + std::to_string(triangles) +
-                     " or has a weight that is not finite");
-    }
-  }
-  for (std::uint32_t k : samples) {
-    if (k >= samplesPlanned) return corrupt("a hit names sample " + std::to_string(k) + " of " + std::to_string(samplesPlanned));
-  }
   const std::size_t blocks = blocksOf(count);
-  out->hitStarts.clear();
   out->hitStarts.reserve(count + blocks);
   out->hitViews.resize(blocks);
   std::uint64_t first = 0;  // the block's first hit
@@ -131,18 +152,15 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
   return Status::ok();
 }
 
-std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
-  std::vector<std::uint8_t> out;
-  appendBounceShard(s, &out);
-  return out;
+void bounceShardParts(const BounceShard& s, PayloadParts* out) {
+  out->scratch.clear();
+  out->parts = {bytesOf(s.bounce), bytesOf(s.blockEnergy), bytesOf(s.matrices)};
 }
 
-void appendBounceShard(const BounceShard& s, std::vector<std::uint8_t>* out) {
-  out->reserve(out->size() + (s.bounce.size() + s.matrices.size()) * 4 + s.blockEnergy.size() * 8);
-  ByteWriter w(out);
-  w.floats(s.bounce);
-  w.doubles(s.blockEnergy);
-  w.floats(s.matrices);
+std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s) {
+  PayloadParts parts;
+  bounceShardParts(s, &parts);
+  return joined(parts);
 }
 
 Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
@@ -160,27 +178,27 @@ Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t coun
   return Status::ok();
 }
 
-std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
-  std::vector<std::uint8_t> out;
-  appendMergedPass(m, &out);
-  return out;
-}
-
-void appendMergedPass(const MergedPass& m, std::vector<std::uint8_t>* out) {
-  std::size_t floats = 0;
-  for (std::span<const float> part : m.bounce) floats += part.size();
-  out->reserve(out->size() + 8 + m.energies.size() * 8 + 16 + (floats + m.senderMatrices.size()) * 4);
-  ByteWriter w(out);
+void mergedPassParts(const MergedPass& m, PayloadParts* out) {
+  out->scratch.clear();
+  out->scratch.reserve(8 + m.energies.size() * 8 + 8);
+  ByteWriter w(&out->scratch);
   w.u32(m.final ? 1 : 0);
   w.u32(static_cast<std::uint32_t>(m.energies.size()));
   w.doubles(m.energies);
-  w.u64(floats);
-  for (std::span<const float> part : m.bounce) w.floats(part);
+  w.u64(m.bounce.size());
+  const std::size_t head = out->scratch.size();
   w.u64(m.senderMatrices.size());
-  w.floats(m.senderMatrices);
+  const std::span<const std::uint8_t> scratch = out->scratch;
+  out->parts = {scratch.first(head), bytesOf(m.bounce), scratch.subspan(head), bytesOf(m.senderMatrices)};
 }
 
-Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
+std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m) {
+  PayloadParts parts;
+  mergedPassParts(m, &parts);
+  return joined(parts);
+}
+
+Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::uint64_t bounceFloats,
                         std::uint64_t senderFloats, MergedPassView* out) {
   ByteReader r(payload);
   std::uint32_t final = 0, energies = 0;
@@ -189,9 +207,8 @@ Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pas
       !r.doubles(energies, &out->energies) || !r.u64(&floats)) {
     return corrupt("the pass's flags or energies are cut short or do not belong to pass " + std::to_string(pass));
   }
-  const std::uint64_t expected = static_cast<std::uint64_t>(vertices) * 3 * n2;
-  if (floats != expected && floats != 0) {
-    return corrupt("holds " + std::to_string(floats) + " floats per array, not " + std::to_string(expected));
+  if (floats != bounceFloats) {
+    return corrupt("holds " + std::to_string(floats) + " floats of bounce transfer, not " + std::to_string(bounceFloats));
   }
   if (!r.floatView(floats, &out->bounce)) return corrupt("the bounce transfer is cut short");
   std::uint64_t senders = 0;

@@ -22,11 +22,12 @@ struct DirectShard {
   bool glossy = false;                      // --glossy: matrices, and each hit's sample index
   std::vector<float> glossyShadowed;        // glossy: count x the packing's entries
   std::vector<HitBlock> blocks;             // encoding: ceil(count / 64) when hasHits (hitSample filled when glossy)
-  // Decoding with readHits: ceil(count / 64) views of the records in place, into the decoded
+  // Decoding DirectShardPart::kHits: ceil(count / 64) views of the records in place, into the decoded
   // payload (which must outlive them), their hitStart in `hitStarts`. Nothing is copied: a
   // bounce shard reads 12 bytes a hit, ~160 hits a vertex, again every bounce.
   std::vector<HitBlockView> hitViews;
   std::vector<std::uint32_t> hitStarts;
+  std::size_t hitsOffset = 0;  // kHits: where the records begin in the payload (the blocks' records follow one another)
 };
 
 // Pass b >= 1 of vertices [begin, end): B^b there, each block's energy and, for a glossy
@@ -45,16 +46,16 @@ struct BounceShardView {
   std::span<const float> matrices;
 };
 
-// Pass b merged over every vertex: B^b, the energies of bounces 0..b, whether the series
-// stops here (bakeTransfer's rule), and the glossy senders' matrices the next glossy bounce
-// reads. No running sum: the asset merge sums B^0 + B^1 + ... from the shards (why: every
-// merge and bounce shard would read and write it again, and only the asset needs it).
+// Pass b merged: the energies of bounces 0..b, whether the series stops here (bakeTransfer's
+// rule), B^0 after pass 0 (computed by the merge), and the glossy senders' matrices the next
+// glossy bounce reads. A bounce's B^b is not copied here: the next bounce's shards read it
+// from this pass's shards (why: writing it again cost 40% of a merge, and every shard of the
+// next pass checksummed it again). No running sum either: the asset merge sums
+// B^0 + B^1 + ... from the shards (only the asset needs it).
 struct MergedPass {
   bool final = false;
   std::vector<double> energies;  // b + 1
-  // vertices x 3 n2 in parts, stored one after another (the shards' ranges in order, viewed
-  // where they lie: no copy); none without interreflection.
-  std::vector<std::span<const float>> bounce;
+  std::span<const float> bounce;  // pass 0 with interreflection: B^0, vertices x 3 n2; else empty
   // M^b at the glossy senders, in sender order, when bounce b+1 is glossy: for b = 0 the
   // shadowed matrices (packed), for b >= 1 [sender][channel][dense n2 x n2]; else empty.
   std::vector<float> senderMatrices;
@@ -68,31 +69,44 @@ struct MergedPassView {
   std::span<const float> senderMatrices;
 };
 
-// encodeX: the payload's bytes. appendX: the same appended to *out, its size reserved first
-// (no regrowth): the writers put the container's header before it in the same buffer.
-std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s);
-void appendDirectShard(const DirectShard& s, std::vector<std::uint8_t>* out);
-// `count` vertices at order^2 = n2 coefficients; hit triangles below `triangles`; a glossy
-// shard's matrices `glossyEntries` floats a vertex and its hits' sample indices below `samples`.
-// With `readHits` the hit records are checked one by one and viewed in place (out->hitViews:
-// `payload` must outlive them, and be 4-byte aligned, as a mapped file is); without it their
-// sizes are checked but not the records (out->hitViews stays empty): for readers that use
-// the transfer only.
-Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::uint64_t triangles,
-                         std::size_t glossyEntries, std::uint64_t samples, bool readHits, DirectShard* out);
+// A payload as the pieces it is written from, in order: its small fields in `scratch`, its
+// arrays viewed where they live (why: a direct shard's ~100 MB of hit records and a bounce
+// shard's B^b were copied into one buffer only to be written out). The parts view `scratch`
+// and the encoded struct, which must outlive them; a PayloadParts is not copied.
+struct PayloadParts {
+  std::vector<std::uint8_t> scratch;
+  std::vector<std::span<const std::uint8_t>> parts;
+};
 
+// xParts: the payload's pieces (the one definition of each layout). encodeX: those pieces
+// in one buffer (for tests and small files).
+void directShardParts(const DirectShard& s, PayloadParts* out);
+std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s);
+// What a reader of a direct shard takes from it; both check every size against the plan's.
+enum class DirectShardPart : std::uint8_t {
+  kTransfer,  // the merges: the transfer and glossy matrices copied out, the hit records' sizes checked only
+  kHits,      // the bounce shards: the hit records viewed in place (out->hitViews), the transfer not copied
+};
+// `count` vertices at order^2 = n2 coefficients; a glossy shard's matrices `glossyEntries`
+// floats a vertex. kHits: `payload` must outlive out->hitViews and be 4-byte aligned (as a
+// mapped file is). The records' values (triangle, weight, sample index) are not checked here
+// but by gatherBounceRange, their one reader, in its single pass over them (why: checking them
+// twice cost a bounce shard two passes over ~100 MB of records).
+Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::size_t glossyEntries,
+                         DirectShardPart part, DirectShard* out);
+
+void bounceShardParts(const BounceShard& s, PayloadParts* out);
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s);
-void appendBounceShard(const BounceShard& s, std::vector<std::uint8_t>* out);
 // `matrices`: a glossy bounce, whose M^b must follow (count x 3 n2^2 floats); else none may.
 // `payload` must be 4-byte aligned (a vector's or a mapped file's is).
 Status decodeBounceShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, bool matrices,
                          BounceShardView* out);
 
+void mergedPassParts(const MergedPass& m, PayloadParts* out);
 std::vector<std::uint8_t> encodeMergedPass(const MergedPass& m);
-void appendMergedPass(const MergedPass& m, std::vector<std::uint8_t>* out);
-// Pass `pass` over `vertices` vertices (floats expected: vertices x 3 n2, or none) with
-// exactly `senderFloats` floats of the senders' matrices. `payload` 4-byte aligned.
-Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::size_t vertices, int n2,
+// Pass `pass` with exactly `bounceFloats` floats of B^0 (pass 0 with interreflection:
+// vertices x 3 n2; else 0) and `senderFloats` floats of the senders' matrices. `payload` 4-byte aligned.
+Status decodeMergedPass(std::span<const std::uint8_t> payload, std::uint32_t pass, std::uint64_t bounceFloats,
                         std::uint64_t senderFloats, MergedPassView* out);
 
 }  // namespace prt::bake

@@ -1,6 +1,7 @@
 #include "baker/shard/sharded_bake.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <span>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "baker/transfer/transfer_range.h"
 #include "native/file_io.h"
 #include "native/mapped_file.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -27,9 +29,11 @@ std::string mergedLabel(std::uint32_t pass) { return "merged pass " + std::to_st
 
 // Reads and checks one file of the plan: present, this kind, this plan, pass, shard and range.
 // The file is mapped, not copied (*payload views *file): the hit records are read in place.
+// check, *payloadCrc: as decodeShardFile's (kByCaller: the caller verifies *payloadCrc).
 Status readPlanFile(const ShardContext& ctx, const std::string& path, const std::string& label, ShardFileKind kind,
                     std::uint32_t pass, std::uint32_t shard, VertexRange range, MappedFile* file,
-                    std::span<const std::uint8_t>* payload) {
+                    std::span<const std::uint8_t>* payload, PayloadCheck check = PayloadCheck::kNow,
+                    std::uint32_t* payloadCrc = nullptr) {
   const std::string named = label + " ('" + path + "')";
   if (Status s = MappedFile::open(path, kMaxShardFileBytes, file); !s.isOk()) {
     if (s.code() == StatusCode::kNotFound) {
@@ -43,9 +47,10 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
     return Status::error(s.code(), named + ": " + s.message());
   }
   ShardHeader h;
-  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload); !s.isOk()) {
+  if (Status s = decodeShardFile(file->bytes(), kind, &h, payload, check); !s.isOk()) {
     return Status::error(s.code(), named + " is corrupt: " + s.message());
   }
+  if (payloadCrc) *payloadCrc = h.payloadCrc;
   if (h.planId != ctx.plan->id) {
     char text[120];
     std::snprintf(text, sizeof text, " belongs to another plan (plan id %08x, this plan is %08x)", h.planId, ctx.plan->id);
@@ -61,14 +66,12 @@ Status readPlanFile(const ShardContext& ctx, const std::string& path, const std:
   return Status::ok();
 }
 
-// Writes a file whose payload `append` appends after the header's room: the payload is
-// built in the file's own buffer, never copied into it.
-template <typename Append>
-Status writePlanFile(const std::string& path, const ShardHeader& h, Append append) {
-  std::vector<std::uint8_t> file(kShardHeaderBytes);
-  append(&file);
-  sealShardFile(h, &file);
-  return writeFileAtomically(path, file);
+// Writes a file of the plan: its header, then its payload's parts where they lie (no copy).
+Status writePlanFile(const std::string& path, const ShardHeader& h, const PayloadParts& payload) {
+  const std::array<std::uint8_t, kShardHeaderBytes> header = shardFileHeader(h, payload.parts);
+  std::vector<std::span<const std::uint8_t>> file = {header};
+  file.insert(file.end(), payload.parts.begin(), payload.parts.end());
+  return writePartsAtomically(path, file);
 }
 
 int coefficients(const ShardContext& ctx) { return shCoeffCount(ctx.transfer->order); }
@@ -104,15 +107,25 @@ void appendSenderRows(const std::vector<std::int32_t>& senderIndex, std::uint64_
   }
 }
 
-// readHits: the bounce shards need the hit records (out->hitViews, views into *file); the
-// merges only the transfer.
-Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHits, MappedFile* file, DirectShard* out) {
+// A direct shard's payload whose checksum its reader verifies (PayloadCheck::kByCaller).
+struct DeferredChecksum {
+  std::span<const std::uint8_t> payload;
+  std::uint32_t expected = 0;
+};
+
+// kHits: the bounce shards need the hit records (out->hitViews, views into *file); the
+// merges (kTransfer) only the transfer. With `deferred` (kHits only) the payload's checksum
+// is left to the caller (verifyDeferred), which reads every byte of the records anyway.
+Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, DirectShardPart part, MappedFile* file,
+                       DirectShard* out, DeferredChecksum* deferred = nullptr) {
   const VertexRange range = ctx.plan->shards[shard];
   std::span<const std::uint8_t> payload;
+  std::uint32_t expected = 0;
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, shardPath(ctx.planPath, 0, shard), shardLabel(0, shard), ShardFileKind::kShard, 0,
-                                   shard, range, file, &payload));
-  if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), ctx.plan->triangles,
-                                   glossyEntries(ctx), ctx.transfer->samples, readHits, out);
+                                   shard, range, file, &payload, deferred ? PayloadCheck::kByCaller : PayloadCheck::kNow,
+                                   &expected));
+  if (deferred) *deferred = {payload, expected};
+  if (Status s = decodeDirectShard(payload, range.end - range.begin, coefficients(ctx), glossyEntries(ctx), part, out);
       !s.isOk()) {
     return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
   }
@@ -121,6 +134,28 @@ Status readDirectShard(const ShardContext& ctx, std::uint32_t shard, bool readHi
                                                    "') does not match the plan's interreflection or glossy setting");
   }
   return Status::ok();
+}
+
+Status damagedDirectShard(const ShardContext& ctx, std::uint32_t shard) {
+  const Status s = payloadChecksumMismatch();
+  return Status::error(s.code(), shardLabel(0, shard) + " ('" + shardPath(ctx.planPath, 0, shard) + "') is corrupt: " + s.message());
+}
+
+// The deferred checksum of direct shard `shard` (read with kHits): the bytes before its
+// records, each block's records from their checksums as the gather took them (`hitCrc`),
+// the bytes after (a glossy shard's sample indices). A mismatch names the file, as an
+// immediate check would.
+Status verifyDeferred(const ShardContext& ctx, std::uint32_t shard, const DirectShard& direct,
+                      const DeferredChecksum& deferred, std::span<const std::uint32_t> hitCrc) {
+  std::uint32_t crc = crc32c(deferred.payload.first(direct.hitsOffset));
+  std::size_t at = direct.hitsOffset;
+  for (std::size_t j = 0; j < direct.hitViews.size(); ++j) {
+    const std::size_t bytes = direct.hitViews[j].hits.size_bytes();
+    crc = crc32cCombine(crc, hitCrc[j], bytes);
+    at += bytes;
+  }
+  crc = crc32c(deferred.payload.subspan(at), crc);
+  return crc == deferred.expected ? Status::ok() : damagedDirectShard(ctx, shard);
 }
 
 // *out views *file.
@@ -142,13 +177,35 @@ Status readMergedPass(const ShardContext& ctx, std::uint32_t pass, MappedFile* f
   const std::string path = mergedPassPath(ctx.planPath, pass);
   PRT_RETURN_IF_ERROR(readPlanFile(ctx, path, mergedLabel(pass), ShardFileKind::kMergedPass, pass, kNoShard,
                                    {0, ctx.plan->vertices}, file, &payload));
-  if (Status s = decodeMergedPass(payload, pass, ctx.plan->vertices, coefficients(ctx), senderFloats(ctx, pass), out);
-      !s.isOk()) {
+  // Only merged pass 0 holds a bounce (B^0); bounce b's B^b stays in its shards.
+  const std::uint64_t bounceFloats =
+      pass == 0 && ctx.transfer->interreflection ? ctx.plan->vertices * 3 * static_cast<std::uint64_t>(coefficients(ctx)) : 0;
+  if (Status s = decodeMergedPass(payload, pass, bounceFloats, senderFloats(ctx, pass), out); !s.isOk()) {
     return Status::error(s.code(), mergedLabel(pass) + " ('" + path + "') is corrupt: " + s.message());
   }
-  if (ctx.transfer->interreflection && out->bounce.empty()) {
-    return Status::error(StatusCode::kCorrupt, mergedLabel(pass) + " ('" + path + "') holds no bounce transfer");
+  return Status::ok();
+}
+
+// B^{pass-1} of every vertex, which bounce `pass` gathers: merged pass 0's B^0 for bounce 1
+// (`merged`, viewed), else the shards of pass-1 checked again and put together in range order
+// in *storage. Why from the shards: a merged pass holding B^b would be written once and read
+// by every shard, 40% of a merge's time, to save each shard this one copy.
+Status previousBounce(const ShardContext& ctx, std::uint32_t pass, const MergedPassView& merged,
+                      std::vector<float>* storage, std::span<const float>* out) {
+  if (pass == 1) {
+    *out = merged.bounce;
+    return Status::ok();
   }
+  const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
+  storage->clear();
+  storage->reserve(ctx.plan->vertices * 3 * static_cast<std::size_t>(coefficients(ctx)));
+  for (std::uint32_t i = 0; i < shards; ++i) {
+    MappedFile file;
+    BounceShardView b;
+    PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass - 1, i, &file, &b));
+    storage->insert(storage->end(), b.bounce.begin(), b.bounce.end());  // reserved: copied once, never zero-filled
+  }
+  *out = *storage;
   return Status::ok();
 }
 
@@ -221,21 +278,37 @@ Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shar
     s.glossyShadowed = std::move(r.glossyShadowed);
     s.blocks = std::move(r.blocks);
     *stats = r.stats;
-    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendDirectShard(s, f); });
+    PayloadParts payload;
+    directShardParts(s, &payload);
+    return writePlanFile(shardPath(ctx.planPath, pass, shard), h, payload);
   }
   MappedFile previousFile;
   MergedPassView previous;
   PRT_RETURN_IF_ERROR(passBefore(ctx, pass, skipped, &previousFile, &previous));
   if (*skipped) return Status::ok();
+  std::vector<float> previousStorage;
+  std::span<const float> previousB;
+  PRT_RETURN_IF_ERROR(previousBounce(ctx, pass, previous, &previousStorage, &previousB));
   MappedFile directFile;
   DirectShard direct;
-  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, true, &directFile, &direct));
+  DeferredChecksum deferred;
+  PRT_RETURN_IF_ERROR(readDirectShard(ctx, shard, DirectShardPart::kHits, &directFile, &direct, &deferred));
   BounceShard out;
   const GlossyRangeBounce glossy{previous.senderMatrices, &out.matrices};
-  PRT_RETURN_IF_ERROR(gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
-                                        direct.hitViews, previous.bounce, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
-                                        &out.bounce, &out.blockEnergy, stats));
-  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, [&](std::vector<std::uint8_t>* f) { appendBounceShard(out, f); });
+  std::vector<std::uint32_t> hitCrc;
+  const Status gathered = gatherBounceRange(*ctx.scene, *ctx.transfer, static_cast<int>(pass), range.begin / kBlockVertices,
+                                            direct.hitViews, previousB, glossyBounce(*ctx.transfer, pass) ? &glossy : nullptr,
+                                            &out.bounce, &out.blockEnergy, &hitCrc, stats);
+  if (!gathered.isOk()) {
+    // Records refused before their checksum was verified: a damaged file says so by name.
+    if (crc32c(deferred.payload) != deferred.expected) return damagedDirectShard(ctx, shard);
+    return gathered;
+  }
+  // Nothing computed from the records is written before their file's checksum is verified.
+  PRT_RETURN_IF_ERROR(verifyDeferred(ctx, shard, direct, deferred, hitCrc));
+  PayloadParts payload;
+  bounceShardParts(out, &payload);
+  return writePlanFile(shardPath(ctx.planPath, pass, shard), h, payload);
 }
 
 Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, bool* final) {
@@ -243,8 +316,7 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   *skipped = false;
   const std::uint32_t shards = static_cast<std::uint32_t>(ctx.plan->shards.size());
   MergedPass merged;
-  std::vector<float> bounce0;           // pass 0: B^0, computed here
-  std::vector<MappedFile> shardFiles(shards);  // pass >= 1: the shards, whose B^b merged.bounce views
+  std::vector<float> bounce0;  // pass 0: B^0, computed here
   // The glossy senders' part of this pass, which the next (glossy) bounce reads.
   const bool keepSenders = senderFloats(ctx, pass) > 0;
   std::size_t senders = 0;
@@ -254,7 +326,7 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     for (std::uint32_t i = 0; i < shards; ++i) {
       MappedFile file;
       DirectShard d;
-      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
+      PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, DirectShardPart::kTransfer, &file, &d));
       shadowed.insert(shadowed.end(), d.shadowed.begin(), d.shadowed.end());
       if (keepSenders) {
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, d.glossyShadowed, glossyEntries(ctx), &merged.senderMatrices);
@@ -263,7 +335,7 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     double energy0 = 0.0;
     if (ctx.transfer->interreflection) {
       firstBounce(*ctx.scene, ctx.transfer->order, shadowed, vertexAreas(*ctx.scene), &bounce0, &energy0);
-      merged.bounce = {bounce0};
+      merged.bounce = bounce0;
     }
     merged.energies = {energy0};
   } else {
@@ -273,10 +345,10 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
     if (*skipped) return Status::ok();
     double energy = 0.0;
     for (std::uint32_t i = 0; i < shards; ++i) {
+      MappedFile file;
       BounceShardView b;
-      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &shardFiles[i], &b));
+      PRT_RETURN_IF_ERROR(readBounceShard(ctx, pass, i, &file, &b));
       for (double e : b.blockEnergy) energy += e;  // block order, as bakeTransfer sums them
-      merged.bounce.push_back(b.bounce);
       if (keepSenders) {
         const std::size_t n2 = static_cast<std::size_t>(coefficients(ctx));
         appendSenderRows(senderIndex, ctx.plan->shards[i].begin, b.matrices, 3 * n2 * n2, &merged.senderMatrices);
@@ -293,7 +365,9 @@ Status mergePass(const ShardContext& ctx, std::uint32_t pass, bool* skipped, boo
   h.pass = pass;
   h.shard = kNoShard;
   h.vertexEnd = ctx.plan->vertices;
-  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, [&](std::vector<std::uint8_t>* f) { appendMergedPass(merged, f); });
+  PayloadParts payload;
+  mergedPassParts(merged, &payload);
+  return writePlanFile(mergedPassPath(ctx.planPath, pass), h, payload);
 }
 
 Status mergeShards(const ShardContext& ctx, BakeResult* out) {
@@ -313,7 +387,7 @@ Status mergeShards(const ShardContext& ctx, BakeResult* out) {
   for (std::uint32_t i = 0; i < shards; ++i) {
     MappedFile file;
     DirectShard d;
-    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, false, &file, &d));
+    PRT_RETURN_IF_ERROR(readDirectShard(ctx, i, DirectShardPart::kTransfer, &file, &d));
     out->unshadowed.insert(out->unshadowed.end(), d.unshadowed.begin(), d.unshadowed.end());
     out->shadowed.insert(out->shadowed.end(), d.shadowed.begin(), d.shadowed.end());
     out->glossyShadowed.insert(out->glossyShadowed.end(), d.glossyShadowed.begin(), d.glossyShadowed.end());

@@ -1,6 +1,6 @@
 // A vertex bake split over machines (docs/scale-out.md): `bakeShard` runs one vertex range
 // of one pass, `mergePass` is the barrier between passes (bounce b's shards read merged
-// pass b-1), `mergeShards` verifies every shard and gives the BakeResult bakeTransfer would
+// pass b-1 and, for b >= 2, the shards of pass b-1), `mergeShards` verifies every shard and gives the BakeResult bakeTransfer would
 // have given on one machine, byte for byte. Every file is written atomically (native/file_io.h)
 // and every file read is checked: present, of this plan, pass and range, checksums intact;
 // a failure names the file.
@@ -27,7 +27,8 @@ struct ShardContext {
 std::uint32_t plannedPasses(const BakeOptions& transfer);
 
 // Bakes shard `shard` of pass `pass` and writes it to shardPath(). Pass b >= 1 reads merged
-// pass b-1 and the shard's direct-pass hit records. *skipped: the bounce series ended before
+// pass b-1 (its energies, whether the series ended; B^0 for b = 1), every shard of pass b-1
+// for B^{b-1} when b >= 2, and the shard's direct-pass hit records. *skipped: the bounce series ended before
 // `pass` (nothing to do, nothing written). kInvalidArgument for a pass or shard outside the plan.
 Status bakeShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t shard, bool* skipped, PassStats* stats);
 

@@ -5,6 +5,7 @@
 
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -46,6 +47,13 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
   parallelFor(job.blocks.size(), job.threads, [&](std::size_t j, unsigned) {
     const HitBlockView& rec = job.blocks[j];
     const std::size_t begin = (job.firstBlock + j) * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
+    if (job.checkTriangles > 0) {
+      if (!hitRecordsFit(rec.hits, job.checkTriangles)) {
+        job.badBlocks[j] = 1;
+        return;
+      }
+      if (job.hitCrc) job.hitCrc[j] = crc32c(hitRecordBytes(rec.hits));
+    }
     std::vector<float> gathered(stride);
     double e = 0.0;
     for (std::size_t v = begin; v < end; ++v) {

@@ -36,6 +36,17 @@ struct DiffuseBounceJob {
   float* current = nullptr;       // B^b of the blocks' vertices, from the first block's first vertex
   double* blockEnergy = nullptr;  // one per block: its vertices' area x DC term, all channels
   unsigned threads = 1;
+  // Records read from a file (a sharded bake's, transfer_range.h): when > 0, each block's
+  // records are checked (triangle below this count, weight finite) just before the block is
+  // gathered, while they are in cache (why: a separate pass over ~100 MB of records cost a
+  // bounce shard as much again); a block that fails is not gathered and is flagged in
+  // badBlocks. 0: the bake's own records, not checked.
+  std::size_t checkTriangles = 0;
+  std::uint8_t* badBlocks = nullptr;  // with checkTriangles: one per block, set to 1 for a block that failed
+  // With checkTriangles, optional: one per block, the CRC-32C of its records' bytes, taken
+  // as they are checked, so that the caller verifies their file's checksum from the pieces
+  // (crc32cCombine) without another pass over them.
+  std::uint32_t* hitCrc = nullptr;
 };
 
 // Gathers bounce b for the job's blocks: Bb_ci(x) = rho_c(x) sum_hits w Bb-1_ci(h) (+ fromGlossy).

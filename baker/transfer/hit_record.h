@@ -3,6 +3,7 @@
 // glossy_bake.cpp). Internal to prt_transfer.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -33,6 +34,19 @@ struct HitBlockView {
   std::span<const Hit> hits;
   std::span<const std::uint32_t> hitSample;
 };
+
+// Whether every record names a triangle below `triangles` (an index into the scene) and has a
+// finite weight: what a reader of records it did not make checks before using them.
+inline bool hitRecordsFit(std::span<const Hit> hits, std::size_t triangles) {
+  bool fit = true;
+  for (const Hit& h : hits) fit &= h.triangle < triangles && std::isfinite(h.weight);  // no branch per record
+  return fit;
+}
+
+// The records' bytes, as a sharded bake's file holds them (Hit is its layout: baker/shard), for their checksum.
+inline std::span<const std::uint8_t> hitRecordBytes(std::span<const Hit> hits) {
+  return {reinterpret_cast<const std::uint8_t*>(hits.data()), hits.size_bytes()};
+}
 
 // Views of `blocks`, which must outlive them.
 inline std::vector<HitBlockView> hitBlockViews(std::span<const HitBlock> blocks) {

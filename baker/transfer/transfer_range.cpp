@@ -8,6 +8,7 @@
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/parallel_for.h"
+#include "prt/checksum.h"
 #include "prt/sh_basis.h"
 
 namespace prt::bake {
@@ -45,6 +46,11 @@ Status gatherGlossyRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.diffuseFromGlossy = fromGlossy->data();
   *stats = gatherGlossyBounce(job);
   return Status::ok();
+}
+
+Status badRecords(std::size_t block, std::size_t triangles) {
+  return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(block) + " names a triangle not below " +
+                                                 std::to_string(triangles) + " or has a weight that is not finite");
 }
 
 }  // namespace
@@ -98,7 +104,7 @@ Status bakeDirectRange(const Scene& scene, const BakeOptions& o, std::size_t beg
 Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, std::size_t firstBlock,
                          std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
-                         PassStats* stats) {
+                         std::vector<std::uint32_t>* hitCrc, PassStats* stats) {
   const std::size_t vertexCount = scene.positions.size();
   const std::size_t stride = 3 * static_cast<std::size_t>(shCoeffCount(o.order));
   const std::size_t begin = firstBlock * kBlockVertices;
@@ -110,19 +116,19 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
                                                            " does not fit the scene");
   }
   const std::size_t triangles = scene.indices.size() / 3;
+  if (hitCrc) hitCrc->assign(blocks.size(), 0);
   for (std::size_t j = 0; j < blocks.size(); ++j) {
     const HitBlockView& b = blocks[j];
     const std::size_t vertices = std::min(kBlockVertices, end - (begin + j * kBlockVertices));
     if (b.hitStart.size() != vertices + 1 || b.hitStart.front() != 0 || b.hitStart.back() != b.hits.size()) {
       return Status::error(StatusCode::kCorrupt, "hit records of block " + std::to_string(firstBlock + j) + " do not fit its vertices");
     }
-    for (const Hit& h : b.hits) {
-      if (h.triangle >= triangles) {
-        return Status::error(StatusCode::kCorrupt, "a hit record of block " + std::to_string(firstBlock + j) +
-                                                       " names triangle " + std::to_string(h.triangle) + " of " +
-                                                       std::to_string(triangles));
-      }
-    }
+    // The records' values (a sharded bake's decoder checks only sizes): the triangle is an
+    // index, so it must be in range, and a weight that is not finite would make every later
+    // bounce NaN. A glossy bounce reads them first, so they are checked here; a diffuse
+    // one checks each block in the gather, while it is in cache.
+    if (glossy && !hitRecordsFit(b.hits, triangles)) return badRecords(firstBlock + j, triangles);
+    if (glossy && hitCrc) (*hitCrc)[j] = crc32c(hitRecordBytes(b.hits));
     if (glossy && (b.hitSample.size() != b.hits.size() ||
                    std::any_of(b.hitSample.begin(), b.hitSample.end(), [&](std::uint32_t k) { return k >= o.samples; }))) {
       return Status::error(StatusCode::kCorrupt, "the hits' sample indices of block " + std::to_string(firstBlock + j) +
@@ -148,7 +154,17 @@ Status gatherBounceRange(const Scene& scene, const BakeOptions& o, int bounce, s
   job.current = current->data();
   job.blockEnergy = blockEnergy->data();
   job.threads = threads;
+  std::vector<std::uint8_t> badBlocks;
+  if (!glossy) {
+    badBlocks.assign(blocks.size(), 0);
+    job.checkTriangles = triangles;
+    job.badBlocks = badBlocks.data();
+    job.hitCrc = hitCrc ? hitCrc->data() : nullptr;
+  }
   *stats = gatherDiffuseBounce(job);
+  for (std::size_t j = 0; j < badBlocks.size(); ++j) {
+    if (badBlocks[j]) return badRecords(firstBlock + j, triangles);
+  }
   stats->seconds += glossyStats.seconds;
   return Status::ok();
 }

@@ -48,10 +48,13 @@ struct GlossyRangeBounce {
 // M^{bounce-1}: writes B^bounce of the range's vertices into *current (with the light the
 // glossy senders add, as bakeTransfer) and each block's energy into *blockEnergy (summed in
 // block order they are bakeTransfer's bounce energy). kInvalidArgument or kCorrupt on sizes
-// or hit records that do not fit the scene.
+// or hit records that do not fit the scene (a triangle out of range, a weight not finite, a
+// glossy hit's sample index out of range): the one check of the records a sharded bake reads.
+// *hitCrc (when given): one per block, the CRC-32C of its records' bytes, taken as they were
+// checked, for a caller that verifies the checksum of the file they came from afterwards.
 Status gatherBounceRange(const Scene& scene, const BakeOptions& options, int bounce, std::size_t firstBlock,
                          std::span<const HitBlockView> blocks, std::span<const float> previous,
                          const GlossyRangeBounce* glossy, std::vector<float>* current, std::vector<double>* blockEnergy,
-                         PassStats* stats);
+                         std::vector<std::uint32_t>* hitCrc, PassStats* stats);
 
 }  // namespace prt::bake

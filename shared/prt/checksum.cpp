@@ -114,7 +114,37 @@ __attribute__((target("sse4.2"))) std::uint32_t crc32cHardware(const std::uint8_
 const bool kHasSse42 = __builtin_cpu_supports("sse4.2");
 #endif
 
+// Polynomials over GF(2) modulo the CRC's, bit-reflected as the CRC (bit 31 is x^0).
+constexpr std::uint32_t kReflectedPolynomial = 0x82F63B78u;
+
+// a(x) b(x) mod P(x).
+std::uint32_t multiplyModP(std::uint32_t a, std::uint32_t b) noexcept {
+  std::uint32_t product = 0;
+  for (std::uint32_t m = 1u << 31; m != 0; m >>= 1) {
+    if (a & m) product ^= b;
+    b = (b & 1) ? (b >> 1) ^ kReflectedPolynomial : b >> 1;  // b(x) x
+  }
+  return product;
+}
+
+// x^(8 n) mod P(x): n bytes of zeros appended to a message multiply its CRC register by it.
+std::uint32_t xPowerOfBytesModP(std::uint64_t n) noexcept {
+  std::uint32_t power = 1u << 31;   // x^0
+  std::uint32_t square = 1u << 23;  // x^8, squared for each bit of n
+  for (; n != 0; n >>= 1) {
+    if (n & 1) power = multiplyModP(square, power);
+    square = multiplyModP(square, square);
+  }
+  return power;
+}
+
 }  // namespace
+
+std::uint32_t crc32cCombine(std::uint32_t crcA, std::uint32_t crcB, std::uint64_t bBytes) noexcept {
+  // The final xor of crc(a) and the initial value of b's cancel in the register algebra, as
+  // in zlib: crc(a ++ b) = crc(a) x^(8 |b|) + crc(b) mod P.
+  return multiplyModP(xPowerOfBytesModP(bBytes), crcA) ^ crcB;
+}
 
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes, std::uint32_t crc) noexcept {
 #ifdef PRT_CRC32C_SSE42

@@ -17,6 +17,11 @@ namespace prt {
 // Uses the CPU's crc32 instruction where there is one (x86-64 with SSE4.2), else the tables.
 std::uint32_t crc32c(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) noexcept;
 
+// The CRC-32C of a ++ b from crc32c(a), crc32c(b) and b's length, without the bytes (zlib's
+// crc32_combine for this polynomial): pieces checksummed separately, in parallel or as they
+// are read, give the checksum of the whole. O(log bBytes).
+std::uint32_t crc32cCombine(std::uint32_t crcA, std::uint32_t crcB, std::uint64_t bBytes) noexcept;
+
 // The same by the slicing-by-8 tables alone, on any host: the reference the fast path is
 // tested against.
 std::uint32_t crc32cTables(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) noexcept;

@@ -101,16 +101,36 @@ case_missing() {
   expect_failure 3 "shard 2 of pass 1 \('room.plan.pass1.shard2'\) is missing" "$bake" merge --plan room.plan --pass 1
   expect_failure 3 "shard 2 of pass 1 .* is missing" "$bake" merge --plan room.plan -o out.prt
   [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
+  # Bounce 2's shards read B^1 from pass 1's shards (merged bounce passes do not hold it).
+  expect_failure 3 "shard 2 of pass 1 \('room.plan.pass1.shard2'\) is missing" "$bake" bake-shard --plan room.plan --shard 0 --pass 2
   expect_failure 3 "merged pass 1 .* is missing" bash -c "rm room.plan.pass1.merged && '$bake' bake-shard --plan room.plan --shard 0 --pass 2"
 }
 
 case_corrupt() {
   baked_plan
+  # A flipped byte in the hit records (near the end), then in the transfer before them: a bounce
+  # shard verifies the direct shard's checksum from the blocks' checksums it took while reading
+  # the records, and refuses it by name before writing anything.
+  cp room.plan.pass0.shard1 saved.shard
+  flip_byte room.plan.pass0.shard1 $(($(stat -c %s room.plan.pass0.shard1) - 100))
+  expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
+    bash -c "rm room.plan.pass1.shard1 && '$bake' bake-shard --plan room.plan --shard 1 --pass 1"
+  [[ ! -e room.plan.pass1.shard1 ]] || fail "a bounce shard was written from damaged hit records"
+  cp saved.shard room.plan.pass0.shard1
+  run bake-shard --plan room.plan --shard 1 --pass 1 --quiet
+  flip_byte room.plan.pass0.shard1 1000
+  expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
+    "$bake" bake-shard --plan room.plan --shard 1 --pass 2
+  cp saved.shard room.plan.pass0.shard1
   # One flipped byte in the hit records of shard 1's direct pass.
   printf '\xff' | dd of=room.plan.pass0.shard1 bs=1 seek=100000 conv=notrunc status=none
   expect_failure 4 "shard 1 of pass 0 \('room.plan.pass0.shard1'\) is corrupt: payload checksum mismatch" \
     "$bake" merge --plan room.plan -o out.prt
   [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
+  # A flipped byte in B^1 of shard 3, which bounce 2's shards read: refused by name.
+  flip_byte room.plan.pass1.shard3 200
+  expect_failure 4 "shard 3 of pass 1 \('room.plan.pass1.shard3'\) is corrupt: payload checksum mismatch" \
+    "$bake" bake-shard --plan room.plan --shard 0 --pass 2
   # Cut short.
   head -c 1000 room.plan.pass2.shard3 > cut && mv cut room.plan.pass2.shard3
   expect_failure 4 "shard 3 of pass 2 .* is corrupt: truncated" "$bake" merge --plan room.plan --pass 2

@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "baker/shard/bake_plan.h"
 #include "baker/shard/prepared_scene.h"
 #include "baker/shard/shard_container.h"
 #include "baker/shard/shard_payloads.h"
+#include "baker/transfer/transfer_range.h"
 #include "prt/checksum.h"
 
 namespace prt::bake {
@@ -168,8 +170,8 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   const DirectShard d = sampleDirect();
   const std::vector<std::uint8_t> payload = encodeDirectShard(d);
   DirectShard e;
-  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, true, &e).isOk());
-  EXPECT_EQ(e.unshadowed, d.unshadowed);
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kHits, &e).isOk());
+  EXPECT_TRUE(e.unshadowed.empty() && e.shadowed.empty());  // the bounce shards' reading copies no transfer
   ASSERT_EQ(e.hitViews.size(), 2u);
   EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitStart.begin(), e.hitViews[0].hitStart.end()), d.blocks[0].hitStart);
   EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitStart.begin(), e.hitViews[1].hitStart.end()), d.blocks[1].hitStart);
@@ -182,22 +184,21 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   // A misaligned payload (a copy one byte in) is refused, not read misaligned.
   std::vector<std::uint8_t> shifted(payload.size() + 1);
   std::copy(payload.begin(), payload.end(), shifted.begin() + 1);
-  EXPECT_EQ(decodeDirectShard(std::span(shifted).subspan(1), 70, 4, 10, 0, 64, true, &e).code(), StatusCode::kCorrupt);
-  // A triangle outside the scene.
-  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 9, 0, 64, true, &e).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeDirectShard(std::span(shifted).subspan(1), 70, 4, 0, DirectShardPart::kHits, &e).code(), StatusCode::kCorrupt);
   // Another vertex count or order.
-  EXPECT_FALSE(decodeDirectShard(payload, 69, 4, 10, 0, 64, true, &e).isOk());
-  EXPECT_FALSE(decodeDirectShard(payload, 70, 9, 10, 0, 64, true, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(payload, 69, 4, 0, DirectShardPart::kHits, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 9, 0, DirectShardPart::kHits, &e).isOk());
   for (std::size_t n = 0; n < payload.size(); ++n) {
-    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, 0, 64, true, &e).isOk()) << "prefix of " << n << " bytes";
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 0, DirectShardPart::kHits, &e).isOk()) << "prefix of " << n << " bytes";
   }
   // Without the hits (the merges): the transfer alone, the hit records' sizes still checked.
   DirectShard f;
-  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 0, 64, false, &f).isOk());
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kTransfer, &f).isOk());
+  EXPECT_EQ(f.unshadowed, d.unshadowed);
   EXPECT_EQ(f.shadowed, d.shadowed);
   EXPECT_TRUE(f.hasHits);
   EXPECT_TRUE(f.hitViews.empty());
-  EXPECT_FALSE(decodeDirectShard(std::span(payload).first(payload.size() - 1), 70, 4, 10, 0, 64, false, &f).isOk());
+  EXPECT_FALSE(decodeDirectShard(std::span(payload).first(payload.size() - 1), 70, 4, 0, DirectShardPart::kTransfer, &f).isOk());
   // In a file, any flipped byte is caught by a checksum.
   ShardHeader h;
   h.planId = 7;
@@ -217,6 +218,46 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
   }
 }
 
+// The records' values are checked once, by their reader (gatherBounceRange), since the
+// decoder views them unchecked: a triangle outside the scene (an index: it would read past
+// B^{b-1}), a weight that is not finite, a glossy hit's sample index past the samples.
+TEST(ShardFormat, HitRecordsAreCheckedByTheirReader) {
+  const Scene scene = sampleScene(false);  // 4 vertices, 2 triangles: one block
+  BakeOptions o;
+  o.order = 2;
+  o.samples = 64;
+  o.threads = 1;
+  const std::vector<float> previous(4 * 3 * 4, 1.0f);
+  const std::vector<std::uint32_t> hitStart = {0, 1, 1, 1, 1};
+  const std::vector<std::uint32_t> pastSamples = {64}, aSample = {0};
+  auto gather = [&](Hit hit, const std::vector<std::uint32_t>* samples) {
+    const std::vector<Hit> hits = {hit};
+    HitBlockView view{hitStart, hits, samples ? std::span<const std::uint32_t>(*samples) : std::span<const std::uint32_t>()};
+    std::vector<float> current, matrices;
+    std::vector<double> energy;
+    PassStats stats;
+    const GlossyRangeBounce glossy{{}, &matrices};
+    std::vector<std::uint32_t> crc;
+    const Status s = gatherBounceRange(scene, o, 1, 0, std::span(&view, 1), previous, samples ? &glossy : nullptr, &current,
+                                       &energy, &crc, &stats);
+    // Each block's records' checksum, taken as they were read (the caller's deferred check).
+    if (s.isOk()) {
+      EXPECT_EQ(crc, std::vector<std::uint32_t>{crc32c({reinterpret_cast<const std::uint8_t*>(hits.data()), 12})});
+    }
+    return s;
+  };
+  EXPECT_TRUE(gather({1, 100, 200, 0.5f}, nullptr).isOk());
+  EXPECT_EQ(gather({2, 100, 200, 0.5f}, nullptr).code(), StatusCode::kCorrupt);  // triangle 2 of 2
+  EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::quiet_NaN()}, nullptr).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::infinity()}, nullptr).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, 0.5f}, &pastSamples).code(), StatusCode::kCorrupt);  // sample 64 of 64
+  // A glossy bounce checks the records before its glossy gather reads them (which would
+  // otherwise refuse these empty senders' matrices with kInvalidArgument).
+  EXPECT_EQ(gather({2, 100, 200, 0.5f}, &aSample).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, std::numeric_limits<float>::quiet_NaN()}, &aSample).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(gather({1, 100, 200, 0.5f}, &aSample).code(), StatusCode::kInvalidArgument);
+}
+
 TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   BounceShard b;
   b.bounce.assign(70 * 12, 0.5f);
@@ -231,24 +272,38 @@ TEST(ShardFormat, BounceShardAndMergedPassRoundTrip) {
   EXPECT_FALSE(decodeBounceShard(std::span(bp).first(bp.size() - 1), 70, 4, false, &c).isOk());
   EXPECT_FALSE(decodeBounceShard(bp, 70, 4, true, &c).isOk());  // a glossy bounce's matrices are missing
 
+  // A merged bounce pass: the energies and the stop mark, no B^b (its shards hold it).
   MergedPass m;
   m.final = true;
   m.energies = {3.0, 1.0};
-  // Two parts (two shards' ranges), stored one after the other.
-  const std::vector<float> first(64 * 12, 0.25f), second(6 * 12, 0.5f);
-  m.bounce = {first, second};
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
+  EXPECT_EQ(mp.size(), 8u + 2 * 8 + 8 + 8);
   MergedPassView n;
-  ASSERT_TRUE(decodeMergedPass(mp, 1, 70, 4, 0, &n).isOk());
+  ASSERT_TRUE(decodeMergedPass(mp, 1, 0, 0, &n).isOk());
   EXPECT_TRUE(n.final);
-  std::vector<float> both = first;
-  both.insert(both.end(), second.begin(), second.end());
-  EXPECT_EQ(std::vector<float>(n.bounce.begin(), n.bounce.end()), both);
-  EXPECT_FALSE(decodeMergedPass(mp, 2, 70, 4, 0, &n).isOk());  // energies of another pass
-  EXPECT_FALSE(decodeMergedPass(mp, 1, 71, 4, 0, &n).isOk());
-  EXPECT_FALSE(decodeMergedPass(mp, 1, 70, 4, 48, &n).isOk());  // glossy senders' matrices expected
-  for (std::size_t len = 0; len < mp.size(); len += 97) {
-    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 1, 70, 4, 0, &n).isOk()) << "prefix of " << len << " bytes";
+  EXPECT_EQ(n.energies, m.energies);
+  EXPECT_TRUE(n.bounce.empty());
+  EXPECT_FALSE(decodeMergedPass(mp, 2, 0, 0, &n).isOk());    // energies of another pass
+  EXPECT_FALSE(decodeMergedPass(mp, 1, 840, 0, &n).isOk());  // a B^0 expected
+  EXPECT_FALSE(decodeMergedPass(mp, 1, 0, 48, &n).isOk());   // glossy senders' matrices expected
+  for (std::size_t len = 0; len < mp.size(); ++len) {
+    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 1, 0, 0, &n).isOk()) << "prefix of " << len << " bytes";
+  }
+  // Merged pass 0: B^0 of every vertex, viewed in place.
+  MergedPass z;
+  z.energies = {3.0};
+  const std::vector<float> bounce0(70 * 12, 0.25f);
+  z.bounce = bounce0;
+  const std::vector<std::uint8_t> zp = encodeMergedPass(z);
+  ASSERT_TRUE(decodeMergedPass(zp, 0, 70 * 12, 0, &n).isOk());
+  EXPECT_FALSE(n.final);
+  EXPECT_EQ(std::vector<float>(n.bounce.begin(), n.bounce.end()), bounce0);
+  EXPECT_GE(reinterpret_cast<const std::uint8_t*>(n.bounce.data()), zp.data());
+  EXPECT_LT(reinterpret_cast<const std::uint8_t*>(n.bounce.data()), zp.data() + zp.size());
+  EXPECT_FALSE(decodeMergedPass(zp, 0, 71 * 12, 0, &n).isOk());
+  EXPECT_FALSE(decodeMergedPass(zp, 0, 0, 0, &n).isOk());  // a B^0 where none belongs
+  for (std::size_t len = 0; len < zp.size(); len += 97) {
+    EXPECT_FALSE(decodeMergedPass(std::span(zp).first(len), 0, 70 * 12, 0, &n).isOk()) << "prefix of " << len << " bytes";
   }
 }
 
@@ -263,22 +318,24 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   d.blocks[1].hitSample = {0};
   const std::vector<std::uint8_t> payload = encodeDirectShard(d);
   DirectShard e;
-  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, 10, 64, true, &e).isOk());
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, DirectShardPart::kHits, &e).isOk());
   EXPECT_TRUE(e.glossy);
-  EXPECT_EQ(e.glossyShadowed, d.glossyShadowed);
+  EXPECT_TRUE(e.glossyShadowed.empty());
+  DirectShard f;
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 10, DirectShardPart::kTransfer, &f).isOk());
+  EXPECT_EQ(f.glossyShadowed, d.glossyShadowed);
   EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[0].hitSample.begin(), e.hitViews[0].hitSample.end()), d.blocks[0].hitSample);
   EXPECT_EQ(std::vector<std::uint32_t>(e.hitViews[1].hitSample.begin(), e.hitViews[1].hitSample.end()), d.blocks[1].hitSample);
-  EXPECT_EQ(decodeDirectShard(payload, 70, 4, 10, 10, 63, true, &e).code(), StatusCode::kCorrupt);  // sample 63 of 63
-  EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 10, 16, 64, true, &e).isOk());  // another packing
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 16, DirectShardPart::kHits, &e).isOk());  // another packing
   for (std::size_t n = 0; n < payload.size(); ++n) {
-    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, 10, 64, true, &e).isOk()) << "prefix of " << n << " bytes";
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 10, DirectShardPart::kHits, &e).isOk()) << "prefix of " << n << " bytes";
   }
   std::vector<std::uint8_t> longer = payload;
   longer.push_back(0);
-  EXPECT_FALSE(decodeDirectShard(longer, 70, 4, 10, 10, 64, true, &e).isOk());
+  EXPECT_FALSE(decodeDirectShard(longer, 70, 4, 10, DirectShardPart::kHits, &e).isOk());
   std::vector<std::uint8_t> flags = payload;
   flags[0] |= 4;  // a flag this format does not have
-  EXPECT_EQ(decodeDirectShard(flags, 70, 4, 10, 10, 64, true, &e).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeDirectShard(flags, 70, 4, 10, DirectShardPart::kHits, &e).code(), StatusCode::kCorrupt);
 
   BounceShard b;
   b.bounce.assign(70 * 12, 0.5f);
@@ -296,20 +353,20 @@ TEST(ShardFormat, GlossyPayloadsRoundTripAndRefuseDamage) {
   MergedPass m;
   m.energies = {3.0};
   const std::vector<float> bounce(70 * 12, 0.25f);
-  m.bounce = {bounce};
+  m.bounce = bounce;
   m.senderMatrices.assign(5 * 10, 2.0f);
   const std::vector<std::uint8_t> mp = encodeMergedPass(m);
   MergedPassView n;
-  ASSERT_TRUE(decodeMergedPass(mp, 0, 70, 4, 50, &n).isOk());
+  ASSERT_TRUE(decodeMergedPass(mp, 0, 70 * 12, 50, &n).isOk());
   EXPECT_EQ(std::vector<float>(n.senderMatrices.begin(), n.senderMatrices.end()), m.senderMatrices);
-  EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 0, &n).code(), StatusCode::kCorrupt);
-  EXPECT_EQ(decodeMergedPass(mp, 0, 70, 4, 60, &n).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeMergedPass(mp, 0, 70 * 12, 0, &n).code(), StatusCode::kCorrupt);
+  EXPECT_EQ(decodeMergedPass(mp, 0, 70 * 12, 60, &n).code(), StatusCode::kCorrupt);
   for (std::size_t len = 0; len < mp.size(); len += 29) {
-    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 0, 70, 4, 50, &n).isOk()) << "prefix of " << len << " bytes";
+    EXPECT_FALSE(decodeMergedPass(std::span(mp).first(len), 0, 70 * 12, 50, &n).isOk()) << "prefix of " << len << " bytes";
   }
   std::vector<std::uint8_t> padded = mp;
   padded.push_back(0);
-  EXPECT_FALSE(decodeMergedPass(padded, 0, 70, 4, 50, &n).isOk());
+  EXPECT_FALSE(decodeMergedPass(padded, 0, 70 * 12, 50, &n).isOk());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// native/file_io: the errno -> Status code table, and whole-file reads of what is not a
-// regular file (a directory, a FIFO: refused at once, never waited on).
+// native/file_io: the errno -> Status code table, whole-file reads of what is not a
+// regular file (a directory, a FIFO: refused at once, never waited on), and atomic writes of a
+// file given in parts.
 #include "native/file_io.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,30 @@ TEST(FileIo, ReadRefusesWhatIsNotARegularFile) {
 
   ::unlink(fifo.c_str());
   ::unlink(big.c_str());
+  ::rmdir(dir.c_str());
+}
+
+// writePartsAtomically: the file is its parts one after another (empty ones included), and
+// it replaces an older, longer file whole; the single-buffer writer gives the same bytes.
+TEST(FileIo, PartsAreWrittenOneAfterAnother) {
+  char pattern[] = "/tmp/prt-file-io-test-XXXXXX";
+  ASSERT_NE(::mkdtemp(pattern), nullptr);
+  const std::string dir = pattern, path = dir + "/parts";
+  ASSERT_TRUE(writeFileAtomically(path, std::vector<std::uint8_t>(5000, 9)).isOk());
+  const std::vector<std::uint8_t> a = {1, 2, 3}, b, c(3000, 4), d = {5};
+  const std::span<const std::uint8_t> parts[] = {a, b, c, d};
+  ASSERT_TRUE(writePartsAtomically(path, parts).isOk());
+  std::vector<std::uint8_t> want(3 + 3000 + 1, 4);  // a, c, d
+  want[0] = 1;
+  want[1] = 2;
+  want[2] = 3;
+  want.back() = 5;
+  std::vector<std::uint8_t> bytes;
+  ASSERT_TRUE(readFileBytes(path, 1 << 20, &bytes).isOk());
+  EXPECT_EQ(bytes, want);
+  // Refused as writeFileAtomically refuses: the parent is not a directory.
+  EXPECT_FALSE(writePartsAtomically(path + "/under", parts).isOk());
+  ::unlink(path.c_str());
   ::rmdir(dir.c_str());
 }
 

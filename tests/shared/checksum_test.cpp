@@ -58,5 +58,27 @@ TEST(Crc32c, ThreeLaneFastPathEqualsTables) {
   }
 }
 
+// crc32cCombine gives the checksum of a ++ b from the two pieces' checksums, at every split
+// of a message (empty pieces included) and for long second pieces (many bits of the length).
+TEST(Crc32c, CombineEqualsTheWholeAtEverySplit) {
+  std::vector<std::uint8_t> data(5000);
+  std::uint32_t x = 99;
+  for (std::uint8_t& b : data) {
+    x = x * 1664525u + 1013904223u;
+    b = static_cast<std::uint8_t>(x >> 24);
+  }
+  const std::span<const std::uint8_t> all(data.data(), 300);
+  for (std::size_t split = 0; split <= all.size(); ++split) {
+    const auto a = all.first(split), b = all.subspan(split);
+    ASSERT_EQ(crc32cCombine(crc32c(a), crc32c(b), b.size()), crc32c(all)) << "split at " << split;
+  }
+  const std::span<const std::uint8_t> whole(data);
+  for (std::size_t split : {0u, 1u, 7u, 1000u, 4095u}) {
+    const auto a = whole.first(split), b = whole.subspan(split);
+    ASSERT_EQ(crc32cCombine(crc32c(a), crc32c(b), b.size()), crc32c(whole)) << "split at " << split;
+  }
+  EXPECT_EQ(crc32cCombine(0x12345678u, crc32c({}), 0), 0x12345678u);  // nothing appended
+}
+
 }  // namespace
 }  // namespace prt
