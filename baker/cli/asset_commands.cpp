@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "baker/cli/report_failure.h"
+#include "baker/cli/rtt_command.h"
 #include "baker/cli/shade_texels.h"
 #include "baker/scene/uv_atlas_check.h"
 #include "baker/texture/asset_texels.h"
@@ -49,7 +50,8 @@ constexpr const char* kInfoHelp =
     "Verifies a baked asset (every checksum and value) and prints its contents, the lighting\n"
     "model its transfer was baked for included (distant, or a local sphere's centre and radius),\n"
     "each pass's domain (per vertex, or per texel of the transfer-texture atlases), its order (a\n"
-    "TPFL visibility pass has its own) and the atlases.\n";
+    "TPFL visibility pass has its own) and the atlases. Given a radiance transfer texture\n"
+    "(prt-bake rtt), verifies it and prints its shape and coefficient range instead.\n";
 
 // The atlases of a verified asset as a JSON array: [{"width": W, "height": H,
 // "firstTriangle": F, "triangleCount": C}, ...]; [] without texel passes.
@@ -214,6 +216,7 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   if (Status s = oneAsset(p, &path); !s.isOk()) return reportFailure(err, "info", s);
   std::vector<std::uint8_t> bytes;
   if (Status s = readAsset(path, &bytes); !s.isOk()) return reportFailure(err, "info", s);
+  if (looksLikeRtt(bytes)) return infoRtt(path, bytes, p.has("--json"), out, err);
   AssetSummary sum;
   if (Status s = verifyAsset(bytes, &sum); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   BakedAsset atlases;  // only the atlas fields (and the texel normals) are filled

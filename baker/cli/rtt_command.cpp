@@ -1,5 +1,6 @@
 #include "baker/cli/rtt_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <mutex>
@@ -179,6 +180,36 @@ int runRttCommand(std::span<const std::string> args, std::FILE* out, std::FILE* 
   } else {
     std::fprintf(out, "%s: RTT of %s, %dx%d positions x %dx%d views, order %d, %d channel(s), %zu bytes, %.1f s\n", o.output.c_str(),
                  source.c_str(), rtt.spatial, rtt.spatial, rtt.views, rtt.views, rtt.order, rtt.channels, bytes.size(), seconds);
+  }
+  return kExitOk;
+}
+
+bool looksLikeRtt(std::span<const std::uint8_t> bytes) {
+  static constexpr char kMagic[] = "PRTRTT1\n";
+  return bytes.size() >= 8 && std::memcmp(bytes.data(), kMagic, 8) == 0;
+}
+
+int infoRtt(const std::string& path, std::span<const std::uint8_t> bytes, bool json, std::FILE* out, std::FILE* err) {
+  Rtt rtt;
+  if (Status s = decodeRtt(bytes, &rtt); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), "'" + path + "': " + s.message()));
+  float lo = 0.0f, hi = 0.0f;
+  if (!rtt.coeffs.empty()) {
+    const auto [a, b] = std::minmax_element(rtt.coeffs.begin(), rtt.coeffs.end());
+    lo = *a;
+    hi = *b;
+  }
+  if (json) {
+    std::fprintf(out,
+                 "{\n  \"file\": %s,\n  \"kind\": \"rtt\",\n  \"bytes\": %zu,\n  \"order\": %d,\n  \"channels\": %d,\n"
+                 "  \"spatial\": %d,\n  \"views\": %d,\n  \"view_dependent\": %s,\n  \"min\": %s,\n  \"max\": %s\n}\n",
+                 jsonString(path).c_str(), bytes.size(), rtt.order, rtt.channels, rtt.spatial, rtt.views, rtt.views > 1 ? "true" : "false",
+                 jsonNumber(lo).c_str(), jsonNumber(hi).c_str());
+  } else {
+    std::fprintf(out,
+                 "%s: radiance transfer texture (docs/bi-scale.md), %zu bytes, checksum ok\n"
+                 "  order %d (%d coefficients), %d channel(s)\n  %dx%d positions x %dx%d views%s\n  coefficients %g .. %g\n",
+                 path.c_str(), bytes.size(), rtt.order, rtt.order * rtt.order, rtt.channels, rtt.spatial, rtt.spatial, rtt.views, rtt.views,
+                 rtt.views > 1 ? "" : " (view-independent)", static_cast<double>(lo), static_cast<double>(hi));
   }
   return kExitOk;
 }

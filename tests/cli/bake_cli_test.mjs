@@ -83,6 +83,16 @@ const cases = {
     const text = expectExit(['rtt', '--patch', 'holes', '--size', '16', '--spatial', '4', '--views', '2', '-o', work('holes.rtt')], 0);
     check(/direct/.test(text.stderr) && /views/.test(text.stderr), `progress on stderr: ${JSON.stringify(text.stderr)}`);
     check(/RTT of holes, 4x4 positions x 2x2 views, order 5, 1 channel/.test(text.stdout), `summary line: ${text.stdout}`);
+    // prt-bake info reads RTT files too: verified, shape and range; a damaged one is named.
+    const info = json(expectExit(['info', out, '--json'], 0));
+    check(info && info.kind === 'rtt' && info.spatial === 8 && info.views === 4 && info.order === 5 && info.view_dependent === true &&
+      info.max > info.min && info.bytes === bytes.length, `info --json of an RTT: ${JSON.stringify(info)}`);
+    const infoText = expectExit(['info', flat], 0);
+    check(/radiance transfer texture/.test(infoText.stdout) && /view-independent/.test(infoText.stdout), `info of an RTT: ${infoText.stdout}`);
+    const damaged = Buffer.from(bytes);
+    damaged[100] ^= 1;
+    fs.writeFileSync(work('damaged.rtt'), damaged);
+    expectExit(['info', work('damaged.rtt')], EXIT_INVALID_INPUT, /damaged\.rtt.*checksum/);
   },
   // Bad command lines and inputs are named; nothing is written.
   rtt_usage_errors() {
