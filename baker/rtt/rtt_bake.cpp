@@ -161,28 +161,27 @@ Status bakeRtt(const HeightPatch& patch, const RttSettings& settings, const RttP
   const std::size_t S = static_cast<std::size_t>(settings.spatial), V = static_cast<std::size_t>(settings.views);
   const int ss = settings.supersample;
   const float midDepth = 0.5f * (tracer.minHeight() + tracer.maxHeight());
-  const std::size_t perSample = perPoint;
   std::atomic<std::size_t> viewRowsDone{0};
   if (progress) progress("views", 0, S);
   parallelFor(S, threads, [&](std::size_t y, unsigned thread) {
-    std::vector<float> value(perSample);
+    std::vector<float> value(perPoint);
     for (std::size_t x = 0; x < S; ++x) {
       for (std::size_t b = 0; b < V; ++b) {
         for (std::size_t a = 0; a < V; ++a) {
           const Vec3 w = rttViewDirection(static_cast<int>(a), static_cast<int>(b), static_cast<int>(V));
-          float* dst = &r.coeffs[(((y * S + x) * V + b) * V + a) * perSample];
+          float* dst = &r.coeffs[(((y * S + x) * V + b) * V + a) * perPoint];
           for (int sy = 0; sy < ss; ++sy) {
             for (int sx = 0; sx < ss; ++sx) {
               const float u = (static_cast<float>(x) + (static_cast<float>(sx) + 0.5f) / static_cast<float>(ss)) / static_cast<float>(S);
               const float v = (static_cast<float>(y) + (static_cast<float>(sy) + 0.5f) / static_cast<float>(ss)) / static_cast<float>(S);
               const PeriodicHit h = tracer.viewHit({u, v, midDepth}, w);
               if (!h.hit) continue;  // cannot happen on a height field: kept 0 rather than guessed
-              tracer.interpolate(h, transfer, perSample, value.data());
-              for (std::size_t q = 0; q < perSample; ++q) dst[q] += value[q];
+              tracer.interpolate(h, transfer, perPoint, value.data());
+              for (std::size_t q = 0; q < perPoint; ++q) dst[q] += value[q];
             }
           }
           const float scale = 1.0f / static_cast<float>(ss * ss);
-          for (std::size_t q = 0; q < perSample; ++q) dst[q] *= scale;
+          for (std::size_t q = 0; q < perPoint; ++q) dst[q] *= scale;
         }
       }
     }

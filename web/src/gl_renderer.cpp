@@ -365,19 +365,20 @@ Status GlRenderer::specialised(const char* name, const char* vs, const std::stri
 
 namespace {
 
-// Copies `rows` rows of kTransferTextureWidth RGBA32F texels from `buffer` into `texture`,
-// GPU to GPU; leaves texture unit 0 active.
-void copyBufferToTexture(GLuint buffer, GLuint texture, int rows) {
+// Copies `rows` rows of kTransferTextureWidth float texels (`format` GL_RGBA or GL_RGB) from
+// `buffer` into `texture`, GPU to GPU (a pixel-unpack copy, no read-back); leaves texture
+// unit 0 active.
+void copyBufferToTexture(GLuint buffer, GLuint texture, int rows, GLenum format = GL_RGBA) {
   glActiveTexture(GL_TEXTURE0);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
   glBindTexture(GL_TEXTURE_2D, texture);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, rows, GL_RGBA, GL_FLOAT, nullptr);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, rows, format, GL_FLOAT, nullptr);
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
-// Binds a glossy pass's table (unit 0) and weight levels (unit 1) for the bound program `p`,
-// with the textures' layout and the weight texels a vertex: what the transferred radiance
-// and the fused step both read.
+// Binds a CPCA pass's table (unit 0) and weight levels (unit 1) for the bound program `p`,
+// with the textures' layout and the weight texels a vertex: what the diffuse CPCA sum, the
+// glossy transferred radiance and the fused step all read.
 template <typename ProgramT, typename PassT>
 void bindTableAndWeights(const ProgramT& p, const PassT& g) {
   glActiveTexture(GL_TEXTURE0);
@@ -708,22 +709,12 @@ void GlRenderer::shadeCpca(const PassTexture& t, int activeOrder) {
   glBindVertexArray(tableVao_);
   glVertexAttrib3f(1, 1.0f, 1.0f, 1.0f);
   capture(t.tableBuffer, static_cast<GLsizei>(t.clusters * t.entriesPerCluster));
-  // 2. Into the table texture, GPU to GPU (a pixel-unpack copy, no read-back).
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, t.tableBuffer);
-  glBindTexture(GL_TEXTURE_2D, t.table);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, t.tableHeight, GL_RGB, GL_FLOAT, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  // 2. Into the table texture, GPU to GPU.
+  copyBufferToTexture(t.tableBuffer, t.table, t.tableHeight, GL_RGB);
   // 3. Per vertex: the cluster's constant plus the weighted sum of the displayed bands' weights.
   glUseProgram(cpca_.id);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, t.table);
-  glUniform1i(cpca_.table, 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, t.weights);
-  glUniform1i(cpca_.weights, 1);
-  setTextureLayout(cpca_.textureMask, cpca_.textureShift);
+  bindTableAndWeights(cpca_, t);
   glUniform1i(cpca_.entries, t.entriesPerCluster);
-  glUniform1i(cpca_.weightTexels, t.weightTexels);
   glUniform1i(cpca_.activeTexels, (t.weightsBefore[static_cast<std::size_t>(activeOrder)] + 3) / 4);
   glUniform1i(cpca_.channels, t.channels);
   glBindVertexArray(t.vao);
