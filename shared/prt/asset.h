@@ -160,7 +160,22 @@ struct BakedAsset {
   // octahedral snorm16 codes (prt/octahedral_normal.h), never -32768, (0, 0) at empty texels.
   // The baker writes it only when some texel's material has a normal map (docs/asset-format.md).
   std::vector<std::int16_t> texelNormals;
+  // Bi-scale radiance transfer (Sloan et al. 2003; docs/bi-scale.md), all three empty or all
+  // set, and set only with a vertex matrix pass (the macro scale): `rtt` a whole RTT file
+  // (prt/rtt.h, decodeRtt) of order <= shOrder; `tangents` one per vertex, unit, orthogonal to
+  // the vertex normal (the patch's +x; its +y is cross(normal, tangent)); `patchUv` 2 floats per
+  // vertex, the parametric id map: the patch position is fract(patchUv), in patch widths, left
+  // unwrapped so it interpolates across a triangle, |value| <= kMaxPatchCoordinate.
+  std::vector<std::uint8_t> rtt;
+  std::vector<Vec3> tangents;
+  std::vector<float> patchUv;
 };
+
+// The largest |patch coordinate| an asset may hold: float keeps 2^-11 patch widths there,
+// 1/32 of a 64-sample RTT's spacing.
+inline constexpr float kMaxPatchCoordinate = 4096.0f;
+// How far a bi-scale tangent may be from unit length and from orthogonal to its normal.
+inline constexpr float kTangentTolerance = 1e-3f;
 
 // Texels of all atlases together (sum of width x height); 0 without atlases.
 std::uint64_t assetTexelCount(const BakedAsset& asset);
@@ -178,8 +193,9 @@ inline constexpr std::uint8_t kAssetMagic[4] = {'P', 'R', 'T', 'A'};
 inline constexpr std::uint16_t kAssetVersionMajor = 1;  // incompatible layout changes bump this
 // New section types bump this (1: lighting, 2: encoded transfer, 3: matrices, specular,
 // 4: transfer textures: atlas uv, atlases, texel coverage, texel transfer float32 and encoded,
-// 5: texel visibility float32 and encoded, for TPFL glossy, 6: texel normals).
-inline constexpr std::uint16_t kAssetVersionMinor = 6;
+// 5: texel visibility float32 and encoded, for TPFL glossy, 6: texel normals, 7: bi-scale:
+// tangents, patch uv, RTT).
+inline constexpr std::uint16_t kAssetVersionMinor = 7;
 inline constexpr std::size_t kAssetHeaderSize = 64;
 inline constexpr std::size_t kAssetSectionEntrySize = 40;
 inline constexpr std::size_t kAssetAlignment = 16;  // every section offset is a multiple of this
@@ -222,6 +238,11 @@ enum class AssetSectionType : std::uint32_t {
   kEncodedTexelVisibility = 18,  // bytes: a transfer codec blob of order m, 1 channel, texels as rows
   // Normal-mapped shading normals (since 1.6): 2 snorm16 octahedral codes per texel; only with the atlases.
   kTexelNormals = 19,
+  // Bi-scale radiance transfer (since 1.7; docs/asset-format.md "Bi-scale"): all three or none,
+  // only with a vertex matrix pass.
+  kTangents = 20,  // float32 x, y, z per vertex: unit, orthogonal to the normal
+  kPatchUv = 21,   // float32 u, v per vertex: patch coordinates (the parametric id map)
+  kRtt = 22,       // bytes: a whole RTT file (prt/rtt.h), its own checksum included
 };
 
 // Bytes per texel of the texel normals section: int16 x, y (octahedral, snorm16).
@@ -311,6 +332,9 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // triangles contiguously in order, at most kMaxAssetTexels texels, atlasUv 2 per vertex in
 // [0, 1], texelCoverage one value (0, 1 or 2) per texel; without one, all three empty.
 // texelNormals empty, or (with a texel pass) 2 codes per texel, none -32768, (0, 0) at empty texels.
+// rtt, tangents and patchUv all empty, or (with a vertex matrix pass) an RTT decodeRtt accepts
+// of order <= shOrder, a tangent per vertex within kTangentTolerance of unit and orthogonal to
+// its normal, and 2 patch coordinates per vertex, finite, |x| <= kMaxPatchCoordinate.
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.
@@ -411,6 +435,12 @@ Status decodeAssetPassCpcaMatrix(std::span<const std::uint8_t> file, int pass, i
 // out->texelNormals, leaving the rest of *out alone; all empty for a file without texel passes,
 // texelNormals empty for one without normals. *out is unchanged on error. Safe on untrusted input.
 Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out);
+
+// Decodes the bi-scale sections (tangents, patch uv, RTT; they must have arrived) into
+// out->tangents, out->patchUv and out->rtt, leaving the rest of *out alone; all empty for a file
+// without them. *out is unchanged on error. Safe on untrusted input (the RTT is decoded and
+// checked whole: decodeRtt).
+Status decodeAssetBiScale(std::span<const std::uint8_t> file, BakedAsset* out);
 
 // Decodes the specular section (it must have arrived) into *out, one per vertex; empty when
 // the file has none. Safe on untrusted input.

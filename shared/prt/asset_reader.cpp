@@ -15,6 +15,7 @@
 #include <type_traits>
 
 #include "prt/asset.h"
+#include "prt/asset_bi_scale.h"
 #include "prt/checksum.h"
 #include "prt/little_endian.h"
 #include "prt/octahedral_normal.h"
@@ -53,6 +54,7 @@ struct Parsed {
   // Transfer textures (format 1.4): each required exactly once with a texel pass, else absent.
   int atlasUv = -1, atlases = -1, coverage = -1;
   int texelNormals = -1;  // optional (format 1.6), only with the atlas sections
+  int tangents = -1, patchUv = -1, rtt = -1;  // bi-scale (format 1.7): all or none, with a vertex matrix pass
   std::uint64_t texelCount = 0;  // the coverage section's size (1 byte per texel); 0 without one
   std::vector<int> transfer;  // entry indices, table order (vector, matrix and texel passes)
 };
@@ -83,6 +85,9 @@ constexpr std::uint32_t kTypeEncodedTexelTransfer = static_cast<std::uint32_t>(A
 constexpr std::uint32_t kTypeTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kTexelVisibility);
 constexpr std::uint32_t kTypeEncodedTexelVisibility = static_cast<std::uint32_t>(AssetSectionType::kEncodedTexelVisibility);
 constexpr std::uint32_t kTypeTexelNormals = static_cast<std::uint32_t>(AssetSectionType::kTexelNormals);
+constexpr std::uint32_t kTypeTangents = static_cast<std::uint32_t>(AssetSectionType::kTangents);
+constexpr std::uint32_t kTypePatchUv = static_cast<std::uint32_t>(AssetSectionType::kPatchUv);
+constexpr std::uint32_t kTypeRtt = static_cast<std::uint32_t>(AssetSectionType::kRtt);
 
 bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
 bool isVisibilityType(std::uint32_t type) { return type == kTypeTexelVisibility || type == kTypeEncodedTexelVisibility; }
@@ -137,6 +142,9 @@ std::string sectionLabel(const Entry& e) {
     case kTypeAtlases: s += "atlases"; break;
     case kTypeTexelCoverage: s += "texel coverage"; break;
     case kTypeTexelNormals: s += "texel normals"; break;
+    case kTypeTangents: s += "tangents"; break;
+    case kTypePatchUv: s += "patch uv"; break;
+    case kTypeRtt: s += "RTT"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -321,6 +329,22 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       // parseTable (checkTexelSections), since the coverage entry may come later in the table.
       if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
       return once(&p->texelNormals);
+    case kTypeTangents:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(v * 12, "12 bytes per vertex")).isOk()) {
+        return s;
+      }
+      return once(&p->tangents);
+    case kTypePatchUv:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk() || !(s = expectNoArgs()).isOk() ||
+          !(s = expectSize(v * 8, "u and v per vertex")).isOk()) {
+        return s;
+      }
+      return once(&p->patchUv);
+    case kTypeRtt:
+      // Its contents carry their own shape and checksum (decodeRtt, in validateAll).
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      return once(&p->rtt);
     case kTypeTexelVisibility:
     case kTypeEncodedTexelVisibility: {
       // TPFL glossy visibility (since 1.5): shadowed, one channel, arg2 its own order. A float32
@@ -443,6 +467,55 @@ Status checkTexelSections(const Parsed& p) {
   return Status::ok();
 }
 
+// Bi-scale: tangents, patch uv and RTT all or none, and only with a vertex matrix pass.
+Status checkBiScaleSections(const Parsed& p) {
+  const std::pair<int, const char*> sections[] = {{p.tangents, "tangents"}, {p.patchUv, "patch uv"}, {p.rtt, "RTT"}};
+  int present = 0;
+  for (const auto& [slot, name] : sections) present += slot >= 0 ? 1 : 0;
+  if (present == 0) return Status::ok();
+  for (const auto& [slot, name] : sections) {
+    if (slot < 0) return corrupt(std::string("the asset has bi-scale sections but no ") + name + " section");
+  }
+  for (int t : p.transfer) {
+    const std::uint32_t type = p.entries[static_cast<std::size_t>(t)].type;
+    if (isMatrixType(type)) return Status::ok();
+  }
+  return corrupt(sectionLabel(p.entries[static_cast<std::size_t>(p.rtt)]) + " is present without a matrix transfer section");
+}
+
+// Bi-scale payloads (asset_bi_scale.h's rules): each tangent against its normal (the normals
+// section, validated before), each patch coordinate, the RTT against the asset's order.
+Status checkTangentsPayload(std::span<const std::uint8_t> payload, const Entry& e, std::span<const std::uint8_t> normals) {
+  const std::size_t count = payload.size() / 12;
+  for (std::size_t v = 0; v < count; ++v) {
+    float t[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+      t[k] = floatFromBits(readLe32(payload.data() + 12 * v + 4 * k));
+      n[k] = floatFromBits(readLe32(normals.data() + 12 * v + 4 * k));
+    }
+    if (Status s = asset_bi_scale::checkTangent({t[0], t[1], t[2]}, {n[0], n[1], n[2]}, v); !s.isOk()) {
+      return corrupt(sectionLabel(e) + ": " + s.message());
+    }
+  }
+  return Status::ok();
+}
+
+Status checkPatchUvPayload(std::span<const std::uint8_t> payload, const Entry& e) {
+  for (std::size_t i = 0; i < payload.size() / 4; ++i) {
+    if (Status s = asset_bi_scale::checkPatchCoordinate(floatFromBits(readLe32(payload.data() + 4 * i)), i); !s.isOk()) {
+      return corrupt(sectionLabel(e) + ": " + s.message());
+    }
+  }
+  return Status::ok();
+}
+
+Status checkRttPayload(std::span<const std::uint8_t> payload, const Entry& e, std::uint32_t order) {
+  if (Status s = asset_bi_scale::checkRttBytes(payload, static_cast<int>(order)); !s.isOk()) {
+    return corrupt(sectionLabel(e) + ": " + s.message());
+  }
+  return Status::ok();
+}
+
 // Section table: checksum, then each entry's bounds, alignment, known-type rules, then
 // overlaps and required sections. Entries are checked against the declared file size, so
 // this also works on a prefix (peekAssetHeader).
@@ -521,6 +594,7 @@ Status parseTable(std::span<const std::uint8_t> bytes, Parsed* p) {
     return corrupt(sectionLabel(p->entries[static_cast<std::size_t>(p->specular)]) +
                    " is present without a matrix or visibility transfer section");
   }
+  if (Status s = checkBiScaleSections(*p); !s.isOk()) return s;
   return checkTexelSections(*p);
 }
 
@@ -839,6 +913,9 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeAtlases: s = parseAtlases(payload, e, *p, nullptr); break;
       case kTypeTexelCoverage: s = checkCoverage(payload, e); break;
       case kTypeTexelNormals: s = checkTexelNormals(payload, e, payloadOf(bytes, p->entries[static_cast<std::size_t>(p->coverage)])); break;
+      case kTypeTangents: s = checkTangentsPayload(payload, e, payloadOf(bytes, p->entries[static_cast<std::size_t>(p->normals)])); break;
+      case kTypePatchUv: s = checkPatchUvPayload(payload, e); break;
+      case kTypeRtt: s = checkRttPayload(payload, e, p->order); break;
       case kTypeEncodedTransfer:
       case kTypeEncodedMatrixTransfer:
       case kTypeEncodedTexelTransfer:
@@ -938,6 +1015,17 @@ void readAtlasSections(std::span<const std::uint8_t> bytes, const Parsed& p, Bak
       out->texelNormals[i] = static_cast<std::int16_t>(readLe16(normals.data() + 2 * i));
     }
   }
+}
+
+// Copies the three validated bi-scale sections (they exist) into *out.
+void readBiScaleSections(std::span<const std::uint8_t> bytes, const Parsed& p, BakedAsset* out) {
+  const auto payload = [&](int slot) { return payloadOf(bytes, p.entries[static_cast<std::size_t>(slot)]); };
+  readTriples(payload(p.tangents), &out->tangents);
+  const auto uv = payload(p.patchUv);
+  out->patchUv.resize(uv.size() / 4);
+  readFloats(uv, out->patchUv.data());
+  const auto rtt = payload(p.rtt);
+  out->rtt.assign(rtt.begin(), rtt.end());
 }
 
 void readSpecular(std::span<const std::uint8_t> payload, std::vector<SpecularMaterial>* out) {
@@ -1117,6 +1205,7 @@ Status decodeAsset(std::span<const std::uint8_t> bytes, BakedAsset* out) {
   }
   if (p.specular >= 0) readSpecular(payload(p.specular), &a.specular);
   if (p.atlases >= 0) readAtlasSections(bytes, p, &a);
+  if (p.rtt >= 0) readBiScaleSections(bytes, p, &a);
   a.samples = m.samples;
   a.seed = m.seed;
   a.sampling = std::move(m.sampling);
@@ -1312,6 +1401,32 @@ Status decodeAssetAtlases(std::span<const std::uint8_t> file, BakedAsset* out) {
   out->atlases = std::move(a.atlases);
   out->texelCoverage = std::move(a.texelCoverage);
   out->texelNormals = std::move(a.texelNormals);
+  return Status::ok();
+}
+
+Status decodeAssetBiScale(std::span<const std::uint8_t> file, BakedAsset* out) {
+  if (out == nullptr) return Status::error(StatusCode::kInvalidArgument, "decodeAssetBiScale: out is null");
+  Parsed p;
+  if (Status s = parseHeader(file, &p); !s.isOk()) return s;
+  if (Status s = checkWholeFileSize(file, p); !s.isOk()) return s;
+  if (Status s = parseTable(file, &p); !s.isOk()) return s;
+  BakedAsset a;
+  if (p.rtt >= 0) {  // parseTable: then all three exist, with a matrix pass
+    // The tangents are checked against the normals: those must have arrived too.
+    for (int slot : {p.normals, p.tangents, p.patchUv, p.rtt}) {
+      if (Status s = checkSectionCrc(file, p.entries[static_cast<std::size_t>(slot)]); !s.isOk()) return s;
+    }
+    const auto payload = [&](int slot) { return payloadOf(file, p.entries[static_cast<std::size_t>(slot)]); };
+    const Entry& normals = p.entries[static_cast<std::size_t>(p.normals)];
+    PRT_RETURN_IF_ERROR(checkFloats(payload(p.normals), normals));
+    PRT_RETURN_IF_ERROR(checkTangentsPayload(payload(p.tangents), p.entries[static_cast<std::size_t>(p.tangents)], payload(p.normals)));
+    PRT_RETURN_IF_ERROR(checkPatchUvPayload(payload(p.patchUv), p.entries[static_cast<std::size_t>(p.patchUv)]));
+    PRT_RETURN_IF_ERROR(checkRttPayload(payload(p.rtt), p.entries[static_cast<std::size_t>(p.rtt)], p.order));
+    readBiScaleSections(file, p, &a);
+  }
+  out->tangents = std::move(a.tangents);
+  out->patchUv = std::move(a.patchUv);
+  out->rtt = std::move(a.rtt);
   return Status::ok();
 }
 

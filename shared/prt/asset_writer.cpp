@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "prt/asset.h"
+#include "prt/asset_bi_scale.h"
 #include "prt/checksum.h"
 #include "prt/little_endian.h"
 #include "prt/octahedral_normal.h"
@@ -98,6 +99,37 @@ Status checkSpecular(const std::vector<SpecularMaterial>& specular, bool anyGlos
 }
 
 bool isKnownKind(TransferKind kind) { return static_cast<std::uint32_t>(kind) <= 2; }
+
+// The bi-scale sections (prt/asset.h): all or none, only with a vertex matrix pass, each value
+// by asset_bi_scale's rules.
+Status checkBiScale(const BakedAsset& asset) {
+  const std::size_t vertexCount = asset.positions.size();
+  if (asset.rtt.empty()) {
+    if (asset.tangents.empty() && asset.patchUv.empty()) return Status::ok();
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.tangents.size()) + " tangents and " +
+                                                           std::to_string(asset.patchUv.size()) +
+                                                           " patch uv floats but no RTT; they are kept only with one");
+  }
+  bool matrix = false;
+  for (const TransferPass& pass : asset.passes) {
+    matrix = matrix || (pass.form == TransferForm::kMatrix && pass.domain == TransferDomain::kVertex);
+  }
+  if (!matrix) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has an RTT but no vertex matrix pass (bi-scale's macro scale)");
+  }
+  if (asset.tangents.size() != vertexCount || asset.patchUv.size() != 2 * vertexCount) {
+    return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.tangents.size()) + " tangents and " +
+                                                        std::to_string(asset.patchUv.size()) + " patch uv floats for " +
+                                                        std::to_string(vertexCount) + " vertices; bi-scale needs 1 and 2 per vertex");
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    PRT_RETURN_IF_ERROR(asset_bi_scale::checkTangent(asset.tangents[v], asset.normals[v], v));
+  }
+  for (std::size_t i = 0; i < asset.patchUv.size(); ++i) {
+    PRT_RETURN_IF_ERROR(asset_bi_scale::checkPatchCoordinate(asset.patchUv[i], i));
+  }
+  return asset_bi_scale::checkRttBytes(asset.rtt, asset.shOrder);
+}
 
 bool hasTexelPass(const BakedAsset& asset) {
   for (const TransferPass& pass : asset.passes)
@@ -401,6 +433,7 @@ Status checkAsset(const BakedAsset& asset) {
     }
   }
   if (Status st = checkSpecular(asset.specular, anyGlossy, vertexCount); !st.isOk()) return st;
+  if (Status st = checkBiScale(asset); !st.isOk()) return st;
   if (!isValidAssetName(asset.name)) {
     return Status::error(StatusCode::kInvalidArgument,
                          "asset name must be at most " + std::to_string(kMaxAssetNameBytes) +
@@ -450,6 +483,13 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
       sections.push_back({AssetSectionType::kTexelNormals, AssetElementFormat::kBytes, 0, 0, 0,
                           asset.texelNormals.size() / 2 * kAssetTexelNormalBytes, 0, nullptr});
     }
+  }
+  // The bi-scale sections before the passes too: the client draws bi-scale from the first
+  // glossy shell on. Only bi-scale assets have them, so other files keep their layout.
+  if (!asset.rtt.empty()) {
+    sections.push_back({AssetSectionType::kTangents, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
+    sections.push_back({AssetSectionType::kPatchUv, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 8, 0, nullptr});
+    sections.push_back({AssetSectionType::kRtt, AssetElementFormat::kBytes, 0, 0, 0, asset.rtt.size(), 0, nullptr});
   }
   const std::uint64_t texelCount = assetTexelCount(asset);
   for (const TransferPass& pass : asset.passes) {
@@ -547,6 +587,9 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
         }
         break;
       case AssetSectionType::kTexelCoverage: std::memcpy(p, asset.texelCoverage.data(), asset.texelCoverage.size()); break;
+      case AssetSectionType::kTangents: putTriples(p, asset.tangents); break;
+      case AssetSectionType::kPatchUv: putFloats(p, asset.patchUv.data(), asset.patchUv.size()); break;
+      case AssetSectionType::kRtt: std::memcpy(p, asset.rtt.data(), asset.rtt.size()); break;
       case AssetSectionType::kTexelNormals:
         for (std::size_t k = 0; k < asset.texelNormals.size(); ++k) {
           writeLe16(p + 2 * k, static_cast<std::uint16_t>(asset.texelNormals[k]));

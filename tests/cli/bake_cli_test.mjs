@@ -123,7 +123,7 @@ const cases = {
     const wrote = JSON.parse(made.stdout);
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.6', `version ${info.version}`);
+      check(info.version === '1.7', `version ${info.version}`);
       const seen = info.passes.map((p) => ({ kind: p.kind, domain: p.domain, encoded: p.encoded }));
       check(JSON.stringify(seen) === JSON.stringify(wrote.passes), `passes ${JSON.stringify(seen)}, wrote ${JSON.stringify(wrote.passes)}`);
       check(info.texels === wrote.texels, `texels ${info.texels}, wrote ${wrote.texels}`);
@@ -354,7 +354,7 @@ const cases = {
     expectExit([work('stripes.gltf'), '-o', mapped, ...bakeArgs], 0);
     expectExit([work('stripes-flat.gltf'), '-o', flat, ...bakeArgs], 0);
     const info = json(expectExit(['info', mapped, '--json'], 0));
-    check(info?.version === '1.6' && info?.texel_normals?.encoding === 'octahedral snorm16' && info.texel_normals.bytes === 4 * 64 * 64,
+    check(info?.version === '1.7' && info?.texel_normals?.encoding === 'octahedral snorm16' && info.texel_normals.bytes === 4 * 64 * 64,
           `info texel_normals: ${JSON.stringify(info?.texel_normals)}`);
     check(/^texel normals: normal-mapped shading normals for the glossy term, octahedral 2 x 16 bits \(snorm\), 16384 bytes$/m.test(
       expectExit(['info', mapped], 0).stdout), 'info text lacks the texel normals line');
@@ -454,7 +454,7 @@ const cases = {
     const v = info?.passes?.filter((p) => p.form === 'visibility') ?? [];
     check(v.length === 1 && v[0].kind === 'shadowed' && v[0].domain === 'texel' && v[0].order === 5 && v[0].channels === 1,
           `info visibility pass: ${JSON.stringify(info?.passes)}`);
-    check(info?.version === '1.6', `version ${info?.version}`);
+    check(info?.version === '1.7', `version ${info?.version}`);
     const text = expectExit(['info', out], 0).stdout;
     check(/^pass: texel shadowed visibility \(TPFL glossy\), order 5 \(25 coefficients per texel, exact\), float32, \d+ bytes$/m.test(text),
           `info text: ${text}`);
@@ -593,7 +593,7 @@ const cases = {
     }
     const info = json(expectExit(['info', out, '--json'], 0));
     if (info) {
-      check(info.version === '1.6' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
+      check(info.version === '1.7' && info.name === 'default-room-local', `info: ${JSON.stringify(info)}`);
       check(info.lighting?.model === 'local-sphere' && Math.abs(info.lighting.radius - radius) < 1e-5,
             `info lighting: ${JSON.stringify(info.lighting)}`);
     }

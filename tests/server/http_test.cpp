@@ -90,7 +90,7 @@ TEST(Scenes, CatalogueListsEveryAssetAndFlagsTheBadOnes) {
   ASSERT_NE(small, nullptr);
   EXPECT_TRUE(small->at("usable").get<bool>());
   EXPECT_EQ(small->at("url").get<std::string>(), "/assets/" + hexHash(s.tree.small) + "/small.prt");
-  EXPECT_EQ(small->at("version").get<std::string>(), "1.6");
+  EXPECT_EQ(small->at("version").get<std::string>(), "1.7");
   EXPECT_EQ(small->at("lighting").get<std::string>(), "local-sphere");
   ASSERT_EQ(asArray(small->at("lightCenter")).size(), 3u);
   EXPECT_EQ(small->at("lightCenter").at(0).get<double>(), 0.5);

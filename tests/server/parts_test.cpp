@@ -292,7 +292,7 @@ TEST(Parts, TexelPassesAndAtlasSectionsAreMarkedInTheCatalogue) {
   ASSERT_NE(e, nullptr);
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(s.texel.bytes, &summary).isOk());
-  EXPECT_EQ(e->at("version").get<std::string>(), "1.6");
+  EXPECT_EQ(e->at("version").get<std::string>(), "1.7");
   EXPECT_EQ(e->at("texels").get<double>(), static_cast<double>(summary.texelCount));
   const Json& passes = e->at("passes");
   ASSERT_EQ(asArray(passes).size(), summary.passes.size());

@@ -74,7 +74,7 @@ TEST(AssetEncoded, RoundTripKeepsTheBlobAndDecodesItsFloats) {
   const Bytes file = encodeOrDie(a);
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
-  EXPECT_EQ(summary.versionMinor, 6);
+  EXPECT_EQ(summary.versionMinor, 7);
   ASSERT_EQ(summary.passes.size(), 2u);
   EXPECT_TRUE(summary.passes[0].encoded);
   EXPECT_EQ(summary.passes[0].bytes, a.passes[0].encoded.size());
@@ -99,7 +99,7 @@ TEST(AssetEncoded, FilesWithoutEncodedPassesCarryTheCurrentMinorVersionToo) {
   const Bytes file = encodeOrDie(makeSmoothAsset(3, 50));
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
-  EXPECT_EQ(summary.versionMinor, 6);
+  EXPECT_EQ(summary.versionMinor, 7);
   EXPECT_FALSE(summary.passes[0].encoded);
 }
 

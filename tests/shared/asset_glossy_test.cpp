@@ -101,7 +101,7 @@ TEST(AssetGlossy, FloatMatrixPassesRoundTripUnderBothLightingModels) {
     expectSameAsset(a, b);
     AssetSummary sum;
     ASSERT_TRUE(verifyAsset(file, &sum).isOk());
-    EXPECT_EQ(sum.versionMinor, 6);
+    EXPECT_EQ(sum.versionMinor, 7);
     ASSERT_EQ(sum.passes.size(), 3u);
     EXPECT_EQ(sum.passes[0].form, TransferForm::kVector);
     EXPECT_EQ(sum.passes[1].form, TransferForm::kMatrix);
@@ -271,8 +271,8 @@ TEST(AssetGlossy, MatchesTheMatrixWorkedExampleInTheDocument) {
       ++i;
     }
   };
-  // Header: version 1.6, order 2, 9 sections, file size 664.
-  at(0x00, {0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x06, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00});
+  // Header: version 1.7, order 2, 9 sections, file size 664.
+  at(0x00, {0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x07, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00});
   at(0x18, {0x09, 0x00, 0x00, 0x00});
   at(0x20, {0x98, 0x02, 0x00, 0x00});
   // Entry 6: specular, float32, offset 0x240, 20 bytes, args 0, crc.

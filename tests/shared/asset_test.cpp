@@ -364,7 +364,7 @@ TEST(Asset, LayoutMatchesTheDocument) {
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "PRTA");
   EXPECT_EQ(b[kHdrVersionMajor], 1);
   EXPECT_EQ(b[kHdrVersionMajor + 1], 0);
-  EXPECT_EQ(rd32(b, kHdrVersionMinor) & 0xFFFFu, 6u);
+  EXPECT_EQ(rd32(b, kHdrVersionMinor) & 0xFFFFu, 7u);
   EXPECT_EQ(rd32(b, kHdrFlags), 0u);
   EXPECT_EQ(rd32(b, kHdrOrder), 3u);
   EXPECT_EQ(rd32(b, kHdrVertices), 5u);
@@ -429,10 +429,10 @@ TEST(Asset, LayoutMatchesTheDocument) {
 TEST(Asset, MatchesTheWorkedExampleInTheDocument) {
   // docs/asset-format.md, "Worked example": the complete 500-byte file.
   const Bytes expected = {
-    0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x06, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0x50, 0x52, 0x54, 0x41, 0x01, 0x00, 0x07, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
     0x01, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00, 0xdf, 0xa5, 0xcc, 0xf7,
     0xf4, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd3, 0x73, 0xbb, 0x0e,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x7a, 0xc5, 0x56, 0x04,
     0x06, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x60, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
     0x26, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
     0x00, 0x00, 0x00, 0x00, 0x86, 0x00, 0x1d, 0xc3, 0x07, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00,
@@ -528,10 +528,10 @@ TEST(Asset, Version10FileWithoutLightingDecodesAsDistant) {
     EXPECT_EQ(sum->sectionCount, 6u);
     EXPECT_EQ(sum->lighting.model, LightingModel::kDistant);
   }
-  // Re-encoding writes 1.6 with an explicit distant lighting section, one section more.
+  // Re-encoding writes 1.7 with an explicit distant lighting section, one section more.
   const Bytes again = encodeOrDie(back);
   EXPECT_EQ(rd32(again, kHdrSections), 7u);
-  EXPECT_EQ(again[kHdrVersionMinor], 6);
+  EXPECT_EQ(again[kHdrVersionMinor], 7);
   EXPECT_EQ(rd32(again, payloadOffset(again, findEntry(again, kLighting)) + kLightModel), 0u);
 }
 
@@ -561,7 +561,7 @@ TEST(Asset, PeekAndVerifySummariseWithoutDecoding) {
   ASSERT_TRUE(verifyAsset(b, nullptr).isOk());
   for (const AssetSummary* s : {&full, &verified}) {
     EXPECT_EQ(s->versionMajor, 1);
-    EXPECT_EQ(s->versionMinor, 6);
+    EXPECT_EQ(s->versionMinor, 7);
     EXPECT_EQ(s->shOrder, 5);
     EXPECT_EQ(s->vertexCount, 20u);
     EXPECT_EQ(s->triangleCount, 30u);
@@ -672,7 +672,7 @@ TEST(Asset, FutureAndPastMajorVersionsAreRefusedNamingBoth) {
   Bytes b = encodeOrDie(makeAsset(2, 4, 2));
   wr16(b, kHdrVersionMajor, 2);
   wr16(b, kHdrVersionMinor, 3);
-  expectDecodeError(b, StatusCode::kBadVersion, "2.3 is newer than this reader's 1.6");
+  expectDecodeError(b, StatusCode::kBadVersion, "2.3 is newer than this reader's 1.7");
   AssetSummary s;
   expectError(peekAssetHeader(b, &s), StatusCode::kBadVersion, "2.3");
   // Even a future header we cannot checksum is reported as a version problem, not damage.

@@ -119,11 +119,11 @@ TEST(AssetTexel, FloatAndEncodedTexelPassesRoundTripWithVertexPasses) {
   encodeTexelPasses(&encodedPart, "q16");
   a.passes.push_back(encodedPart.passes.back());  // texel interreflected, a q16 blob
   const Bytes file = encodeOrDie(a);
-  EXPECT_EQ(rd32(file, L::kVersionMinor) & 0xFFFFu, 6u);
+  EXPECT_EQ(rd32(file, L::kVersionMinor) & 0xFFFFu, 7u);
 
   AssetSummary summary;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
-  EXPECT_EQ(summary.versionMinor, 6);
+  EXPECT_EQ(summary.versionMinor, 7);
   EXPECT_EQ(summary.texelCount, assetTexelCount(a));
   ASSERT_EQ(summary.passes.size(), 3u);
   EXPECT_EQ(summary.passes[0].domain, TransferDomain::kVertex);

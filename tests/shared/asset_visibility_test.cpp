@@ -90,7 +90,7 @@ TEST(AssetVisibility, FloatAndEncodedVisibilityPassesRoundTrip) {
   AssetSummary summary, peeked;
   ASSERT_TRUE(verifyAsset(file, &summary).isOk());
   ASSERT_TRUE(peekAssetHeader(file, &peeked).isOk());
-  EXPECT_EQ(summary.versionMinor, 6);
+  EXPECT_EQ(summary.versionMinor, 7);
   for (const AssetSummary* s : {&summary, &peeked}) {
     ASSERT_EQ(s->passes.size(), 2u);
     const AssetPassInfo& v = s->passes[1];

@@ -307,7 +307,7 @@ const cases = {
       return { out, info: JSON.parse(execFileSync(prtBake, ['info', out, '--json'], { encoding: 'utf8' })) };
     };
     const mapped = bakeQuad('stripes-gold', true), flat = bakeQuad('stripes-gold-flat', false);
-    check(mapped.info.version === '1.6' && mapped.info.texel_normals?.bytes === 4 * 64 * 64,
+    check(mapped.info.version === '1.7' && mapped.info.texel_normals?.bytes === 4 * 64 * 64,
       `the normal-mapped bake has no texel normals section: ${JSON.stringify(mapped.info.texel_normals)}`);
     check(flat.info.texel_normals === null, `the bake without a normal map has texel normals: ${JSON.stringify(flat.info.texel_normals)}`);
     const server = await startServer(prtServe, root, webDist);
