@@ -21,6 +21,7 @@
 #include "native/image_io.h"
 #include "native/json_text.h"
 #include "prt/asset.h"
+#include "prt/rtt.h"
 #include "prt/exit_radiance.h"
 #include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
@@ -223,6 +224,11 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   if (Status s = decodeAssetAtlases(bytes, &atlases); !s.isOk()) {
     return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
   }
+  if (Status s = decodeAssetBiScale(bytes, &atlases); !s.isOk()) {
+    return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
+  }
+  Rtt rtt;  // verified by verifyAsset: cannot fail
+  if (!atlases.rtt.empty() && !decodeRtt(atlases.rtt, &rtt).isOk()) rtt = Rtt{};
   const std::uint64_t texels = assetTexelCount(atlases);
   std::vector<AtlasUsage> usage;
   if (Status s = atlasUsage(bytes, atlases, &usage); !s.isOk()) return reportFailure(err, "info", Status::error(s.code(), prefixed(path, s)));
@@ -263,6 +269,12 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += atlases.texelNormals.empty() ? std::string("null")
                                       : "{\"encoding\": \"octahedral snorm16\", \"bytes\": " +
                                             std::to_string(atlases.texelNormals.size() * 2) + "}";
+    // null without an RTT (docs/bi-scale.md).
+    s += ",\n  \"bi_scale\": ";
+    s += atlases.rtt.empty() ? std::string("null")
+                             : "{\"rtt_bytes\": " + std::to_string(atlases.rtt.size()) + ", \"order\": " + std::to_string(rtt.order) +
+                                   ", \"channels\": " + std::to_string(rtt.channels) + ", \"spatial\": " + std::to_string(rtt.spatial) +
+                                   ", \"views\": " + std::to_string(rtt.views) + "}";
     s += "\n}\n";
     std::fputs(s.c_str(), out);
   } else {
@@ -306,6 +318,11 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (!atlases.texelNormals.empty()) {
       std::fprintf(out, "texel normals: normal-mapped shading normals for the glossy term, octahedral 2 x 16 bits (snorm), %llu bytes\n",
                    static_cast<unsigned long long>(atlases.texelNormals.size() * 2));
+    }
+    if (!atlases.rtt.empty()) {
+      std::fprintf(out, "bi-scale: RTT order %d, %d channel%s, %dx%d samples x %dx%d views, %zu bytes; tangents and patch uv per vertex\n",
+                   rtt.order, rtt.channels, rtt.channels == 1 ? "" : "s", rtt.spatial, rtt.spatial, rtt.views, rtt.views,
+                   atlases.rtt.size());
     }
   }
   return kExitOk;

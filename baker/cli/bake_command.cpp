@@ -20,6 +20,7 @@
 #include "baker/transfer/bake_asset.h"
 #include "baker/cli/progress_bar.h"
 #include "prt/asset.h"
+#include "prt/rtt.h"
 #include "prt/sh_basis.h"
 #include "prt/transfer_codec.h"
 
@@ -36,6 +37,7 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
     {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
     {"--texel-glossy", false}, {"--visibility-order", true}, {"--texture-sets", true},
+    {"--rtt", true}, {"--patches-per-uv", true}, {"--patch-uv-set", true},
 };
 
 constexpr const char* kHelp =
@@ -109,6 +111,13 @@ constexpr const char* kHelp =
     "                            glossy material split of --glossy (needs --texels, distant lighting)\n"
     "  --visibility-order M      its SH bands, 2..16 (default 2N-1 for --order N: exact; M = N is\n"
     "                            the economy form, M^2 floats a texel, and an approximation)\n"
+    "  --rtt FILE                bi-scale radiance transfer (docs/bi-scale.md): store this RTT\n"
+    "                            (prt-bake rtt) with tangent frames and its placement through a\n"
+    "                            UV set, for the page's meso scale (needs --glossy: the matrices\n"
+    "                            are the macro scale)\n"
+    "  --patches-per-uv X        patch repeats per UV unit, > 0 (default 8)\n"
+    "  --patch-uv-set K          the UV set the patch follows, 0 or 1 (default: TEXCOORD_0 if the\n"
+    "                            scene has it, else TEXCOORD_1)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -120,6 +129,36 @@ struct BakeCli {
 };
 
 Status usage(std::string m) { return usageError(std::move(m)); }
+
+// --rtt FILE (read and verified here, so a bad file fails before the bake), --patches-per-uv,
+// --patch-uv-set.
+Status parseBiScaleArgs(const ParsedArgs& p, BakeCli* c) {
+  for (const char* flag : {"--patches-per-uv", "--patch-uv-set"}) {
+    if (p.has(flag) && !p.has("--rtt")) return usage(std::string(flag) + " needs --rtt");
+  }
+  const std::string* path = p.value("--rtt");
+  if (path == nullptr) return Status::ok();
+  if (!c->bake.transfer.glossy) return usage("--rtt needs --glossy (the glossy matrices are bi-scale's macro scale)");
+  bake::AssetBakeOptions::BiScale b;
+  if (const std::string* s = p.value("--patches-per-uv")) {
+    float x = 0;
+    if (!parseFloatArg("--patches-per-uv", *s, 0.0f, 1e6f, &x).isOk() || !(x > 0.0f)) {
+      return usage("--patches-per-uv expects a number > 0 (patch repeats per UV unit), got '" + *s + "'");
+    }
+    b.placement.patchesPerUv = x;
+  }
+  if (const std::string* s = p.value("--patch-uv-set")) {
+    int k = 0;
+    PRT_RETURN_IF_ERROR(parseIntArg("--patch-uv-set", *s, 0, 1, &k));
+    b.placement.texcoord = k;
+  }
+  constexpr std::uint64_t kMaxRttFileBytes = 1ull << 30;
+  PRT_RETURN_IF_ERROR(readFileBytes(*path, kMaxRttFileBytes, &b.rtt));
+  Rtt rtt;
+  if (Status s = decodeRtt(b.rtt, &rtt); !s.isOk()) return Status::error(s.code(), *path + ": " + s.message());
+  c->bake.biScale = std::move(b);
+  return Status::ok();
+}
 
 // "X,Y,Z": exactly three finite numbers.
 Status parseTriple(std::string_view flag, const std::string& text, Vec3* out) {
@@ -387,6 +426,7 @@ Status parseBakeArgs(std::span<const std::string> args, BakeCli* c) {
   if (Status st = parseLightingArgs(p, c); !st.isOk()) return st;
   if (Status st = parseGlossyArgs(p, c); !st.isOk()) return st;
   if (Status st = parseTexelArgs(p, c); !st.isOk()) return st;
+  if (Status st = parseBiScaleArgs(p, c); !st.isOk()) return st;
   if (const std::string* s = p.value("--name")) {
     if (!isValidAssetName(*s)) {
       return usage("--name must be at most " + std::to_string(kMaxAssetNameBytes) + " bytes of UTF-8 without control characters");
@@ -438,6 +478,16 @@ std::string describeAtlas(const bake::TexelAtlasReport& t) {
   char text[160];
   std::snprintf(text, sizeof text, "generated atlas (Blender Smart UV Project, %zu attempt%s, margin %.4g, %.1f s)",
                 g.attempts.size(), g.attempts.size() == 1 ? "" : "s", g.attempts.back().margin, g.seconds);
+  return text;
+}
+
+// "RTT order 5, 1 channel, 64x64 samples x 8x8 views" (the bytes were verified when parsed).
+std::string describeRtt(const std::vector<std::uint8_t>& bytes) {
+  Rtt r;
+  if (!decodeRtt(bytes, &r).isOk()) return "RTT";
+  char text[160];
+  std::snprintf(text, sizeof text, "RTT order %d, %d channel%s, %dx%d samples x %dx%d views", r.order, r.channels,
+                r.channels == 1 ? "" : "s", r.spatial, r.spatial, r.views, r.views);
   return text;
 }
 
@@ -553,6 +603,11 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                    "miss it receive no light\n",
                    report.verticesOutsideLight, report.vertices, describeLighting(report.lighting).c_str());
     }
+    if (c.bake.biScale && !c.quiet) {
+      std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), %g patches per UV unit; %zu vertices with no UV direction\n",
+                   describeRtt(c.bake.biScale->rtt).c_str(), c.bake.biScale->rtt.size(), c.bake.biScale->placement.patchesPerUv,
+                   report.tangentFallbacks);
+    }
     if (c.bake.compress && !c.quiet) {
       const std::string setting = transferSettingName(*c.bake.compress) +
                                   (c.bake.compressMatrices ? ", matrices " + transferSettingName(*c.bake.compressMatrices) : "");
@@ -577,6 +632,11 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += "  \"bounces\": " + std::to_string(report.bounces) + ",\n";
     s += "  \"glossy\": " + std::string(c.bake.transfer.glossy ? "true" : "false") + ",\n";
     s += "  \"glossy_bounces\": " + std::to_string(report.glossyBounces) + ",\n";
+    if (c.bake.biScale) {
+      s += "  \"bi_scale\": {\"rtt_bytes\": " + std::to_string(c.bake.biScale->rtt.size()) +
+           ", \"patches_per_uv\": " + jsonNumber(c.bake.biScale->placement.patchesPerUv) +
+           ", \"tangent_fallbacks\": " + std::to_string(report.tangentFallbacks) + "},\n";
+    }
     const LightingInfo& l = report.lighting;
     s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(l.model));
     if (isLocalLighting(l.model)) {

@@ -60,6 +60,10 @@ int printHelp(std::FILE* out, const char* text) {
 }
 
 Status refuseUnsharded(const BakeCommandLine& c) {
+  if (c.bake.biScale) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "sharded bakes do not support --rtt yet (bi-scale, docs/bi-scale.md); bake it on one machine");
+  }
   const char* flag = c.bake.texels ? (c.bake.texels->visibilityOrder > 0 ? "--texel-glossy" : "--texels") : nullptr;
   if (!flag) return Status::ok();
   return Status::error(StatusCode::kInvalidArgument, std::string("sharded bakes do not support ") + flag +

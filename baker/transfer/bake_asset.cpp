@@ -11,6 +11,7 @@
 #include "baker/transfer/texel_bake.h"
 #include "baker/transfer/texture_sets.h"
 #include "prt/glossy_codec_weights.h"
+#include "prt/rtt.h"
 
 namespace prt::bake {
 namespace {
@@ -60,7 +61,9 @@ Status compressPasses(const TransferCodecSettings& settings, const TransferCodec
   // Matrix CPCA fits in glossy exit radiance's metric: rows weighted by the asset's sharpest
   // lobe (prt/glossy_codec_weights.h; docs/glossy.md "Compressing in the exit-radiance metric").
   TransferCodecSettings matrixSettings = matrices;
-  if (matrices.encoding == TransferEncoding::kCpca) {
+  // A bi-scale asset's matrices are dotted with the RTT, not convolved with a lobe: every row
+  // counts alike there (docs/bi-scale.md).
+  if (matrices.encoding == TransferEncoding::kCpca && a->rtt.empty()) {
     if (Status s = glossyMatrixRowWeights(a->shOrder, a->specular, &matrixSettings.cpcaMatrixRowWeights); !s.isOk()) return s;
   }
   for (TransferPass& pass : a->passes) {
@@ -198,6 +201,21 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   return Status::ok();
 }
 
+// Bi-scale needs the macro-scale matrices, an RTT of at most the bake's order and a UV set.
+Status checkBiScaleOptions(const AssetBakeOptions& options, const Scene& scene) {
+  if (!options.transfer.glossy) {
+    return Status::error(StatusCode::kInvalidArgument, "bi-scale needs the glossy matrix passes (the macro scale): add --glossy");
+  }
+  Rtt rtt;
+  if (Status s = decodeRtt(options.biScale->rtt, &rtt); !s.isOk()) return Status::error(s.code(), "the RTT: " + s.message());
+  if (rtt.order > options.transfer.order) {
+    return Status::error(StatusCode::kInvalidArgument, "the RTT is order " + std::to_string(rtt.order) + ", above the bake's order " +
+                                                           std::to_string(options.transfer.order));
+  }
+  int set = 0;
+  return parametricUvSet(scene, options.biScale->placement, &set);
+}
+
 }  // namespace
 
 Status texelAtlasSize(const Scene& scene, int texcoord, const TexelBakeSettings& settings, int* side) {
@@ -275,6 +293,7 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
                              lightingModelName(options.transfer.lighting.model) +
                              ": TPFL multiplies each texel's visibility with the distant light");
   }
+  if (options.biScale) PRT_RETURN_IF_ERROR(checkBiScaleOptions(options, scene));
   // A visibility pass is glossy too: it shades with the split's lobe, and the diffuse passes
   // must then hold the split's diffuse part, exactly as with transfer.glossy.
   if (options.transfer.glossy || wantsVisibility(options)) {
@@ -290,6 +309,12 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
   report->lighting = transfer.lighting;
+  // In the final vertex order, before the bake: a coordinate out of range fails it early.
+  std::vector<Vec3> tangents;
+  std::vector<float> patchUv;
+  if (options.biScale) {
+    PRT_RETURN_IF_ERROR(parametricIdMap(scene, options.biScale->placement, &tangents, &patchUv, &report->tangentFallbacks));
+  }
   if (options.texels) {
     // What `started` can already say about the texture set; bakeTexels fills in the rest.
     report->texels = TexelBakeReport{};
@@ -314,6 +339,11 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   report->verticesOutsideLight = result.verticesOutsideLight;
 
   *asset = makeAsset(std::move(scene), std::move(result), options, transfer.lighting);
+  if (options.biScale) {
+    asset->rtt = options.biScale->rtt;
+    asset->tangents = std::move(tangents);
+    asset->patchUv = std::move(patchUv);
+  }
   if (options.texels) {
     if (!options.texels->keepVertexPasses) {
       std::erase_if(asset->passes, [](const TransferPass& p) { return p.form == TransferForm::kVector; });

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "baker/scene/glossy_materials.h"
+#include "baker/scene/parametric_id_map.h"
 #include "baker/scene/scene.h"
 #include "baker/transfer/transfer_bake.h"
 #include "baker/unwrap/uv_unwrap.h"
@@ -78,6 +79,15 @@ struct AssetBakeOptions {
   // set): their size and the client's relight cost follow their own trade-off.
   std::optional<TransferCodecSettings> compressMatrices;
   std::optional<TexelBakeSettings> texels;         // default: vertex passes only
+  // Bi-scale radiance transfer (docs/bi-scale.md): an RTT file's bytes and its placement
+  // through a UV set (the parametric id map), stored with the asset for the client's meso
+  // scale; needs transfer.glossy (the matrices are the macro scale). Vertex bakes only (the
+  // sharded bake refuses it).
+  struct BiScale {
+    std::vector<std::uint8_t> rtt;
+    ParametricIdMap placement;
+  };
+  std::optional<BiScale> biScale;
 };
 
 // One atlas of the texture set, in the asset's atlas order.
@@ -123,6 +133,7 @@ struct AssetBakeReport {
   std::vector<double> bounceEnergy;
   std::vector<PassStats> passes;
   std::size_t verticesOutsideLight = 0;  // local lighting only
+  std::size_t tangentFallbacks = 0;      // bi-scale: vertices whose triangles have no UV area (any tangent)
   std::vector<CompressedPass> compressed;  // one per stored pass when options.compress is set
   std::optional<TexelBakeReport> texels;   // when options.texels is set
 };

@@ -48,3 +48,11 @@ target_include_directories(prt_rtt_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/
 target_link_libraries(prt_rtt_bake_tests PRIVATE prt_rtt GTest::gtest_main)
 target_compile_options(prt_rtt_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME rtt_bake_tests COMMAND prt_rtt_bake_tests)
+
+# Bi-scale in the baker: the parametric id map, the asset's bi-scale sections, the reduction
+# through the stored frames (docs/bi-scale.md).
+add_executable(prt_bi_scale_bake_tests ${CMAKE_CURRENT_LIST_DIR}/bi_scale_bake_test.cpp)
+target_include_directories(prt_bi_scale_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_bi_scale_bake_tests PRIVATE prt_rtt GTest::gtest_main)
+target_compile_options(prt_bi_scale_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME bi_scale_bake_tests COMMAND prt_bi_scale_bake_tests)
