@@ -5,14 +5,14 @@ set(PRT_WEB_DIR ${CMAKE_CURRENT_LIST_DIR})
 # GL-free: decoding, packing, emitters (also the Node test module's).
 set(PRT_WEB_CORE_SOURCES
   ${PRT_WEB_DIR}/src/transfer_texture.cpp ${PRT_WEB_DIR}/src/texel_texture.cpp ${PRT_WEB_DIR}/src/texel_glossy.cpp
-  ${PRT_WEB_DIR}/src/cpca_texture.cpp ${PRT_WEB_DIR}/src/glossy_texture.cpp ${PRT_WEB_DIR}/src/glossy_fused.cpp ${PRT_WEB_DIR}/src/rtt_texture.cpp ${PRT_WEB_DIR}/src/glossy_synthetic.cpp
+  ${PRT_WEB_DIR}/src/cpca_texture.cpp ${PRT_WEB_DIR}/src/glossy_texture.cpp ${PRT_WEB_DIR}/src/glossy_fused.cpp ${PRT_WEB_DIR}/src/rtt_texture.cpp ${PRT_WEB_DIR}/src/bi_scale_texture.cpp ${PRT_WEB_DIR}/src/glossy_synthetic.cpp
   ${PRT_WEB_DIR}/src/asset_stream.cpp ${PRT_WEB_DIR}/src/emitters.cpp ${PRT_WEB_DIR}/src/analytic_lights.cpp
   ${PRT_WEB_DIR}/src/cube_faces.cpp)
 
 # The renderer and the client's state: OpenGL ES 3 / WebGL2 calls, no bindings and no context
 # creation (gl_context.h has one implementation per platform).
 set(PRT_WEB_GL_SOURCES
-  ${PRT_WEB_DIR}/src/client_app.cpp ${PRT_WEB_DIR}/src/orbit_camera.cpp ${PRT_WEB_DIR}/src/gl_renderer.cpp
+  ${PRT_WEB_DIR}/src/client_app.cpp ${PRT_WEB_DIR}/src/orbit_camera.cpp ${PRT_WEB_DIR}/src/gl_renderer.cpp ${PRT_WEB_DIR}/src/gl_renderer_bi_scale.cpp
   ${PRT_WEB_DIR}/src/texel_renderer.cpp ${PRT_WEB_DIR}/src/gl_program.cpp ${PRT_WEB_DIR}/src/emitter_renderer.cpp
   ${PRT_WEB_DIR}/src/light_cube.cpp ${PRT_WEB_DIR}/src/cube_sh_reduction.cpp ${PRT_WEB_DIR}/src/lighting_block.cpp
   ${PRT_WEB_DIR}/src/dynamic_lighting.cpp)
@@ -27,6 +27,9 @@ set(PRT_SHADERS
   ${PRT_WEB_DIR}/shaders/glossy_transfer.vert
   ${PRT_WEB_DIR}/shaders/glossy.vert
   ${PRT_WEB_DIR}/shaders/glossy_gather.vert
+  ${PRT_WEB_DIR}/shaders/biscale_rotate.vert
+  ${PRT_WEB_DIR}/shaders/biscale.vert
+  ${PRT_WEB_DIR}/shaders/biscale.frag
   ${PRT_WEB_DIR}/shaders/lambert.vert
   ${PRT_WEB_DIR}/shaders/shade.frag
   ${PRT_WEB_DIR}/shaders/background.vert

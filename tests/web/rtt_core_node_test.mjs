@@ -65,6 +65,17 @@ for (const c of cases) {
   check(typeof rgb === 'object' && rgb.layers === 48 && rgb.worst < 2e-3, `order 8 RGB: ${JSON.stringify(rgb)}`);
 }
 
+// Bi-scale's rotation step on the CPU (the page's GPU step is checked against it) equals
+// prt::ShRotation at every order the client draws, frames up to the asset's tolerance included.
+for (const [bands, rowTexels] of [[1, 1], [3, 3], [4, 4], [5, 7], [5, 9]]) {
+  const r = core.biScaleRotateCheck(bands, rowTexels, 50, bands);
+  if (!check(typeof r === 'object', `bi-scale rotation at ${bands} bands: ${r}`)) continue;
+  console.log(`  bi-scale rotation, ${bands} bands in rows of ${rowTexels} texels: worst ${r.worst.toExponential(2)} of ${r.peak.toFixed(3)}`);
+  check(r.worst <= 1e-5 * Math.max(r.peak, 1), `bi-scale rotation at ${bands} bands differs from ShRotation by ${r.worst}`);
+  check(r.zeroTail === 0, `bi-scale rotation at ${bands} bands leaves ${r.zeroTail} beyond its coefficients`);
+  check(r.mainLength > 100, `bi-scale rotation step's GLSL at ${bands} bands is ${r.mainLength} characters`);
+}
+
 if (failures.length) {
   console.error(`rtt core: ${failures.length} of ${checks} checks failed:\n  ${failures.join('\n  ')}`);
   process.exit(1);

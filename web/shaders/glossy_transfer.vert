@@ -30,6 +30,7 @@ uniform int uTextureMask;     // the textures' width - 1 (a power of two)
 uniform int uTextureShift;    // log2 of their width: texel i is at (i & mask, i >> shift)
 uniform int uWeightTexels;
 uniform int uChannel;         // 0 r, 1 g, 2 b
+uniform int uAllVertices;     // 1: every vertex's T (bi-scale reads them all), 0: the glossy ones
 
 out vec4 vT0, vT1, vT2, vT3, vT4, vT5, vT6, vT7, vT8, vT9, vT10, vT11, vT12, vT13, vT14, vT15;
 
@@ -52,8 +53,8 @@ void main() {
   vec4 a0 = vec4(0.0), a1 = vec4(0.0), a2 = vec4(0.0), a3 = vec4(0.0), a4 = vec4(0.0), a5 = vec4(0.0), a6 = vec4(0.0), a7 = vec4(0.0);
   vec4 a8 = vec4(0.0), a9 = vec4(0.0), a10 = vec4(0.0), a11 = vec4(0.0), a12 = vec4(0.0), a13 = vec4(0.0), a14 = vec4(0.0), a15 = vec4(0.0);
   // A matte vertex (f0 = f90 = 0) has no glossy term (glossy.vert returns 0 for it): its T is
-  // left 0, unread.
-  if (!(aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0))) {
+  // left 0, unread, unless bi-scale asks for every vertex.
+  if (uAllVertices == 1 || !(aSpecularF90 == 0.0 && aSpecular.rgb == vec3(0.0))) {
     // The sum's order per entry is glossyTransferCpu's: the mean, then j = 1 .. N', each
     // level read once.
     int stride = 3 * ROW_TEXELS;  // texels from basis vector j's row for channel c to j + 1's

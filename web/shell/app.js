@@ -44,6 +44,10 @@ const state = {
   // Which passes are drawn: 'vertex' or 'texel' (transfer textures). A wish: a scene without
   // texel passes is drawn per vertex, a texel-only one per texel (app.source() says which).
   source: params.get('source') === 'texel' ? 'texel' : 'vertex',
+  // Bi-scale scenes (docs/bi-scale.md): the RTT's meso scale per fragment (a wish: scenes
+  // without an RTT draw PRT), and its view dependence (the paper's Figure 6 switch).
+  biScale: params.get('biscale') !== 'off',
+  viewDependence: params.get('view') !== 'fixed',
 };
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];  // BackgroundMode's names
@@ -205,8 +209,22 @@ function applyState() {
   app.setBackgroundColour(((b >> 16) & 255) / 255, ((b >> 8) & 255) / 255, (b & 255) / 255);
   if (state.background === 'image') ensureBackground();
   for (const name of PASS_NAMES) app.setGlossyMix(ShadingMode[name], client.GlossyMix[state.glossyMix[name]]);
+  app.setBiScale(state.biScale);
+  app.setViewDependence(state.viewDependence);
   updateGlossyControl();
+  updateBiScaleControls();
   updateSourceControl();
+}
+
+// The panel's bi-scale switches (meso scale on/off, view dependence): shown only for a scene
+// with an RTT.
+let biScaleControls = [];
+function updateBiScaleControls() {
+  if (!app) return;
+  for (const c of biScaleControls) {
+    c.show(app.biScaleOrder() > 0);
+    c.updateDisplay();
+  }
 }
 
 // The panel's "transfer source" switch (vertex / texel passes): shown only when the scene has both.
@@ -459,6 +477,9 @@ function buildGui() {
   gui.add(state, 'mode', client.modeNames).name('transfer').onChange(applyState);
   glossyControl = gui.add(glossyView, 'mix', GLOSSY_MIXES).name('diffuse / glossy').onChange(applyState);
   updateGlossyControl();
+  biScaleControls = [gui.add(state, 'biScale').name('bi-scale (RTT)').onChange(applyState),
+    gui.add(state, 'viewDependence').name('RTT view dependence').onChange(applyState)];
+  updateBiScaleControls();
   sourceControl = gui.add(state, 'source', ['vertex', 'texel']).name('transfer source').onChange(applyState);
   updateSourceControl();
   gui.add(state, 'cpca', ['direct', 'expanded']).name('CPCA rendering')

@@ -7,7 +7,7 @@ import { normaliseLights } from './lights.js';
 import { randomLights } from './random_lights.js';
 import { PASS_NAMES } from './stream_loader.js';
 
-export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'color', 'background', 'backgroundColor', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source'];
+export const SET_OPTIONS = ['mode', 'order', 'exposure', 'envRotation', 'intensity', 'color', 'background', 'backgroundColor', 'environment', 'lights', 'projection', 'cubeSize', 'glossy', 'source', 'biScale', 'viewDependence'];
 const SOURCES = ['vertex', 'texel'];
 const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
@@ -118,6 +118,13 @@ export function installTestHook(page) {
     // Which glossy step wrote vertexGlossy: 'fused' (the frame's lighting changed), 'view' (only
     // the camera moved: the cached transferred radiance) or '' (none yet).
     get glossyStep() { return ready() ? page.app.lastGlossyStep() : null; },
+    // Bi-scale (docs/bi-scale.md, "The client"): the RTT's bands on the GPU (0: the scene has
+    // none), whether the last frame was drawn bi-scale, and its rotated transferred radiance read
+    // back from the GPU with the CPU reference of it (Float32Array, [channel][vertex][row texels x 4]).
+    get biScaleOrder() { return ready() ? page.app.biScaleOrder() : 0; },
+    get drewBiScale() { return ready() ? page.app.drewBiScale() : false; },
+    biScaleRotated() { return ready() ? page.app.biScaleRotated() : null; },
+    biScaleRotatedReference() { return ready() ? page.app.biScaleRotatedReference() : null; },
     glossyReference() {
       if (!ready() || !PASS_NAMES.includes(state.mode)) return null;
       return Float32Array.from(page.app.glossyReference(client.ShadingMode[state.mode]));
@@ -277,6 +284,9 @@ export function installTestHook(page) {
           throw new Error(`set: source '${options.source}': this scene has no ${options.source} passes`);
         }
       }
+      for (const key of ['biScale', 'viewDependence']) {
+        if (key in options && typeof options[key] !== 'boolean') throw new Error(`set: ${key} must be true or false, got ${JSON.stringify(options[key])}`);
+      }
       if ('background' in options && !(typeof options.background === 'boolean' || BACKGROUNDS.includes(options.background))) {
         throw new Error(`set: background must be one of ${BACKGROUNDS.join(', ')} (or true: blurred, false: none), got ${JSON.stringify(options.background)}`);
       }
@@ -296,7 +306,7 @@ export function installTestHook(page) {
         if (Array.isArray(options.lights) && options.lights.some((l) => l && l.mesh === 'torus')) lightSet.ensureTorus();
         normaliseLights(options.lights, lightSet.meshes);  // throws on the first bad light
       }
-      for (const key of ['mode', 'order', 'exposure', 'intensity', 'color', 'backgroundColor', 'source']) if (key in options) state[key] = options[key];
+      for (const key of ['mode', 'order', 'exposure', 'intensity', 'color', 'backgroundColor', 'source', 'biScale', 'viewDependence']) if (key in options) state[key] = options[key];
       // true and false are what background took before it had four choices: the SH view, or nothing.
       if ('background' in options) state.background = options.background === true ? 'blurred' : options.background === false ? 'none' : options.background;
       if ('glossy' in options) Object.assign(state.glossyMix, options.glossy);

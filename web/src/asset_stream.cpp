@@ -32,6 +32,8 @@ Status AssetStream::decodeGeometry(BakedAsset* out) {
   if (Status st = decodeAssetGeometry(file_, &decoded); !st.isOk()) return st;
   // Empty for an asset without texel passes; else the sections must be here (checksummed).
   if (Status st = decodeAssetAtlases(file_, &decoded); !st.isOk()) return st;
+  // Empty without an RTT; else tangents, patch uv and the RTT must be here (checksummed).
+  if (Status st = decodeAssetBiScale(file_, &decoded); !st.isOk()) return st;
   *out = std::move(decoded);
   summary_ = std::move(s);
   headerRead_ = true;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "bi_scale_texture.h"
 #include "glossy_synthetic.h"
 #include "glossy_texture.h"
 #include "prt/glossy_radiance.h"
@@ -102,6 +103,7 @@ std::string ClientApp::loadAsset() {
   }
   decoded.passes = std::move(expanded);
   if (Status u = renderer_.upload(decoded); !u.isOk()) return u.message();
+  if (Status u = renderer_.uploadBiScale(decoded); !u.isOk()) return u.message();
   for (const auto& [kind, c] : cpca) {
     if (Status u = renderer_.uploadCpcaPass(kind, c); !u.isOk()) return u.message();
   }
@@ -326,6 +328,38 @@ std::vector<float> ClientApp::glossyReference(ShadingMode kind) {
   return out;
 }
 
+std::vector<float> ClientApp::biScaleRotated() const {
+  if (!ok() || !renderer_.drewBiScale()) return {};
+  makeCurrent();
+  return renderer_.readBiScaleRotated();
+}
+
+std::vector<float> ClientApp::biScaleRotatedReference() {
+  if (!ok() || !renderer_.drewBiScale() || !isPassKind(mode_)) return {};
+  const CpcaMatrixTransfer& cpca = glossyCpu_[static_cast<std::size_t>(mode_)];
+  if (cpca.bands == 0 || asset_.tangents.size() != asset_.positions.size()) return {};
+  std::vector<float> expanded(asset_.positions.size() * static_cast<std::size_t>(cpca.channels) * matrixEntryCount(cpca.bands, cpca.packing));
+  if (!cpcaMatrixReconstruct(cpca, expanded).isOk()) return {};
+  const int bands = std::clamp(std::min({displayOrder_, renderer_.glossyOrder(mode_), renderer_.biScaleOrder()}), 1, 8);
+  const int rowTexels = renderer_.biScaleRowTexels();
+  const std::size_t nb = static_cast<std::size_t>(bands * bands), stride = static_cast<std::size_t>(rowTexels) * 4;
+  const std::vector<float> flat = lights_.lightSH();  // the lighting the GPU drew with
+  const std::size_t V = asset_.positions.size(), entries = matrixEntryCount(cpca.bands, cpca.packing);
+  std::vector<float> world(3 * V * stride, 0.0f), light(nb);
+  for (int c = 0; c < 3; ++c) {
+    for (std::size_t i = 0; i < nb; ++i) light[i] = 3 * i + static_cast<std::size_t>(c) < flat.size() ? flat[3 * i + static_cast<std::size_t>(c)] : 0.0f;
+    for (std::size_t v = 0; v < V; ++v) {
+      const float* m = &expanded[(v * static_cast<std::size_t>(cpca.channels) + (cpca.channels == 3 ? static_cast<std::size_t>(c) : 0)) * entries];
+      applyPackedMatrixUnchecked(m, cpca.packing, nb, light.data(), &world[(static_cast<std::size_t>(c) * V + v) * stride]);
+    }
+  }
+  BiScaleRotations rotations;
+  if (!packBiScaleRotations(asset_.normals, asset_.tangents, bands, &rotations).isOk()) return {};
+  std::vector<float> out(world.size());
+  biScaleRotateCpu(rotations, world, static_cast<int>(V), rowTexels, out);
+  return out;
+}
+
 std::string ClientApp::useSyntheticGlossy(ShadingMode kind, int bands, int channels, int clusters, int vectors, int seed, float f0,
                                           float exponent, float minGreen) {
   if (!ok()) return error_;
@@ -376,6 +410,7 @@ std::string ClientApp::streamGeometry() {
   if (Status s = stream_.decodeGeometry(&decoded); !s.isOk()) return s.toString();
   makeCurrent();
   if (Status u = renderer_.uploadGeometry(decoded); !u.isOk()) return u.message();
+  if (Status u = renderer_.uploadBiScale(decoded); !u.isOk()) return u.message();
   const bool anyGlossy = stream_.hasMatrixKind(0) || stream_.hasMatrixKind(1) || stream_.hasMatrixKind(2) || stream_.hasVisibility();
   if (anyGlossy && decoded.specular.size() != decoded.positions.size()) {
     if (Status s = stream_.decodeSpecular(&decoded.specular); !s.isOk()) return s.toString();
@@ -528,6 +563,8 @@ void ClientApp::render(int width, int height) {
   p.fresnel = fresnel_;
   p.lightingVersion = lights_.lightingVersion();
   p.domain = source_;
+  p.biScale = biScale_;
+  p.viewDependent = viewDependent_;
   lastEye_ = p.eye;
   renderer_.draw(width, height, p);
   lights_.drawEmitters(camera_.viewProjection(), toVec3(camera_.eye()), exposure_);

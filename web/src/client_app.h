@@ -121,6 +121,23 @@ class ClientApp {
   // Decodes the glossy matrix pass of `kind` from its first `bands` shells (0: all that have
   // arrived) and re-uploads it. "" or the error.
   std::string streamGlossyPass(ShadingMode kind, int bands);
+  // ---- bi-scale (docs/bi-scale.md, "The client") ----
+  // Draw the scene bi-scale (the RTT per fragment over the glossy pass of the mode) when it has
+  // an RTT; off by default, and kept as the wish across scenes.
+  void setBiScale(bool on) { biScale_ = on; }
+  bool biScale() const { return biScale_; }
+  // Whether the scene has an RTT on the GPU; its bands (0: none).
+  int biScaleOrder() const { return renderer_.biScaleOrder(); }
+  // The RTT's view dependence (the paper's Figure 6 switch): off reads its centre view.
+  void setViewDependence(bool on) { viewDependent_ = on; }
+  bool viewDependence() const { return viewDependent_; }
+  // Whether the last frame was drawn bi-scale.
+  bool drewBiScale() const { return renderer_.drewBiScale(); }
+  // Tests: the last bi-scale frame's rotated transferred radiance read back from the GPU, and
+  // the same computed on the CPU (prt::ShRotation of the CPCA matrices' T under the frame's
+  // lighting, biScaleRotateCpu's layout), flat; both empty when there is none.
+  std::vector<float> biScaleRotated() const;
+  std::vector<float> biScaleRotatedReference();
   // Schlick's Fresnel in the glossy term (on by default; off: k_s = f0, for comparisons).
   void setFresnel(bool on) { fresnel_ = on; }
   // GlRenderer::lastGlossyStep: "fused", "view" or "".
@@ -273,6 +290,8 @@ class ClientApp {
   bool environmentEnabled_ = true;
   bool cpcaDirect_ = true;
   bool fresnel_ = true;
+  bool biScale_ = false;
+  bool viewDependent_ = true;
   std::array<GlossyMix, 3> glossyMix_{GlossyMix::kBoth, GlossyMix::kBoth, GlossyMix::kBoth};
   std::array<CpcaMatrixTransfer, 3> glossyCpu_{};  // the uploaded glossy passes, for glossyReference
   glm::vec3 lastEye_{0.0f};

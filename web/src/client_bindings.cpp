@@ -72,6 +72,14 @@ val cpcaShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::ar
 val vertexRadiance(const ClientApp& app) { return val::array(app.vertexRadiance()); }
 val vertexGlossy(const ClientApp& app) { return val::array(app.vertexGlossy()); }
 val glossyReference(ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyReference(kind)); }
+// Float32Array copies: a scene's rotated transferred radiance is 3 x vertices x 28 floats.
+val float32Array(const std::vector<float>& v) {
+  val out = val::global("Float32Array").new_(v.size());
+  out.call<void>("set", val(emscripten::typed_memory_view(v.size(), v.data())));
+  return out;
+}
+val biScaleRotated(const ClientApp& app) { return float32Array(app.biScaleRotated()); }
+val biScaleRotatedReference(ClientApp& app) { return float32Array(app.biScaleRotatedReference()); }
 val glossyShape(const ClientApp& app, prt::web::ShadingMode kind) { return val::array(app.glossyShape(kind)); }
 
 val atlasSizes(const ClientApp& app) { return val::array(app.atlasSizes()); }
@@ -174,6 +182,14 @@ EMSCRIPTEN_BINDINGS(prt_client) {
       .function("lastGlossyStep", &ClientApp::lastGlossyStep)
       .function("glossyReference", &glossyReference)
       .function("useSyntheticGlossy", &ClientApp::useSyntheticGlossy)
+      .function("setBiScale", &ClientApp::setBiScale)
+      .function("biScale", &ClientApp::biScale)
+      .function("biScaleOrder", &ClientApp::biScaleOrder)
+      .function("setViewDependence", &ClientApp::setViewDependence)
+      .function("viewDependence", &ClientApp::viewDependence)
+      .function("drewBiScale", &ClientApp::drewBiScale)
+      .function("biScaleRotated", &biScaleRotated)
+      .function("biScaleRotatedReference", &biScaleRotatedReference)
       .function("shadeGlossyVertices", &ClientApp::shadeGlossyVertices)
       .function("finishGlossy", &ClientApp::finishGlossy)
       .function("touchLighting", &ClientApp::touchLighting)

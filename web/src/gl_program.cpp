@@ -1,5 +1,7 @@
 #include "gl_program.h"
 
+#include "transfer_texture.h"
+
 #include <string>
 
 namespace prt::web {
@@ -89,6 +91,27 @@ Status glErrorStatus(const char* memoryFor, const char* during) {
   return Status::error(StatusCode::kInvalidArgument, err == GL_OUT_OF_MEMORY
                                                          ? std::string("the GPU is out of memory for ") + memoryFor
                                                          : "WebGL error " + std::to_string(err) + " while " + during);
+}
+
+GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
+  GLuint b = 0;
+  glGenBuffers(1, &b);
+  glBindBuffer(target, b);
+  glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
+  return b;
+}
+
+void setTextureLayout(GLint maskLocation, GLint shiftLocation) {
+  glUniform1i(maskLocation, kTransferTextureWidth - 1);
+  glUniform1i(shiftLocation, kTransferTextureShift);
+}
+
+void copyBufferToTexture(GLuint buffer, GLuint texture, int rows, GLenum format) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, rows, format, GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
 
 }  // namespace prt::web

@@ -3,6 +3,7 @@
 
 #include <GLES3/gl3.h>
 
+#include <cstddef>
 #include <string>
 
 #include "prt/status.h"
@@ -35,5 +36,18 @@ void setNearestClamp(GLenum target);
 // out of memory says what did not fit ("the GPU is out of memory for <memoryFor>"), any
 // other error its code and what was being done ("WebGL error N while <during>").
 Status glErrorStatus(const char* memoryFor, const char* during);
+
+// A buffer object of `bytes` bytes (from `data`, or uninitialised when null), STATIC_DRAW,
+// left bound to `target`.
+GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes);
+
+// The transfer textures' row layout (kTransferTextureWidth wide) for the bound program's texel
+// fetches: its uTextureMask and uTextureShift uniforms at these locations.
+void setTextureLayout(GLint maskLocation, GLint shiftLocation);
+
+// Copies `rows` rows of kTransferTextureWidth float texels (`format` GL_RGBA or GL_RGB) from
+// `buffer` into `texture`, GPU to GPU (a pixel-unpack copy, no read-back); leaves texture
+// unit 0 active.
+void copyBufferToTexture(GLuint buffer, GLuint texture, int rows, GLenum format = GL_RGBA);
 
 }  // namespace prt::web

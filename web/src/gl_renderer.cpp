@@ -15,14 +15,6 @@
 namespace prt::web {
 namespace {
 
-GLuint makeBuffer(GLenum target, const void* data, std::size_t bytes) {
-  GLuint b = 0;
-  glGenBuffers(1, &b);
-  glBindBuffer(target, b);
-  glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
-  return b;
-}
-
 // An integer RGBA texture of CPCA weight levels (8- or 16-bit, signed), nearest and clamped:
 // the diffuse CPCA pass and the glossy pass store their per-vertex weights alike.
 GLuint makeWeightTexture(int weightBits, int width, int height, const void* levels) {
@@ -38,13 +30,6 @@ GLuint makeWeightTexture(int weightBits, int width, int height, const void* leve
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   return t;
-}
-
-// The transfer textures' row layout (kTransferTextureWidth wide) for the bound program's texel
-// fetches: its uTextureMask and uTextureShift uniforms at these locations.
-void setTextureLayout(GLint maskLocation, GLint shiftLocation) {
-  glUniform1i(maskLocation, kTransferTextureWidth - 1);
-  glUniform1i(shiftLocation, kTransferTextureShift);
 }
 
 }  // namespace
@@ -91,6 +76,15 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->shB = glGetUniformLocation(p, "uShB");
   out->vertexData = glGetUniformLocation(p, "uVertexData");
   out->fused = glGetUniformLocation(p, "uFused");
+  out->allVertices = glGetUniformLocation(p, "uAllVertices");
+  out->rotations = glGetUniformLocation(p, "uRotations");
+  out->rotated = glGetUniformLocation(p, "uRotated");
+  out->rtt = glGetUniformLocation(p, "uRtt");
+  out->rttSpatial = glGetUniformLocation(p, "uRttSpatial");
+  out->rttViews = glGetUniformLocation(p, "uRttViews");
+  out->rttLayers = glGetUniformLocation(p, "uRttLayersPerChannel");
+  out->rttChannels = glGetUniformLocation(p, "uRttChannels");
+  out->viewDependent = glGetUniformLocation(p, "uViewDependent");
   return Status::ok();
 }
 
@@ -108,6 +102,7 @@ Status GlRenderer::init() {
 
 void GlRenderer::releaseGeometry() {
   texels_.releaseGeometry();  // first: it draws from the buffers deleted below
+  releaseBiScale();
   for (GLuint* b : {&positions_, &albedo_, &normals_, &indices_, &radianceBuffer_, &glossyBuffer_}) {
     if (*b) glDeleteBuffers(1, b);
     *b = 0;
@@ -365,17 +360,6 @@ Status GlRenderer::specialised(const char* name, const char* vs, const std::stri
 
 namespace {
 
-// Copies `rows` rows of kTransferTextureWidth float texels (`format` GL_RGBA or GL_RGB) from
-// `buffer` into `texture`, GPU to GPU (a pixel-unpack copy, no read-back); leaves texture
-// unit 0 active.
-void copyBufferToTexture(GLuint buffer, GLuint texture, int rows, GLenum format = GL_RGBA) {
-  glActiveTexture(GL_TEXTURE0);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTransferTextureWidth, rows, format, GL_FLOAT, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-}
-
 // Binds a CPCA pass's table (unit 0) and weight levels (unit 1) for the bound program `p`,
 // with the textures' layout and the weight texels a vertex: what the diffuse CPCA sum, the
 // glossy transferred radiance and the fused step all read.
@@ -408,11 +392,13 @@ void GlRenderer::glossyTable(GlossyPass& g, const GlossyPrograms& programs) {
   copyBufferToTexture(g.tableBuffer, g.table, g.tableHeight);
 }
 
-void GlRenderer::glossyTransfer(GlossyPass& g, const GlossyPrograms& programs) {
+void GlRenderer::glossyTransfer(GlossyPass& g, const GlossyPrograms& programs, bool allVertices) {
   // Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
   const Program& t = *programs.transfer;
   glUseProgram(t.id);
   bindTableAndWeights(t, g);
+  glUniform1i(t.allVertices, allVertices ? 1 : 0);
+  g.transferAll = allVertices;
   glBindVertexArray(g.vao);
   const GLsizeiptr channelBytes = static_cast<GLsizeiptr>(vertexCount_) * g.rowTexels * 4 * static_cast<GLsizeiptr>(sizeof(float));
   for (int c = 0; c < 3; ++c) {
@@ -808,6 +794,8 @@ void GlRenderer::draw(int width, int height, const FrameParams& p) {
     glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
     return;
   }
+  drewBiScale_ = p.biScale && drawBiScale(p);
+  if (drewBiScale_) return;
   if (p.domain == TransferDomain::kTexel) {
     TexelShading shading;
     shading.displayOrder = p.displayOrder;

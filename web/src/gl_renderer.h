@@ -73,6 +73,11 @@ struct FrameParams {
   // Which pass of `mode` is drawn: the vertex pass (with its glossy term) or the texel pass
   // (transfer textures, with the TPFL glossy term; docs/web-client.md "Transfer textures").
   TransferDomain domain = TransferDomain::kVertex;
+  // Bi-scale (docs/bi-scale.md): draw the scene per fragment with the asset's RTT over the glossy
+  // matrix pass of `mode` (the macro scale) instead of the PRT terms, when the scene has both;
+  // viewDependent false reads the RTT's centre view (the paper's Figure 6c).
+  bool biScale = false;
+  bool viewDependent = true;
 };
 
 // How much of the glossy work shadeGlossy does (docs/web-client.md, "Glossy rendering").
@@ -164,8 +169,21 @@ class GlRenderer {
   // (at most all; synchronous read-back, so it also waits for the PRT pass: tests and
   // benchmarks only). Empty without geometry.
   std::vector<float> readRadiance(std::size_t vertices) const;
+  // Bi-scale (docs/bi-scale.md, "The client"): uploads the asset's RTT (packRtt), the
+  // per-vertex SH rotations into its tangent frames and the de-indexed corners; an asset
+  // without an RTT drops any previous one. Needs geometry first. Nothing changes on failure.
+  Status uploadBiScale(const BakedAsset& asset);
+  // Bands bi-scale can shade: the RTT's order, at most the asset's; 0 without an RTT.
+  int biScaleOrder() const { return biScale_.bands; }
+  // The last frame drew bi-scale (FrameParams::biScale with an RTT and a glossy pass of its mode).
+  bool drewBiScale() const { return drewBiScale_; }
+  // Tests: the rotated transferred radiance of the last bi-scale frame, [channel][vertex][row
+  // texels * 4] (synchronous read-back); empty before one.
+  std::vector<float> readBiScaleRotated() const;
+  int biScaleRowTexels() const { return biScale_.rowTexels; }
 
  private:
+
   struct Program {
     GLuint id = 0;
     GLint viewProjection = -1, lightR = -1, lightG = -1, lightB = -1, exposure = -1;
@@ -177,6 +195,10 @@ class GlRenderer {
     GLint channel = -1, vertices = -1;
     GLint fresnel = -1, eye = -1, shY00 = -1, shK1 = -1, shA = -1, shB = -1;
     GLint vertexData = -1, fused = -1;  // glossy.vert's fused form, glossy_gather.vert
+    GLint allVertices = -1;  // glossy_transfer.vert
+    // biscale_rotate.vert, biscale.frag
+    GLint rotations = -1, rotated = -1, rtt = -1, rttSpatial = -1, rttViews = -1, rttLayers = -1, rttChannels = -1;
+    GLint viewDependent = -1;
     // background.frag
     GLint backgroundMode = -1, environmentImage = -1, environmentRotation = -1, environmentTint = -1;
   };
@@ -198,6 +220,7 @@ class GlRenderer {
     // The table holds the lighting of tableVersion at tableBands when tableValid; T was made
     // from that table when transferValid.
     bool tableValid = false, transferValid = false;
+    bool transferAll = false;  // T was made for every vertex (bi-scale), not only the glossy ones
     unsigned tableVersion = 0;
     int tableBands = 0;
   };
@@ -238,7 +261,8 @@ class GlRenderer {
   // the per-cluster table; T from the table; the fused step (exit radiance toward `eye`
   // straight from the table, into the glossy buffer); the view step (the same from T).
   void glossyTable(GlossyPass& g, const GlossyPrograms& programs);
-  void glossyTransfer(GlossyPass& g, const GlossyPrograms& programs);
+  // allVertices: T of matte vertices too (bi-scale reads every vertex's; glossy.vert skips them).
+  void glossyTransfer(GlossyPass& g, const GlossyPrograms& programs, bool allVertices = false);
   void glossyFused(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel);
   void glossyView(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel);
   void release();
@@ -259,6 +283,25 @@ class GlRenderer {
   // The PRT vertex pass of a CPCA pass: the table, then the per-vertex weighted sums.
   void shadeCpca(const PassTexture& t, int activeOrder);
 
+  // Bi-scale's GPU state (gl_renderer_bi_scale.cpp): the RTT texture array, the per-vertex
+  // rotations, the rotated transferred radiance (captured into rotatedBuffer, copied into
+  // `rotated`, in T's layout) and the corners' VAO; rotatedValid while it holds the table of
+  // its glossy pass at rotatedBands.
+  struct BiScalePass {
+    GLuint rtt = 0, rotations = 0, rotated = 0, rotatedBuffer = 0, corners = 0, vao = 0;
+    int bands = 0, rttOrder = 0, channels = 0, spatial = 0, views = 0, layersPerChannel = 0;
+    int rotationTexels = 0, rowTexels = 0, rotatedHeight = 0;
+    GLsizei cornerCount = 0;
+    bool rotatedValid = false;
+    int rotatedBands = 0, rotatedKind = -1;
+  };
+  void releaseBiScale();
+  // The bi-scale draw of FrameParams `p` (after the background); false when it cannot (no RTT,
+  // no glossy pass of p.mode), so the caller draws PRT instead.
+  bool drawBiScale(const FrameParams& p);
+  // Remakes the glossy table and T (every vertex) of `g` when stale, then the rotated T at `bands`.
+  bool updateBiScaleTransfer(GlossyPass& g, int kind, int bands, unsigned lightingVersion);
+
   Program prt_, lambert_, background_, radiance_, cpca_;
   std::map<std::string, Program> specialised_;  // the glossy programs by shape (specialised())
   GLuint tableVao_ = 0;  // no arrays: the table pass reads only gl_VertexID (albedo constant 1)
@@ -273,7 +316,9 @@ class GlRenderer {
   int bakedOrder_ = 0;
   std::array<PassTexture, 3> passes_{};
   std::array<GlossyPass, 3> glossy_{};  // by TransferKind (unshadowed unused: no such matrix pass is baked)
-  TexelRenderer texels_;  // texel passes, drawn from this class's position, albedo and index buffers
+  TexelRenderer texels_;
+  BiScalePass biScale_;
+  bool drewBiScale_ = false;  // texel passes, drawn from this class's position, albedo and index buffers
 };
 
 }  // namespace prt::web

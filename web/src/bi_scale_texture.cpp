@@ -1,0 +1,139 @@
+#include "bi_scale_texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "prt/sh_rotation.h"
+#include "transfer_texture.h"
+
+namespace prt::web {
+namespace {
+
+const char kComponent[4] = {'x', 'y', 'z', 'w'};
+
+// "t3.y": component i % 4 of texel i / 4 of the vectors named `name`.
+std::string element(const char* name, int i) {
+  return std::string(name) + std::to_string(i / 4) + "." + kComponent[i % 4];
+}
+
+}  // namespace
+
+int biScaleRotationEntries(int bands) {
+  int entries = 0;
+  for (int l = 1; l < bands; ++l) entries += (2 * l + 1) * (2 * l + 1);
+  return entries;
+}
+
+Status packBiScaleRotations(std::span<const Vec3> normals, std::span<const Vec3> tangents, int bands, BiScaleRotations* out) {
+  if (bands < 1 || bands > 8 || normals.size() != tangents.size()) {
+    return Status::error(StatusCode::kInvalidArgument, "bi-scale rotations: bands 1..8 and one tangent per normal");
+  }
+  const int texels = std::max(1, biScaleRotationTexels(bands));
+  BiScaleRotations r;
+  r.bands = bands;
+  r.texelsPerVertex = texels;
+  r.values.assign(normals.size() * static_cast<std::size_t>(texels) * 4, 0.0f);
+  for (std::size_t v = 0; v < normals.size(); ++v) {
+    // The asset's frames are orthonormal to 1e-3; made exact here, as ShRotation wants.
+    const float nl = length(normals[v]);
+    const Vec3 n = normals[v] * (1.0f / nl);
+    const Vec3 t0 = tangents[v] - n * dot(tangents[v], n);
+    const float tl = std::sqrt(dot(t0, t0));
+    if (!(nl > 0.0f) || !std::isfinite(nl) || !(tl > 1e-6f) || !std::isfinite(tl)) {
+      return Status::error(StatusCode::kInvalidArgument, "bi-scale rotations: vertex " + std::to_string(v) +
+                                                             "'s tangent is parallel to its normal or not finite");
+    }
+    const Vec3 t = t0 * (1.0f / tl);
+    const Vec3 b = cross(n, t);
+    Mat3 toLocal;  // rows: tangent, bitangent, normal (prt::biScaleExitRadiance's frame)
+    const Vec3 rows[3] = {t, b, n};
+    for (int i = 0; i < 3; ++i) toLocal.m[i][0] = rows[i].x, toLocal.m[i][1] = rows[i].y, toLocal.m[i][2] = rows[i].z;
+    ShRotation rotation;
+    if (Status s = ShRotation::make(bands, toLocal, &rotation); !s.isOk()) {
+      return Status::error(StatusCode::kInvalidArgument, "bi-scale rotations: vertex " + std::to_string(v) + ": " + s.message());
+    }
+    float* dst = &r.values[v * static_cast<std::size_t>(texels) * 4];
+    for (int l = 1; l < bands; ++l)
+      for (int m = -l; m <= l; ++m)
+        for (int k = -l; k <= l; ++k) *dst++ = rotation.at(l, m, k);
+  }
+  *out = std::move(r);
+  return Status::ok();
+}
+
+std::string biScaleRotateMain(int bands, int rowTexels) {
+  const int rotationTexels = biScaleRotationTexels(bands);
+  std::string s = "void main() {\n  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);\n";
+  s += "  int row = (uChannel * uVertices + gl_VertexID) * " + std::to_string(rowTexels) + ";\n";
+  for (int t = 0; t < texelsForOrder(bands); ++t) s += "  vec4 t" + std::to_string(t) + " = transferTexel(row + " + std::to_string(t) + ");\n";
+  s += "  int base = gl_VertexID * " + std::to_string(std::max(1, rotationTexels)) + ";\n";
+  for (int t = 0; t < rotationTexels; ++t) s += "  vec4 r" + std::to_string(t) + " = rotationTexel(base + " + std::to_string(t) + ");\n";
+  std::vector<std::string> out(static_cast<std::size_t>(rowTexels) * 4, "0.0");
+  out[0] = element("t", 0);
+  int entry = 0;
+  for (int l = 1; l < bands; ++l) {
+    const int first = l * l, width = 2 * l + 1;
+    for (int m = 0; m < width; ++m) {
+      std::string sum;
+      for (int k = 0; k < width; ++k) {
+        sum += (k ? " + " : "") + element("r", entry++) + " * " + element("t", first + k);
+      }
+      out[static_cast<std::size_t>(first + m)] = sum;
+    }
+  }
+  for (int t = 0; t < rowTexels; ++t) {
+    s += "  vR" + std::to_string(t) + " = vec4(";
+    for (int k = 0; k < 4; ++k) s += (k ? ",\n    " : "") + out[static_cast<std::size_t>(4 * t + k)];
+    s += ");\n";
+  }
+  return s + "}\n";
+}
+
+void biScaleRotateCpu(const BiScaleRotations& rotations, std::span<const float> transfer, int vertices, int rowTexels,
+                      std::span<float> out) {
+  const std::size_t stride = static_cast<std::size_t>(rowTexels) * 4;
+  std::fill(out.begin(), out.end(), 0.0f);
+  for (int c = 0; c < 3; ++c)
+    for (int v = 0; v < vertices; ++v) {
+      const float* t = &transfer[(static_cast<std::size_t>(c) * static_cast<std::size_t>(vertices) + static_cast<std::size_t>(v)) * stride];
+      float* o = &out[(static_cast<std::size_t>(c) * static_cast<std::size_t>(vertices) + static_cast<std::size_t>(v)) * stride];
+      const float* r = &rotations.values[static_cast<std::size_t>(v) * static_cast<std::size_t>(rotations.texelsPerVertex) * 4];
+      o[0] = t[0];
+      for (int l = 1; l < rotations.bands; ++l) {
+        const int first = l * l, width = 2 * l + 1;
+        for (int m = 0; m < width; ++m) {
+          float sum = 0.0f;
+          for (int k = 0; k < width; ++k) sum += *r++ * t[first + k];
+          o[first + m] = sum;
+        }
+      }
+    }
+}
+
+Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const Vec3> tangents,
+                          std::span<const float> patchUv, std::span<const std::uint32_t> indices, std::vector<std::uint32_t>* out) {
+  const std::size_t n = positions.size();
+  if (normals.size() != n || tangents.size() != n || patchUv.size() != 2 * n || indices.size() % 3 != 0) {
+    return Status::error(StatusCode::kInvalidArgument, "bi-scale corners: per-vertex arrays disagree with the vertex count");
+  }
+  std::vector<std::uint32_t> words(indices.size() * kBiScaleCornerWords);
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const std::size_t triangle = i / 3 * 3;
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (indices[triangle + k] >= n) {
+        return Status::error(StatusCode::kInvalidArgument, "bi-scale corners: index " + std::to_string(triangle + k) + " out of range");
+      }
+    }
+    const std::uint32_t v = indices[i];
+    std::uint32_t* w = &words[i * kBiScaleCornerWords];
+    const float f[11] = {positions[v].x, positions[v].y, positions[v].z, normals[v].x,    normals[v].y,        normals[v].z,
+                         tangents[v].x,  tangents[v].y,  tangents[v].z, patchUv[2 * v], patchUv[2 * v + 1]};
+    std::memcpy(w, f, sizeof f);  // float bits in the buffer (std::bit_cast: not in Emscripten 3.1.6's libc++)
+    for (int k = 0; k < 3; ++k) w[11 + k] = indices[triangle + static_cast<std::size_t>(k)];
+  }
+  *out = std::move(words);
+  return Status::ok();
+}
+
+}  // namespace prt::web
