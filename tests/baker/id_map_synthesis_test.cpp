@@ -101,30 +101,73 @@ TEST(IdMapSynthesis, EverySampledTexelHasAPlacement) {
 
 // The plane's chart is a rectangle, so each gutter texel's nearest sampled texel is its
 // clamped position: within 3 texels (Chebyshev) it carries that texel's placement, beyond, none.
-TEST(IdMapSynthesis, GuttersCopyTheNearestSampledTexel) {
-  const Mesh m = plane(256);
-  SynthesisedIdMap map;
-  ASSERT_TRUE(synthesise(m, settings(kPlanePatch), &map).isOk());
-  const AtlasSamples samples = samplesOf(m);
-  int x0 = 256, y0 = 256, x1 = -1, y1 = -1;
+// `atlas` of `samples` is side × side texels from texel `first` on.
+void expectRectangleGutters(const SynthesisedIdMap& map, const AtlasSamples& samples, std::uint32_t atlas, int side) {
+  const std::uint64_t first = samples.firstTexel[atlas];
+  int x0 = side, y0 = side, x1 = -1, y1 = -1;
+  std::size_t count = 0;
   for (const AtlasTexel& t : samples.texels) {
+    if (t.atlas != atlas) continue;
     x0 = std::min(x0, t.x), y0 = std::min(y0, t.y), x1 = std::max(x1, t.x), y1 = std::max(y1, t.y);
+    ++count;
   }
-  ASSERT_EQ(samples.texels.size(), static_cast<std::size_t>((x1 - x0 + 1) * (y1 - y0 + 1)));  // a full rectangle
+  ASSERT_EQ(count, static_cast<std::size_t>((x1 - x0 + 1) * (y1 - y0 + 1)));  // a full rectangle
   int gutters = 0;
-  for (int y = 0; y < 256; ++y)
-    for (int x = 0; x < 256; ++x) {
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
       const int cx = std::clamp(x, x0, x1), cy = std::clamp(y, y0, y1);
       if (cx == x && cy == y) continue;
-      const std::uint16_t got = map.placementOfTexel[static_cast<std::size_t>(y) * 256 + x];
+      const std::uint16_t got = map.placementOfTexel[first + static_cast<std::uint64_t>(y) * side + x];
       if (std::max(std::abs(cx - x), std::abs(cy - y)) <= 3) {
-        ASSERT_EQ(got, map.placementOfTexel[static_cast<std::size_t>(cy) * 256 + cx]) << x << ", " << y;
+        ASSERT_EQ(got, map.placementOfTexel[first + static_cast<std::uint64_t>(cy) * side + cx]) << x << ", " << y;
         ++gutters;
       } else {
         ASSERT_EQ(got, kNoPlacement) << x << ", " << y;
       }
     }
   EXPECT_GT(gutters, 4 * 3 * (x1 - x0));
+}
+
+TEST(IdMapSynthesis, GuttersCopyTheNearestSampledTexel) {
+  const Mesh m = plane(256);
+  SynthesisedIdMap map;
+  ASSERT_TRUE(synthesise(m, settings(kPlanePatch), &map).isOk());
+  expectRectangleGutters(map, samplesOf(m), 0, 256);
+}
+
+// Two objects, two atlases (a texture set each): the sphere's 128² atlas, then the plane's
+// 256², texels numbered atlas after atlas. The sphere floats 3 m above the plane, so no cell
+// spans both: each atlas uses placements of its own, the sphere's covers every texel, and the
+// plane's gutters follow its own chart at its offset.
+TEST(IdMapSynthesis, TwoAtlasesAreNumberedAtlasAfterAtlas) {
+  Mesh m = unitSphere(128);
+  const std::uint32_t sphereTriangles = static_cast<std::uint32_t>(m.scene.indices.size() / 3);
+  const Mesh p = plane(256);
+  const auto base = static_cast<std::uint32_t>(m.scene.positions.size());
+  for (Vec3& v : m.scene.positions) v.y += 3.0f;
+  m.scene.positions.insert(m.scene.positions.end(), p.scene.positions.begin(), p.scene.positions.end());
+  m.scene.normals.insert(m.scene.normals.end(), p.scene.normals.begin(), p.scene.normals.end());
+  for (std::uint32_t i : p.scene.indices) m.scene.indices.push_back(base + i);
+  m.uv.insert(m.uv.end(), p.uv.begin(), p.uv.end());
+  m.atlases = {{128, 128, 0, sphereTriangles},
+               {256, 256, sphereTriangles, static_cast<std::uint32_t>(p.scene.indices.size() / 3)}};
+  SynthesisedIdMap map;
+  ASSERT_TRUE(synthesise(m, settings(kPlanePatch), &map).isOk());
+  ASSERT_EQ(map.placementOfTexel.size(), 128u * 128u + 256u * 256u);
+  const AtlasSamples samples = samplesOf(m);
+  std::vector<int> atlasOf(map.placements.size(), -1);
+  for (std::uint64_t i = 0; i < map.placementOfTexel.size(); ++i) {
+    const std::uint16_t id = map.placementOfTexel[i];
+    const int atlas = i < 128u * 128u ? 0 : 1;
+    if (atlas == 0) {
+      ASSERT_NE(id, kNoPlacement) << "sphere texel " << i;
+    }
+    if (id == kNoPlacement) continue;
+    ASSERT_LT(id, map.placements.size());
+    ASSERT_TRUE(atlasOf[id] == -1 || atlasOf[id] == atlas) << "placement " << id << " in both atlases";
+    atlasOf[id] = atlas;
+  }
+  expectRectangleGutters(map, samples, 1, 256);
 }
 
 // Inside a cell q is the linear map of the placement: right and down neighbours of one
