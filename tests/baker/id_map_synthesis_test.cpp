@@ -385,6 +385,16 @@ TEST(IdMapSynthesis, BadSettingsAreRefusedByName) {
   Mesh badIndex = m;
   badIndex.scene.indices[4] = 1u << 30;
   EXPECT_EQ(synthesise(badIndex, settings(kSpherePatch), &out).code(), StatusCode::kInvalidArgument);
+  // A triangle collapsed to a point in space (its UVs still cover texels): nothing to place on.
+  Mesh point;
+  point.scene.positions = {{1, 2, 3}, {1, 2, 3}, {1, 2, 3}};
+  point.scene.normals = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+  point.scene.indices = {0, 1, 2};
+  point.uv = {{0.1f, 0.1f}, {0.9f, 0.1f}, {0.1f, 0.9f}};
+  point.atlases = {{16, 16, 0, 1}};
+  const Status zero = synthesise(point, settings(kSpherePatch), &out);
+  EXPECT_EQ(zero.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(zero.message().find("zero area"), std::string::npos) << zero.message();
 }
 
 // Not asserted: the time on the built-in room (one 512² atlas over its lightmap UVs), patches
