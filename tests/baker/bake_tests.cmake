@@ -56,3 +56,11 @@ target_include_directories(prt_bi_scale_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_
 target_link_libraries(prt_bi_scale_bake_tests PRIVATE prt_rtt GTest::gtest_main)
 target_compile_options(prt_bi_scale_bake_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME bi_scale_bake_tests COMMAND prt_bi_scale_bake_tests)
+
+# The synthesised id map of bi-scale transfer (baker/biscale/, docs/bi-scale.md): coverage,
+# gutters, q inside a cell, frames, cell size, phases, determinism, refusals; time printed.
+add_executable(prt_id_map_synthesis_tests ${CMAKE_CURRENT_LIST_DIR}/id_map_synthesis_test.cpp)
+target_include_directories(prt_id_map_synthesis_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
+target_link_libraries(prt_id_map_synthesis_tests PRIVATE prt_biscale prt_scene GTest::gtest_main)
+target_compile_options(prt_id_map_synthesis_tests PRIVATE ${PRT_STRICT_WARNINGS})
+add_test(NAME id_map_synthesis_tests COMMAND prt_id_map_synthesis_tests)

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "prt/cubemap.h"
+#include "prt/patch_placement.h"
 #include "prt/sampling.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_project.h"
@@ -68,6 +69,22 @@ int main() {
   for (std::size_t i = 0; i < c.size(); ++i) {
     print("cube_r", static_cast<int>(i), c[i].r);
     print("cube_b", static_cast<int>(i), c[i].b);
+  }
+
+  // Patch placements (prt/patch_placement.h): the baker's q and the wasm client's must agree.
+  Pcg32 patchRng(77);
+  for (int k = 0; k < 8; ++k) {
+    // Two statements: the order in which a call's arguments are evaluated differs by compiler.
+    const float a = patchRng.nextFloat(), b = patchRng.nextFloat();
+    const Vec3 n = squareToSphere(a, b);
+    const Vec3 t = patchTangent(n);
+    const PatchPlacement placement{n * 3.0f, t * 20.0f, cross(n, t) * 20.0f};
+    float u = 0, v = 0;
+    patchCoordinates(placement, n * 3.0f + Vec3{0.137f, -0.071f, 0.029f} * static_cast<float>(k), &u, &v);
+    print("patch_tangent_x", k, t.x);
+    print("patch_tangent_z", k, t.z);
+    print("patch_u", k, u);
+    print("patch_v", k, v);
   }
   return 0;
 }
