@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "prt/glossy_lobe.h"
+#include "prt/patch_placement.h"
 #include "prt/status.h"
 #include "prt/transfer_codec.h"
 #include "prt/transfer_matrix.h"
@@ -169,6 +170,12 @@ struct BakedAsset {
   std::vector<std::uint8_t> rtt;
   std::vector<Vec3> tangents;
   std::vector<float> patchUv;
+  // Or, instead of patchUv, the synthesised id map (docs/bi-scale.md, "Synthesised id map"):
+  // 1..kMaxPatchPlacements placements (finite) and one placement index per texel of the
+  // asset's atlases (texelCoverage's order), each < the placement count or kNoPlacement. It
+  // brings the atlas sections (atlasUv, atlases, texelCoverage) with it, texel passes or not.
+  std::vector<PatchPlacement> patchPlacements;
+  std::vector<std::uint16_t> idMap;
 };
 
 // The largest |patch coordinate| an asset may hold: float keeps 2^-11 patch widths there,
@@ -243,6 +250,8 @@ enum class AssetSectionType : std::uint32_t {
   kTangents = 20,  // float32 x, y, z per vertex: unit, orthogonal to the normal
   kPatchUv = 21,   // float32 u, v per vertex: patch coordinates (the parametric id map)
   kRtt = 22,       // bytes: a whole RTT file (prt/rtt.h), its own checksum included
+  kPatchPlacements = 23,  // float32 origin, axisU, axisV (9 floats) per placement; arg0 the count
+  kIdMap = 24,            // bytes: u16 placement index per atlas texel (kNoPlacement: none)
 };
 
 // Bytes per texel of the texel normals section: int16 x, y (octahedral, snorm16).
@@ -256,6 +265,9 @@ inline constexpr std::uint64_t kMaxAssetTexels = 1ull << 28;
 // At most one pass per (kind, form, domain): 3 vector + 3 matrix vertex passes, 3 texel vector
 // passes and the one texel visibility pass (shadowed only).
 inline constexpr std::size_t kMaxAssetPasses = 10;
+
+// Bytes per placement of the patch placements section: float32 origin, axisU, axisV.
+inline constexpr std::size_t kAssetPlacementBytes = 36;
 
 // Bytes per vertex of the specular section: float32 f0 r, g, b, f90, exponent.
 inline constexpr std::size_t kAssetSpecularBytesPerVertex = 20;
@@ -332,9 +344,11 @@ bool isValidAssetSamplingName(std::string_view sampling);
 // triangles contiguously in order, at most kMaxAssetTexels texels, atlasUv 2 per vertex in
 // [0, 1], texelCoverage one value (0, 1 or 2) per texel; without one, all three empty.
 // texelNormals empty, or (with a texel pass) 2 codes per texel, none -32768, (0, 0) at empty texels.
-// rtt, tangents and patchUv all empty, or (with a vertex matrix pass) an RTT decodeRtt accepts
-// of order <= shOrder, a tangent per vertex within kTangentTolerance of unit and orthogonal to
-// its normal, and 2 patch coordinates per vertex, finite, |x| <= kMaxPatchCoordinate.
+// rtt, tangents, patchUv, patchPlacements and idMap all empty, or (with a vertex matrix pass)
+// an RTT decodeRtt accepts of order <= shOrder, a tangent per vertex within kTangentTolerance
+// of unit and orthogonal to its normal, and either 2 patch coordinates per vertex, finite,
+// |x| <= kMaxPatchCoordinate, or the synthesised id map: finite placements and one index per
+// atlas texel (the atlas data then required even without a texel pass).
 Status checkAsset(const BakedAsset& asset);
 
 // Validates `asset` (checkAsset) and replaces *out with its encoding.

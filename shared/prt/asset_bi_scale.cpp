@@ -35,6 +35,19 @@ Status checkPatchCoordinate(float value, std::size_t index) {
   return Status::ok();
 }
 
+Status checkPlacement(const std::array<float, 9>& values, std::size_t index) {
+  for (float x : values) {
+    if (!std::isfinite(x)) return Status::error(StatusCode::kNotFinite, "patch placement " + std::to_string(index) + " is not finite");
+  }
+  return Status::ok();
+}
+
+Status checkIdMapEntry(std::uint16_t value, std::size_t placements, std::size_t texel) {
+  if (value == kNoPlacement || value < placements) return Status::ok();
+  return Status::error(StatusCode::kInvalidArgument, "id map texel " + std::to_string(texel) + " names placement " +
+                                                         std::to_string(value) + " of " + std::to_string(placements));
+}
+
 Status checkRttBytes(std::span<const std::uint8_t> bytes, int assetOrder) {
   Rtt rtt;
   if (Status s = decodeRtt(bytes, &rtt); !s.isOk()) return Status::error(s.code(), "RTT: " + s.message());

@@ -3,6 +3,7 @@
 // files with the same words. Private to the asset code.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -20,6 +21,14 @@ Status checkTangent(Vec3 tangent, Vec3 normal, std::size_t vertex);
 // Ok when patch coordinate `value` (float `index` of the patch uv) is finite and within
 // kMaxPatchCoordinate; else kNotFinite or kInvalidArgument naming the vertex and axis.
 Status checkPatchCoordinate(float value, std::size_t index);
+
+// Ok when the 9 floats of placement `index` (origin, axisU, axisV) are finite; else kNotFinite
+// naming it.
+Status checkPlacement(const std::array<float, 9>& values, std::size_t index);
+
+// Ok when id map texel `texel` holds a placement index below `placements` or kNoPlacement;
+// else kInvalidArgument naming it.
+Status checkIdMapEntry(std::uint16_t value, std::size_t placements, std::size_t texel);
 
 // Ok when `bytes` is an RTT file decodeRtt accepts, of order <= `assetOrder`; else its
 // error (or kInvalidArgument for the order), prefixed with "RTT: ". Safe on untrusted bytes.

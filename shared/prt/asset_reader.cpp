@@ -54,7 +54,9 @@ struct Parsed {
   // Transfer textures (format 1.4): each required exactly once with a texel pass, else absent.
   int atlasUv = -1, atlases = -1, coverage = -1;
   int texelNormals = -1;  // optional (format 1.6), only with the atlas sections
-  int tangents = -1, patchUv = -1, rtt = -1;  // bi-scale (format 1.7): all or none, with a vertex matrix pass
+  // Bi-scale (format 1.7), with a vertex matrix pass: tangents and RTT, and either patch uv or
+  // the synthesised id map (placements and id map, with the atlas sections).
+  int tangents = -1, patchUv = -1, rtt = -1, placements = -1, idMap = -1;
   std::uint64_t texelCount = 0;  // the coverage section's size (1 byte per texel); 0 without one
   std::vector<int> transfer;  // entry indices, table order (vector, matrix and texel passes)
 };
@@ -88,6 +90,8 @@ constexpr std::uint32_t kTypeTexelNormals = static_cast<std::uint32_t>(AssetSect
 constexpr std::uint32_t kTypeTangents = static_cast<std::uint32_t>(AssetSectionType::kTangents);
 constexpr std::uint32_t kTypePatchUv = static_cast<std::uint32_t>(AssetSectionType::kPatchUv);
 constexpr std::uint32_t kTypeRtt = static_cast<std::uint32_t>(AssetSectionType::kRtt);
+constexpr std::uint32_t kTypePatchPlacements = static_cast<std::uint32_t>(AssetSectionType::kPatchPlacements);
+constexpr std::uint32_t kTypeIdMap = static_cast<std::uint32_t>(AssetSectionType::kIdMap);
 
 bool isMatrixType(std::uint32_t type) { return type == kTypeMatrixTransfer || type == kTypeEncodedMatrixTransfer; }
 bool isVisibilityType(std::uint32_t type) { return type == kTypeTexelVisibility || type == kTypeEncodedTexelVisibility; }
@@ -145,6 +149,8 @@ std::string sectionLabel(const Entry& e) {
     case kTypeTangents: s += "tangents"; break;
     case kTypePatchUv: s += "patch uv"; break;
     case kTypeRtt: s += "RTT"; break;
+    case kTypePatchPlacements: s += "patch placements"; break;
+    case kTypeIdMap: s += "id map"; break;
     default: s += "type " + num(e.type); break;
   }
   return s + ")";
@@ -345,6 +351,18 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       // Its contents carry their own shape and checksum (decodeRtt, in validateAll).
       if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
       return once(&p->rtt);
+    case kTypePatchPlacements:
+      if (!(s = expectFormat(kFormatFloat32, "float32")).isOk()) return s;
+      if (e.arg0 < 1 || e.arg0 > kMaxPatchPlacements) {
+        return corrupt(label + " declares " + num(e.arg0) + " placements; 1 to " + num(kMaxPatchPlacements) + " expected");
+      }
+      if (e.arg1 != 0 || e.arg2 != 0) return corrupt(label + " has non-zero arguments 1 or 2");
+      if (!(s = expectSize(std::uint64_t{e.arg0} * kAssetPlacementBytes, "36 bytes per placement")).isOk()) return s;
+      return once(&p->placements);
+    case kTypeIdMap:
+      // Its size depends on the texel count: checked in checkBiScaleSections.
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      return once(&p->idMap);
     case kTypeTexelVisibility:
     case kTypeEncodedTexelVisibility: {
       // TPFL glossy visibility (since 1.5): shadowed, one channel, arg2 its own order. A float32
@@ -429,10 +447,13 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
 Status checkTexelSections(const Parsed& p) {
   bool anyTexel = false;
   for (int t : p.transfer) anyTexel = anyTexel || isTexelType(p.entries[static_cast<std::size_t>(t)].type);
+  // The atlases come with a texel pass or a synthesised id map (bi-scale).
+  const bool atlasData = anyTexel || p.idMap >= 0;
+  const char* needer = anyTexel ? "a texel transfer section" : "an id map";
   const std::pair<int, const char*> sections[] = {{p.atlasUv, "atlas uv"}, {p.atlases, "atlases"}, {p.coverage, "texel coverage"}};
   for (const auto& [slot, name] : sections) {
-    if (anyTexel && slot < 0) return corrupt(std::string("the asset has a texel transfer section but no ") + name + " section");
-    if (!anyTexel && slot >= 0) {
+    if (atlasData && slot < 0) return corrupt(std::string("the asset has ") + needer + " but no " + name + " section");
+    if (!atlasData && slot >= 0) {
       return corrupt(sectionLabel(p.entries[static_cast<std::size_t>(slot)]) + " is present without a texel transfer section");
     }
   }
@@ -469,12 +490,26 @@ Status checkTexelSections(const Parsed& p) {
 
 // Bi-scale: tangents, patch uv and RTT all or none, and only with a vertex matrix pass.
 Status checkBiScaleSections(const Parsed& p) {
-  const std::pair<int, const char*> sections[] = {{p.tangents, "tangents"}, {p.patchUv, "patch uv"}, {p.rtt, "RTT"}};
-  int present = 0;
-  for (const auto& [slot, name] : sections) present += slot >= 0 ? 1 : 0;
-  if (present == 0) return Status::ok();
+  const int all[] = {p.tangents, p.patchUv, p.rtt, p.placements, p.idMap};
+  if (std::all_of(std::begin(all), std::end(all), [](int slot) { return slot < 0; })) return Status::ok();
+  const std::pair<int, const char*> sections[] = {{p.tangents, "tangents"}, {p.rtt, "RTT"}};
   for (const auto& [slot, name] : sections) {
     if (slot < 0) return corrupt(std::string("the asset has bi-scale sections but no ") + name + " section");
+  }
+  const bool synthesised = p.placements >= 0 || p.idMap >= 0;
+  if (synthesised && p.patchUv >= 0) {
+    return corrupt("the asset has both a patch uv section and a synthesised id map; one places the RTT");
+  }
+  if (!synthesised && p.patchUv < 0) return corrupt("the asset has bi-scale sections but no patch uv section");
+  if (synthesised) {
+    if (p.placements < 0) return corrupt("the asset has an id map but no patch placements section");
+    if (p.idMap < 0) return corrupt("the asset has patch placements but no id map section");
+    const Entry& e = p.entries[static_cast<std::size_t>(p.idMap)];
+    if (p.coverage < 0) return corrupt(sectionLabel(e) + " is present without the atlas sections");
+    if (e.size != 2 * p.texelCount) {
+      return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(2 * p.texelCount) + " expected (2 bytes per texel, " +
+                     num(p.texelCount) + " texels)");
+    }
   }
   for (int t : p.transfer) {
     const std::uint32_t type = p.entries[static_cast<std::size_t>(t)].type;
@@ -503,6 +538,15 @@ Status checkTangentsPayload(std::span<const std::uint8_t> payload, const Entry& 
 Status checkPatchUvPayload(std::span<const std::uint8_t> payload, const Entry& e) {
   for (std::size_t i = 0; i < payload.size() / 4; ++i) {
     if (Status s = asset_bi_scale::checkPatchCoordinate(floatFromBits(readLe32(payload.data() + 4 * i)), i); !s.isOk()) {
+      return corrupt(sectionLabel(e) + ": " + s.message());
+    }
+  }
+  return Status::ok();
+}
+
+Status checkIdMapPayload(std::span<const std::uint8_t> payload, const Entry& e, std::uint32_t placements) {
+  for (std::size_t t = 0; t < payload.size() / 2; ++t) {
+    if (Status s = asset_bi_scale::checkIdMapEntry(readLe16(payload.data() + 2 * t), placements, t); !s.isOk()) {
       return corrupt(sectionLabel(e) + ": " + s.message());
     }
   }
@@ -916,6 +960,8 @@ Status validateAll(std::span<const std::uint8_t> bytes, Parsed* p, Metadata* m,
       case kTypeTangents: s = checkTangentsPayload(payload, e, payloadOf(bytes, p->entries[static_cast<std::size_t>(p->normals)])); break;
       case kTypePatchUv: s = checkPatchUvPayload(payload, e); break;
       case kTypeRtt: s = checkRttPayload(payload, e, p->order); break;
+      case kTypePatchPlacements: s = checkFloats(payload, e); break;
+      case kTypeIdMap: s = checkIdMapPayload(payload, e, p->entries[static_cast<std::size_t>(p->placements)].arg0); break;
       case kTypeEncodedTransfer:
       case kTypeEncodedMatrixTransfer:
       case kTypeEncodedTexelTransfer:
@@ -1021,9 +1067,25 @@ void readAtlasSections(std::span<const std::uint8_t> bytes, const Parsed& p, Bak
 void readBiScaleSections(std::span<const std::uint8_t> bytes, const Parsed& p, BakedAsset* out) {
   const auto payload = [&](int slot) { return payloadOf(bytes, p.entries[static_cast<std::size_t>(slot)]); };
   readTriples(payload(p.tangents), &out->tangents);
-  const auto uv = payload(p.patchUv);
-  out->patchUv.resize(uv.size() / 4);
-  readFloats(uv, out->patchUv.data());
+  out->patchUv.clear();
+  out->patchPlacements.clear();
+  out->idMap.clear();
+  if (p.patchUv >= 0) {
+    const auto uv = payload(p.patchUv);
+    out->patchUv.resize(uv.size() / 4);
+    readFloats(uv, out->patchUv.data());
+  } else {
+    const auto placements = payload(p.placements);
+    out->patchPlacements.resize(placements.size() / kAssetPlacementBytes);
+    for (std::size_t k = 0; k < out->patchPlacements.size(); ++k) {
+      float f[9];
+      readFloats(placements.subspan(kAssetPlacementBytes * k, kAssetPlacementBytes), f);
+      out->patchPlacements[k] = {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}, {f[6], f[7], f[8]}};
+    }
+    const auto ids = payload(p.idMap);
+    out->idMap.resize(ids.size() / 2);
+    for (std::size_t t = 0; t < out->idMap.size(); ++t) out->idMap[t] = readLe16(ids.data() + 2 * t);
+  }
   const auto rtt = payload(p.rtt);
   out->rtt.assign(rtt.begin(), rtt.end());
 }
@@ -1413,20 +1475,29 @@ Status decodeAssetBiScale(std::span<const std::uint8_t> file, BakedAsset* out) {
   BakedAsset a;
   if (p.rtt >= 0) {  // parseTable: then all three exist, with a matrix pass
     // The tangents are checked against the normals: those must have arrived too.
-    for (int slot : {p.normals, p.tangents, p.patchUv, p.rtt}) {
+    for (int slot : {p.normals, p.tangents, p.patchUv, p.rtt, p.placements, p.idMap}) {
+      if (slot < 0) continue;  // patch uv, or placements and id map
       if (Status s = checkSectionCrc(file, p.entries[static_cast<std::size_t>(slot)]); !s.isOk()) return s;
     }
     const auto payload = [&](int slot) { return payloadOf(file, p.entries[static_cast<std::size_t>(slot)]); };
     const Entry& normals = p.entries[static_cast<std::size_t>(p.normals)];
     PRT_RETURN_IF_ERROR(checkFloats(payload(p.normals), normals));
     PRT_RETURN_IF_ERROR(checkTangentsPayload(payload(p.tangents), p.entries[static_cast<std::size_t>(p.tangents)], payload(p.normals)));
-    PRT_RETURN_IF_ERROR(checkPatchUvPayload(payload(p.patchUv), p.entries[static_cast<std::size_t>(p.patchUv)]));
+    if (p.patchUv >= 0) {
+      PRT_RETURN_IF_ERROR(checkPatchUvPayload(payload(p.patchUv), p.entries[static_cast<std::size_t>(p.patchUv)]));
+    } else {
+      const Entry& placements = p.entries[static_cast<std::size_t>(p.placements)];
+      PRT_RETURN_IF_ERROR(checkFloats(payload(p.placements), placements));
+      PRT_RETURN_IF_ERROR(checkIdMapPayload(payload(p.idMap), p.entries[static_cast<std::size_t>(p.idMap)], placements.arg0));
+    }
     PRT_RETURN_IF_ERROR(checkRttPayload(payload(p.rtt), p.entries[static_cast<std::size_t>(p.rtt)], p.order));
     readBiScaleSections(file, p, &a);
   }
   out->tangents = std::move(a.tangents);
   out->patchUv = std::move(a.patchUv);
   out->rtt = std::move(a.rtt);
+  out->patchPlacements = std::move(a.patchPlacements);
+  out->idMap = std::move(a.idMap);
   return Status::ok();
 }
 

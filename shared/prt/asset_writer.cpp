@@ -105,10 +105,16 @@ bool isKnownKind(TransferKind kind) { return static_cast<std::uint32_t>(kind) <=
 Status checkBiScale(const BakedAsset& asset) {
   const std::size_t vertexCount = asset.positions.size();
   if (asset.rtt.empty()) {
-    if (asset.tangents.empty() && asset.patchUv.empty()) return Status::ok();
-    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.tangents.size()) + " tangents and " +
-                                                           std::to_string(asset.patchUv.size()) +
-                                                           " patch uv floats but no RTT; they are kept only with one");
+    if (asset.tangents.empty() && asset.patchUv.empty() && asset.patchPlacements.empty() && asset.idMap.empty()) return Status::ok();
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.tangents.size()) + " tangents, " +
+                                                           std::to_string(asset.patchUv.size()) + " patch uv floats, " +
+                                                           std::to_string(asset.patchPlacements.size()) + " placements and " +
+                                                           std::to_string(asset.idMap.size()) +
+                                                           " id map texels but no RTT; they are kept only with one");
+  }
+  const bool synthesised = !asset.patchPlacements.empty() || !asset.idMap.empty();
+  if (synthesised && !asset.patchUv.empty()) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has both patch uv (the parametric id map) and a synthesised id map; one places the RTT");
   }
   bool matrix = false;
   for (const TransferPass& pass : asset.passes) {
@@ -117,10 +123,30 @@ Status checkBiScale(const BakedAsset& asset) {
   if (!matrix) {
     return Status::error(StatusCode::kInvalidArgument, "asset has an RTT but no vertex matrix pass (bi-scale's macro scale)");
   }
-  if (asset.tangents.size() != vertexCount || asset.patchUv.size() != 2 * vertexCount) {
+  if (asset.tangents.size() != vertexCount || (!synthesised && asset.patchUv.size() != 2 * vertexCount)) {
     return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.tangents.size()) + " tangents and " +
                                                         std::to_string(asset.patchUv.size()) + " patch uv floats for " +
                                                         std::to_string(vertexCount) + " vertices; bi-scale needs 1 and 2 per vertex");
+  }
+  if (synthesised) {
+    if (asset.patchPlacements.empty() || asset.patchPlacements.size() > kMaxPatchPlacements) {
+      return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.patchPlacements.size()) +
+                                                             " patch placements; a synthesised id map needs 1 to " +
+                                                             std::to_string(kMaxPatchPlacements));
+    }
+    if (asset.idMap.size() != assetTexelCount(asset)) {
+      return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.idMap.size()) + " id map texels for " +
+                                                          std::to_string(assetTexelCount(asset)) + " atlas texels; one per texel is needed");
+    }
+    for (std::size_t i = 0; i < asset.patchPlacements.size(); ++i) {
+      const PatchPlacement& q = asset.patchPlacements[i];
+      PRT_RETURN_IF_ERROR(asset_bi_scale::checkPlacement({q.origin.x, q.origin.y, q.origin.z, q.axisU.x, q.axisU.y, q.axisU.z, q.axisV.x,
+                                                          q.axisV.y, q.axisV.z},
+                                                         i));
+    }
+    for (std::size_t t = 0; t < asset.idMap.size(); ++t) {
+      PRT_RETURN_IF_ERROR(asset_bi_scale::checkIdMapEntry(asset.idMap[t], asset.patchPlacements.size(), t));
+    }
   }
   for (std::size_t v = 0; v < vertexCount; ++v) {
     PRT_RETURN_IF_ERROR(asset_bi_scale::checkTangent(asset.tangents[v], asset.normals[v], v));
@@ -313,8 +339,14 @@ Status checkAsset(const BakedAsset& asset) {
                                                            " transfer passes; 1 to " + std::to_string(kMaxAssetPasses) + " are needed");
   }
   // The atlases first: a texel pass's size depends on their texel count.
+  // The atlases come with a texel pass or with a synthesised id map (bi-scale); texel normals
+  // only with a texel pass.
   const bool anyTexel = hasTexelPass(asset);
-  if (Status s = anyTexel ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
+  if (Status s = anyTexel || !asset.idMap.empty() ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
+  if (!anyTexel && !asset.texelNormals.empty()) {
+    return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.texelNormals.size()) +
+                                                           " texel normal codes but no texel pass; they are kept only with one");
+  }
   const std::uint64_t texelCount = assetTexelCount(asset);
   bool anyGlossy = false;  // a matrix or visibility pass: the specular materials are needed
   const std::uint64_t coeffsPerChannel = static_cast<std::uint64_t>(shCoeffCount(asset.shOrder));
@@ -488,7 +520,14 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
   // glossy shell on. Only bi-scale assets have them, so other files keep their layout.
   if (!asset.rtt.empty()) {
     sections.push_back({AssetSectionType::kTangents, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 12, 0, nullptr});
-    sections.push_back({AssetSectionType::kPatchUv, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 8, 0, nullptr});
+    if (!asset.patchUv.empty()) {
+      sections.push_back({AssetSectionType::kPatchUv, AssetElementFormat::kFloat32, 0, 0, 0, vertexCount * 8, 0, nullptr});
+    } else {
+      sections.push_back({AssetSectionType::kPatchPlacements, AssetElementFormat::kFloat32,
+                          static_cast<std::uint32_t>(asset.patchPlacements.size()), 0, 0,
+                          asset.patchPlacements.size() * kAssetPlacementBytes, 0, nullptr});
+      sections.push_back({AssetSectionType::kIdMap, AssetElementFormat::kBytes, 0, 0, 0, asset.idMap.size() * 2, 0, nullptr});
+    }
     sections.push_back({AssetSectionType::kRtt, AssetElementFormat::kBytes, 0, 0, 0, asset.rtt.size(), 0, nullptr});
   }
   const std::uint64_t texelCount = assetTexelCount(asset);
@@ -590,6 +629,16 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
       case AssetSectionType::kTangents: putTriples(p, asset.tangents); break;
       case AssetSectionType::kPatchUv: putFloats(p, asset.patchUv.data(), asset.patchUv.size()); break;
       case AssetSectionType::kRtt: std::memcpy(p, asset.rtt.data(), asset.rtt.size()); break;
+      case AssetSectionType::kPatchPlacements:
+        for (std::size_t k = 0; k < asset.patchPlacements.size(); ++k) {
+          const PatchPlacement& q = asset.patchPlacements[k];
+          const float f[9] = {q.origin.x, q.origin.y, q.origin.z, q.axisU.x, q.axisU.y, q.axisU.z, q.axisV.x, q.axisV.y, q.axisV.z};
+          putFloats(p + kAssetPlacementBytes * k, f, 9);
+        }
+        break;
+      case AssetSectionType::kIdMap:
+        for (std::size_t k = 0; k < asset.idMap.size(); ++k) writeLe16(p + 2 * k, asset.idMap[k]);
+        break;
       case AssetSectionType::kTexelNormals:
         for (std::size_t k = 0; k < asset.texelNormals.size(); ++k) {
           writeLe16(p + 2 * k, static_cast<std::uint16_t>(asset.texelNormals[k]));

@@ -196,6 +196,70 @@ TEST(AssetBiScale, TheReaderRefusesWhatTheWriterWould) {
   }
 }
 
+// The synthesised id map instead of patch uv: placements, one index per atlas texel, the atlas
+// sections without a texel pass.
+BakedAsset synthesisedAsset(int order, std::size_t V) {
+  BakedAsset a = biScaleAsset(order, V);
+  a.patchUv.clear();
+  a.patchPlacements = {{{0, 0, 0}, {10, 0, 0}, {0, 0, 10}}, {{1, 0, 0.5f}, {0, 0, 10}, {-10, 0, 0}}};
+  a.atlases = {{4, 2, 0, static_cast<std::uint32_t>(a.indices.size() / 3)}};
+  for (std::size_t v = 0; v < V; ++v) {
+    a.atlasUv.push_back(static_cast<float>(v) / static_cast<float>(V));
+    a.atlasUv.push_back(0.5f);
+  }
+  a.texelCoverage = {1, 1, 1, 0, 1, 1, 2, 0};
+  a.idMap = {0, 0, 1, kNoPlacement, 1, 1, 0, kNoPlacement};
+  return a;
+}
+
+TEST(AssetBiScale, SynthesisedIdMapRoundTripsWithItsAtlas) {
+  const BakedAsset a = synthesisedAsset(2, 5);
+  const Bytes file = encodeOrDie(a);
+  BakedAsset out;
+  ASSERT_TRUE(decodeAsset(file, &out).isOk());
+  EXPECT_EQ(out.idMap, a.idMap);
+  ASSERT_EQ(out.patchPlacements.size(), 2u);
+  EXPECT_EQ(out.patchPlacements[1].origin.z, 0.5f);
+  EXPECT_EQ(out.patchPlacements[1].axisV.x, -10.0f);
+  EXPECT_TRUE(out.patchUv.empty());
+  EXPECT_EQ(out.texelCoverage, a.texelCoverage);
+  BakedAsset alone;
+  ASSERT_TRUE(decodeAssetBiScale(file, &alone).isOk());
+  EXPECT_EQ(alone.idMap, a.idMap);
+  EXPECT_EQ(alone.patchPlacements.size(), 2u);
+
+  Bytes bytes;
+  BakedAsset b = a;
+  b.idMap[2] = 2;  // only placements 0 and 1 exist
+  expectError(encodeAsset(b, &bytes), StatusCode::kInvalidArgument, "id map texel 2 names placement 2 of 2");
+  b = a;
+  b.patchUv.assign(10, 0.5f);
+  expectError(encodeAsset(b, &bytes), StatusCode::kInvalidArgument, "both patch uv");
+  b = a;
+  b.idMap.pop_back();
+  expectError(encodeAsset(b, &bytes), StatusCode::kSizeMismatch, "7 id map texels for 8 atlas texels");
+  b = a;
+  b.patchPlacements[0].axisU.y = NAN;
+  expectError(encodeAsset(b, &bytes), StatusCode::kNotFinite, "patch placement 0 is not finite");
+
+  // The reader: an index past the placements, and an id map without its atlas sections.
+  const auto type = [](AssetSectionType t) { return static_cast<std::uint32_t>(t); };
+  test::RawAsset r = test::split(file);
+  test::findSection(r, type(AssetSectionType::kIdMap))->payload[0] = 7;
+  expectError(decodeAsset(test::build(r), &out), StatusCode::kCorrupt, "id map texel 0 names placement 7 of 2");
+  r = test::split(file);
+  std::erase_if(r.sections, [&](const test::RawSection& s) { return s.type == type(AssetSectionType::kAtlases); });
+  expectError(decodeAsset(test::build(r), &out), StatusCode::kCorrupt, "the asset has an id map but no atlases section");
+  r = test::split(file);
+  std::erase_if(r.sections, [&](const test::RawSection& s) { return s.type == type(AssetSectionType::kPatchPlacements); });
+  expectError(decodeAsset(test::build(r), &out), StatusCode::kCorrupt, "has an id map but no patch placements");
+  for (std::size_t i = 0; i < file.size(); ++i) {
+    Bytes bad = file;
+    bad[i] ^= 0x21;
+    ASSERT_FALSE(decodeAsset(bad, &out).isOk()) << "byte " << i;
+  }
+}
+
 TEST(AssetBiScale, EveryPrefixAndByteFlipOfABiScaleFileIsRejected) {
   const Bytes file = encodeOrDie(biScaleAsset(2, 3));
   BakedAsset out;
