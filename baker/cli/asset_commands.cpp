@@ -274,7 +274,8 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     s += atlases.rtt.empty() ? std::string("null")
                              : "{\"rtt_bytes\": " + std::to_string(atlases.rtt.size()) + ", \"order\": " + std::to_string(rtt.order) +
                                    ", \"channels\": " + std::to_string(rtt.channels) + ", \"spatial\": " + std::to_string(rtt.spatial) +
-                                   ", \"views\": " + std::to_string(rtt.views) + "}";
+                                   ", \"views\": " + std::to_string(rtt.views) +
+                                   ", \"placements\": " + std::to_string(atlases.patchPlacements.size()) + "}";
     s += "\n}\n";
     std::fputs(s.c_str(), out);
   } else {
@@ -320,9 +321,12 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                    static_cast<unsigned long long>(atlases.texelNormals.size() * 2));
     }
     if (!atlases.rtt.empty()) {
-      std::fprintf(out, "bi-scale: RTT order %d, %d channel%s, %dx%d samples x %dx%d views, %zu bytes; tangents and patch uv per vertex\n",
-                   rtt.order, rtt.channels, rtt.channels == 1 ? "" : "s", rtt.spatial, rtt.spatial, rtt.views, rtt.views,
-                   atlases.rtt.size());
+      const std::string placement = atlases.idMap.empty()
+                                        ? std::string("tangents and patch uv per vertex")
+                                        : "tangents per vertex, synthesised id map of " + std::to_string(atlases.patchPlacements.size()) +
+                                              " placements over the atlas";
+      std::fprintf(out, "bi-scale: RTT order %d, %d channel%s, %dx%d samples x %dx%d views, %zu bytes; %s\n", rtt.order, rtt.channels,
+                   rtt.channels == 1 ? "" : "s", rtt.spatial, rtt.spatial, rtt.views, rtt.views, atlases.rtt.size(), placement.c_str());
     }
   }
   return kExitOk;

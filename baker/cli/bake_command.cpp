@@ -37,7 +37,8 @@ constexpr FlagSpec kBakeFlags[] = {
     {"--texels", false}, {"--texture-size", true}, {"--texels-per-unit", true}, {"--atlas-padding", true},
     {"--dilation", true}, {"--unwrap", true}, {"--blender", true}, {"--unwrap-timeout", true},
     {"--texel-glossy", false}, {"--visibility-order", true}, {"--texture-sets", true},
-    {"--rtt", true}, {"--patches-per-uv", true}, {"--patch-uv-set", true},
+    {"--rtt", true}, {"--patches-per-uv", true}, {"--patch-uv-set", true}, {"--patch-width", true}, {"--cell-patches", true},
+    {"--id-map-size", true},
 };
 
 constexpr const char* kHelp =
@@ -118,6 +119,11 @@ constexpr const char* kHelp =
     "  --patches-per-uv X        patch repeats per UV unit, > 0 (default 8)\n"
     "  --patch-uv-set K          the UV set the patch follows, 0 or 1 (default: TEXCOORD_0 if the\n"
     "                            scene has it, else TEXCOORD_1)\n"
+    "  --patch-width W           instead, a synthesised id map: patches W metres wide placed in\n"
+    "                            cells over the surface with random phases (needs no UVs; an atlas\n"
+    "                            is generated with Blender when the scene's UVs are not one)\n"
+    "  --cell-patches C          a cell's mean diameter in patch widths, >= 1 (default 3)\n"
+    "  --id-map-size N           the id map's atlas side in texels, 16..8192 (default 1024)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -133,8 +139,14 @@ Status usage(std::string m) { return usageError(std::move(m)); }
 // --rtt FILE (read and verified here, so a bad file fails before the bake), --patches-per-uv,
 // --patch-uv-set.
 Status parseBiScaleArgs(const ParsedArgs& p, BakeCli* c) {
-  for (const char* flag : {"--patches-per-uv", "--patch-uv-set"}) {
+  for (const char* flag : {"--patches-per-uv", "--patch-uv-set", "--patch-width", "--cell-patches", "--id-map-size"}) {
     if (p.has(flag) && !p.has("--rtt")) return usage(std::string(flag) + " needs --rtt");
+  }
+  for (const char* flag : {"--cell-patches", "--id-map-size"}) {
+    if (p.has(flag) && !p.has("--patch-width")) return usage(std::string(flag) + " needs --patch-width (the synthesised id map)");
+  }
+  if (p.has("--patch-width") && (p.has("--patches-per-uv") || p.has("--patch-uv-set"))) {
+    return usage("give --patch-width (a synthesised id map) or --patches-per-uv/--patch-uv-set (through a UV set), not both");
   }
   const std::string* path = p.value("--rtt");
   if (path == nullptr) return Status::ok();
@@ -151,6 +163,21 @@ Status parseBiScaleArgs(const ParsedArgs& p, BakeCli* c) {
     int k = 0;
     PRT_RETURN_IF_ERROR(parseIntArg("--patch-uv-set", *s, 0, 1, &k));
     b.placement.texcoord = k;
+  }
+  if (const std::string* s = p.value("--patch-width")) {
+    float w = 0;
+    if (!parseFloatArg("--patch-width", *s, 0.0f, 1e6f, &w).isOk() || !(w > 0.0f)) {
+      return usage("--patch-width expects a width in metres > 0, got '" + *s + "'");
+    }
+    bake::IdMapSettings m;
+    m.patchWidth = w;
+    if (const std::string* cp = p.value("--cell-patches")) {
+      float x = 0;
+      if (!parseFloatArg("--cell-patches", *cp, 1.0f, 1e6f, &x).isOk()) return usage("--cell-patches expects a number >= 1, got '" + *cp + "'");
+      m.cellPatches = x;
+    }
+    if (const std::string* n = p.value("--id-map-size")) PRT_RETURN_IF_ERROR(parseIntArg("--id-map-size", *n, 16, 8192, &b.idMapSize));
+    b.synthesised = m;
   }
   constexpr std::uint64_t kMaxRttFileBytes = 1ull << 30;
   PRT_RETURN_IF_ERROR(readFileBytes(*path, kMaxRttFileBytes, &b.rtt));
@@ -604,9 +631,15 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
                    report.verticesOutsideLight, report.vertices, describeLighting(report.lighting).c_str());
     }
     if (c.bake.biScale && !c.quiet) {
-      std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), %g patches per UV unit; %zu vertices with no UV direction\n",
-                   describeRtt(c.bake.biScale->rtt).c_str(), c.bake.biScale->rtt.size(), c.bake.biScale->placement.patchesPerUv,
-                   report.tangentFallbacks);
+      const auto& b = *c.bake.biScale;
+      if (b.synthesised) {
+        std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), synthesised id map: %zu cells of %g patches %g m wide, %dx%d atlas\n",
+                     describeRtt(b.rtt).c_str(), b.rtt.size(), report.placements, b.synthesised->cellPatches, b.synthesised->patchWidth,
+                     report.idMapSize, report.idMapSize);
+      } else {
+        std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), %g patches per UV unit; %zu vertices with no UV direction\n",
+                     describeRtt(b.rtt).c_str(), b.rtt.size(), b.placement.patchesPerUv, report.tangentFallbacks);
+      }
     }
     if (c.bake.compress && !c.quiet) {
       const std::string setting = transferSettingName(*c.bake.compress) +
@@ -635,7 +668,9 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (c.bake.biScale) {
       s += "  \"bi_scale\": {\"rtt_bytes\": " + std::to_string(c.bake.biScale->rtt.size()) +
            ", \"patches_per_uv\": " + jsonNumber(c.bake.biScale->placement.patchesPerUv) +
-           ", \"tangent_fallbacks\": " + std::to_string(report.tangentFallbacks) + "},\n";
+           ", \"tangent_fallbacks\": " + std::to_string(report.tangentFallbacks) +
+           ", \"id_map\": " + jsonString(c.bake.biScale->synthesised ? "synthesised" : "parametric") +
+           ", \"placements\": " + std::to_string(report.placements) + "},\n";
     }
     const LightingInfo& l = report.lighting;
     s += "  \"lighting\": {\"model\": " + jsonString(lightingModelName(l.model));

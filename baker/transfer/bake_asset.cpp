@@ -201,6 +201,43 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   return Status::ok();
 }
 
+// The one atlas a synthesised id map lies on: the scene's UVs where valid, else generated.
+TexelBakeSettings idMapAtlasSettings(const AssetBakeOptions::BiScale& b) {
+  TexelBakeSettings t;
+  t.textureSize = b.idMapSize;
+  t.sets = TextureSets::kScene;
+  t.unwrap = b.unwrap;
+  if (t.unwrap) {
+    t.unwrap->size = b.idMapSize;
+    t.unwrap->padding = t.padding;
+  }
+  return t;
+}
+
+struct IdMapAsset {
+  std::vector<float> atlasUv;
+  TextureAtlas atlas;
+  SynthesisedIdMap map;
+};
+
+// The synthesised id map over the planned atlas of the prepared (reordered) scene, and the
+// vertex tangents along the same direction field as the placements' axes.
+Status synthesiseIdMapAsset(const Scene& scene, const TextureSetPlan& plan, const AssetBakeOptions::BiScale& b,
+                            std::vector<Vec3>* tangents, IdMapAsset* out) {
+  const std::vector<Uv>& uv = scene.texcoord[plan.texcoord];
+  out->atlasUv.resize(2 * uv.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    out->atlasUv[2 * v] = uv[v].u;
+    out->atlasUv[2 * v + 1] = uv[v].v;
+  }
+  const auto side = static_cast<std::uint32_t>(plan.atlases.front().size);
+  out->atlas = {side, side, 0, static_cast<std::uint32_t>(scene.indices.size() / 3)};
+  PRT_RETURN_IF_ERROR(synthesiseIdMap(scene.positions, scene.normals, scene.indices, uv, {&out->atlas, 1}, *b.synthesised, &out->map));
+  tangents->resize(scene.normals.size());
+  for (std::size_t v = 0; v < scene.normals.size(); ++v) (*tangents)[v] = patchTangent(scene.normals[v]);
+  return Status::ok();
+}
+
 // Bi-scale needs the macro-scale matrices, an RTT of at most the bake's order and a UV set.
 Status checkBiScaleOptions(const AssetBakeOptions& options, const Scene& scene) {
   if (!options.transfer.glossy) {
@@ -211,6 +248,13 @@ Status checkBiScaleOptions(const AssetBakeOptions& options, const Scene& scene) 
   if (rtt.order > options.transfer.order) {
     return Status::error(StatusCode::kInvalidArgument, "the RTT is order " + std::to_string(rtt.order) + ", above the bake's order " +
                                                            std::to_string(options.transfer.order));
+  }
+  if (options.biScale->synthesised) {
+    if (options.texels) {
+      return Status::error(StatusCode::kInvalidArgument,
+                           "the synthesised id map and --texels cannot share one atlas yet: give one of them (or --patches-per-uv)");
+    }
+    return Status::ok();
   }
   int set = 0;
   return parametricUvSet(scene, options.biScale->placement, &set);
@@ -304,6 +348,8 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   // contiguous (the asset's atlases are runs of triangles).
   TextureSetPlan atlas;
   if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, &scene, &atlas));
+  const bool synthesised = options.biScale && options.biScale->synthesised;
+  if (synthesised) PRT_RETURN_IF_ERROR(planTextureSets(idMapAtlasSettings(*options.biScale), &scene, &atlas));
   BakeOptions transfer;
   prepareVertexBake(options, &scene, &transfer, &atlas.triangleAtlas);
   report->vertices = scene.positions.size();
@@ -312,7 +358,12 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
   // In the final vertex order, before the bake: a coordinate out of range fails it early.
   std::vector<Vec3> tangents;
   std::vector<float> patchUv;
-  if (options.biScale) {
+  IdMapAsset idMap;
+  if (synthesised) {
+    PRT_RETURN_IF_ERROR(synthesiseIdMapAsset(scene, atlas, *options.biScale, &tangents, &idMap));
+    report->placements = idMap.map.placements.size();
+    report->idMapSize = options.biScale->idMapSize;
+  } else if (options.biScale) {
     PRT_RETURN_IF_ERROR(parametricIdMap(scene, options.biScale->placement, &tangents, &patchUv, &report->tangentFallbacks));
   }
   if (options.texels) {
@@ -343,6 +394,16 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
     asset->rtt = options.biScale->rtt;
     asset->tangents = std::move(tangents);
     asset->patchUv = std::move(patchUv);
+    if (synthesised) {
+      asset->atlasUv = std::move(idMap.atlasUv);
+      asset->atlases = {idMap.atlas};
+      asset->patchPlacements = std::move(idMap.map.placements);
+      asset->idMap = std::move(idMap.map.placementOfTexel);
+      asset->texelCoverage.resize(asset->idMap.size());
+      for (std::size_t t = 0; t < asset->idMap.size(); ++t) {
+        asset->texelCoverage[t] = static_cast<std::uint8_t>(asset->idMap[t] == kNoPlacement ? TexelCoverage::kEmpty : TexelCoverage::kSampled);
+      }
+    }
   }
   if (options.texels) {
     if (!options.texels->keepVertexPasses) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "baker/scene/glossy_materials.h"
+#include "baker/biscale/id_map_synthesis.h"
 #include "baker/scene/parametric_id_map.h"
 #include "baker/scene/scene.h"
 #include "baker/transfer/transfer_bake.h"
@@ -86,6 +87,13 @@ struct AssetBakeOptions {
   struct BiScale {
     std::vector<std::uint8_t> rtt;
     ParametricIdMap placement;
+    // Set: the synthesised id map instead (docs/bi-scale.md, "Synthesised id map") over one
+    // atlas of idMapSize texels a side (the scene's UVs when they make a valid atlas, else one
+    // generated like --texels's, with `unwrap`); vertex tangents follow patchTangent. Not with
+    // texels (one atlas serves both: not yet).
+    std::optional<IdMapSettings> synthesised;
+    int idMapSize = 1024;
+    std::optional<UvUnwrapOptions> unwrap = UvUnwrapOptions{};
   };
   std::optional<BiScale> biScale;
 };
@@ -134,6 +142,8 @@ struct AssetBakeReport {
   std::vector<PassStats> passes;
   std::size_t verticesOutsideLight = 0;  // local lighting only
   std::size_t tangentFallbacks = 0;      // bi-scale: vertices whose triangles have no UV area (any tangent)
+  std::size_t placements = 0;            // bi-scale, synthesised id map: its cells
+  int idMapSize = 0;                     // and its atlas's side (0: parametric)
   std::vector<CompressedPass> compressed;  // one per stored pass when options.compress is set
   std::optional<TexelBakeReport> texels;   // when options.texels is set
 };

@@ -93,7 +93,8 @@ AssetBakeOptions biScaleOptions(int order, int rttOrder, float albedo) {
   o.transfer.glossyBounces = 0;
   o.transfer.threads = 2;
   o.storeInterreflected = false;
-  o.biScale = AssetBakeOptions::BiScale{flatRttBytes(rttOrder, albedo), {}};
+  o.biScale = AssetBakeOptions::BiScale{};
+  o.biScale->rtt = flatRttBytes(rttOrder, albedo);
   return o;
 }
 
@@ -151,6 +152,42 @@ TEST(BakeAssetBiScale, FlatRttThroughTheStoredFramesIsDiffusePrt) {
   std::printf("default room, flat RTT through the stored frames vs diffuse PRT: worst %.2e of peak %.3f\n", worst, peak);
   EXPECT_GT(peak, 0.1);
   EXPECT_LT(worst, 0.02 * peak);
+}
+
+// The synthesised id map instead of the UVs: one atlas (the room's lightmap UVs), a placement
+// per cell, an index per atlas texel, tangents along the placements' direction field.
+TEST(BakeAssetBiScale, SynthesisedIdMapOverOneAtlas) {
+  AssetBakeOptions o = biScaleOptions(3, 3, 0.5f);
+  IdMapSettings m;
+  m.patchWidth = 0.1;
+  o.biScale->synthesised = m;
+  o.biScale->idMapSize = 256;
+  BakedAsset asset;
+  AssetBakeReport report;
+  ASSERT_TRUE(bakeAsset(makeDefaultScene(), o, &asset, &report).isOk());
+  ASSERT_EQ(asset.atlases.size(), 1u);
+  EXPECT_EQ(asset.atlases[0].width, 256u);
+  EXPECT_EQ(asset.idMap.size(), 256u * 256u);
+  EXPECT_TRUE(asset.patchUv.empty());
+  EXPECT_GT(asset.patchPlacements.size(), 100u);
+  EXPECT_EQ(report.placements, asset.patchPlacements.size());
+  std::size_t placed = 0;
+  for (std::size_t t = 0; t < asset.idMap.size(); ++t) {
+    if (asset.idMap[t] == kNoPlacement) continue;
+    ++placed;
+    ASSERT_LT(asset.idMap[t], asset.patchPlacements.size());
+    ASSERT_EQ(asset.texelCoverage[t], static_cast<std::uint8_t>(TexelCoverage::kSampled));
+  }
+  EXPECT_GT(placed, asset.idMap.size() / 3);
+  for (std::size_t v = 0; v < asset.positions.size(); ++v) {
+    const Vec3 t = patchTangent(asset.normals[v]);
+    ASSERT_EQ(asset.tangents[v].x, t.x);
+    ASSERT_EQ(asset.tangents[v].z, t.z);
+  }
+  std::vector<std::uint8_t> file;
+  ASSERT_TRUE(encodeAsset(asset, &file).isOk());
+  o.texels = TexelBakeSettings{};
+  EXPECT_NE(bakeAsset(makeDefaultScene(), o, &asset, &report).message().find("cannot share one atlas yet"), std::string::npos);
 }
 
 }  // namespace

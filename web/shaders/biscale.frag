@@ -7,7 +7,9 @@
 // (the same as interpolating it: the dot product is linear). prt::biScaleExitRadiance is the
 // reference; rttTextureLookupCpu emulates the lookup. BANDS and ROW_TEXELS are defined by the
 // renderer: the sum runs over texels t < ceil(BANDS^2 / 4), and both vectors are 0 beyond
-// BANDS^2 (the rotation step writes 0 there; the RTT's padding is 0).
+// BANDS^2 (the rotation step writes 0 there; the RTT's padding is 0). SYNTHESISED: q from the
+// synthesised id map (docs/bi-scale.md): the placement of the id map texel under the fragment
+// (nearest), q = fract(((p - origin) . axisU, (p - origin) . axisV)) as prt::patchCoordinates.
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -17,6 +19,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec3 vTangent;
 in vec2 vPatchUv;
+in vec2 vAtlasUv;
 in vec3 vBarycentric;
 flat in uvec3 vVertices;
 
@@ -31,6 +34,11 @@ uniform int uRttLayersPerChannel; // ceil(n^2 / 4) of the RTT's order n
 uniform int uRttChannels;         // 1 or 3
 uniform int uViewDependent;       // 0: the centre view (the paper's Figure 6c)
 uniform vec3 uEye;
+#ifdef SYNTHESISED
+uniform highp usampler2D uIdMap;  // R16UI: a placement index per atlas texel (65535: none)
+uniform ivec2 uIdMapSize;
+uniform sampler2D uPlacements;    // RGBA32F: 3 texels a placement, origin, axisU, axisV
+#endif
 uniform float uExposure;
 
 out vec4 fragColor;
@@ -85,7 +93,21 @@ void main() {
   vec3 toEye = normalize(uEye - vPosition);
   vec3 w = vec3(dot(toEye, t), dot(toEye, bitangent), dot(toEye, n));
   float S = float(uRttSpatial), V = float(uRttViews);
+#ifdef SYNTHESISED
+  ivec2 idTexel = clamp(ivec2(floor(vAtlasUv * vec2(uIdMapSize))), ivec2(0), uIdMapSize - 1);
+  uint placement = texelFetch(uIdMap, idTexel, 0).r;
+  vec2 q = vec2(0.0);
+  if (placement != 65535u) {
+    int k = 3 * int(placement);
+    vec3 origin = texelFetch(uPlacements, ivec2(k & uTextureMask, k >> uTextureShift), 0).xyz;
+    vec3 axisU = texelFetch(uPlacements, ivec2((k + 1) & uTextureMask, (k + 1) >> uTextureShift), 0).xyz;
+    vec3 axisV = texelFetch(uPlacements, ivec2((k + 2) & uTextureMask, (k + 2) >> uTextureShift), 0).xyz;
+    vec3 d = vPosition - origin;
+    q = fract(vec2(dot(d, axisU), dot(d, axisV)));
+  }
+#else
   vec2 q = fract(vPatchUv);
+#endif
   vec2 cell = min(floor(q * S), vec2(S - 1.0));
   vec2 ab = uViewDependent == 1 ? viewCoordinates(w, V) : vec2(0.5 * V);
   // Inside the spatial sample's V x V block, clamped to its outer sample centres, so LINEAR

@@ -12,6 +12,7 @@ layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec3 aTangent;
 layout(location = 3) in vec2 aPatchUv;
 layout(location = 4) in uvec3 aVertices;
+layout(location = 5) in vec2 aAtlasUv;  // the synthesised id map's atlas (0 when parametric)
 
 uniform mat4 uViewProjection;
 
@@ -19,6 +20,7 @@ out vec3 vPosition;
 out vec3 vNormal;
 out vec3 vTangent;
 out vec2 vPatchUv;
+out vec2 vAtlasUv;
 out vec3 vBarycentric;
 flat out uvec3 vVertices;
 
@@ -30,5 +32,6 @@ void main() {
   vNormal = aNormal;
   vTangent = aTangent;
   vPatchUv = aPatchUv;
+  vAtlasUv = aAtlasUv;
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }

@@ -112,9 +112,11 @@ void biScaleRotateCpu(const BiScaleRotations& rotations, std::span<const float> 
 }
 
 Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const Vec3> tangents,
-                          std::span<const float> patchUv, std::span<const std::uint32_t> indices, std::vector<std::uint32_t>* out) {
+                          std::span<const float> patchUv, std::span<const float> atlasUv, std::span<const std::uint32_t> indices,
+                          std::vector<std::uint32_t>* out) {
   const std::size_t n = positions.size();
-  if (normals.size() != n || tangents.size() != n || patchUv.size() != 2 * n || indices.size() % 3 != 0) {
+  const auto pairs = [n](std::span<const float> uv) { return uv.empty() || uv.size() == 2 * n; };
+  if (normals.size() != n || tangents.size() != n || !pairs(patchUv) || !pairs(atlasUv) || indices.size() % 3 != 0) {
     return Status::error(StatusCode::kInvalidArgument, "bi-scale corners: per-vertex arrays disagree with the vertex count");
   }
   std::vector<std::uint32_t> words(indices.size() * kBiScaleCornerWords);
@@ -127,13 +129,23 @@ Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3>
     }
     const std::uint32_t v = indices[i];
     std::uint32_t* w = &words[i * kBiScaleCornerWords];
-    const float f[11] = {positions[v].x, positions[v].y, positions[v].z, normals[v].x,    normals[v].y,        normals[v].z,
-                         tangents[v].x,  tangents[v].y,  tangents[v].z, patchUv[2 * v], patchUv[2 * v + 1]};
+    const auto at = [v](std::span<const float> uv, int k) { return uv.empty() ? 0.0f : uv[2 * v + static_cast<std::size_t>(k)]; };
+    const float f[13] = {positions[v].x, positions[v].y, positions[v].z, normals[v].x,    normals[v].y,    normals[v].z, tangents[v].x,
+                         tangents[v].y,  tangents[v].z,  at(patchUv, 0), at(patchUv, 1), at(atlasUv, 0), at(atlasUv, 1)};
     std::memcpy(w, f, sizeof f);  // float bits in the buffer (std::bit_cast: not in Emscripten 3.1.6's libc++)
-    for (int k = 0; k < 3; ++k) w[11 + k] = indices[triangle + static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k) w[13 + k] = indices[triangle + static_cast<std::size_t>(k)];
   }
   *out = std::move(words);
   return Status::ok();
+}
+
+std::vector<float> packPatchPlacements(std::span<const PatchPlacement> placements) {
+  std::vector<float> out;
+  out.reserve(placements.size() * 12);
+  for (const PatchPlacement& p : placements) {
+    for (const Vec3& v : {p.origin, p.axisU, p.axisV}) out.insert(out.end(), {v.x, v.y, v.z, 0.0f});
+  }
+  return out;
 }
 
 }  // namespace prt::web

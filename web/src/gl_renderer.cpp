@@ -85,6 +85,9 @@ Status GlRenderer::link(const char* vs, const char* fs, Program* out, const char
   out->rttLayers = glGetUniformLocation(p, "uRttLayersPerChannel");
   out->rttChannels = glGetUniformLocation(p, "uRttChannels");
   out->viewDependent = glGetUniformLocation(p, "uViewDependent");
+  out->idMap = glGetUniformLocation(p, "uIdMap");
+  out->idMapSize = glGetUniformLocation(p, "uIdMapSize");
+  out->placements = glGetUniformLocation(p, "uPlacements");
   return Status::ok();
 }
 

@@ -198,7 +198,7 @@ class GlRenderer {
     GLint allVertices = -1;  // glossy_transfer.vert
     // biscale_rotate.vert, biscale.frag
     GLint rotations = -1, rotated = -1, rtt = -1, rttSpatial = -1, rttViews = -1, rttLayers = -1, rttChannels = -1;
-    GLint viewDependent = -1;
+    GLint viewDependent = -1, idMap = -1, idMapSize = -1, placements = -1;
     // background.frag
     GLint backgroundMode = -1, environmentImage = -1, environmentRotation = -1, environmentTint = -1;
   };
@@ -289,6 +289,8 @@ class GlRenderer {
   // its glossy pass at rotatedBands.
   struct BiScalePass {
     GLuint rtt = 0, rotations = 0, rotated = 0, rotatedBuffer = 0, corners = 0, vao = 0;
+    GLuint idMap = 0, placements = 0;  // the synthesised id map (R16UI over the atlas) and its placements
+    int idMapWidth = 0, idMapHeight = 0;  // 0: parametric (patch uv)
     int bands = 0, rttOrder = 0, channels = 0, spatial = 0, views = 0, layersPerChannel = 0;
     int rotationTexels = 0, rowTexels = 0, rotatedHeight = 0;
     GLsizei cornerCount = 0;
@@ -318,7 +320,8 @@ class GlRenderer {
   std::array<GlossyPass, 3> glossy_{};  // by TransferKind (unshadowed unused: no such matrix pass is baked)
   TexelRenderer texels_;
   BiScalePass biScale_;
-  bool drewBiScale_ = false;  // texel passes, drawn from this class's position, albedo and index buffers
+  bool drewBiScale_ = false;
+  std::string biScaleError_;  // the last bi-scale program that failed to link, said once  // texel passes, drawn from this class's position, albedo and index buffers
 };
 
 }  // namespace prt::web

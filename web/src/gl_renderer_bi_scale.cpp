@@ -3,6 +3,7 @@
 // into each vertex's tangent frame; per frame, the corners drawn with the RTT looked up and
 // dotted per fragment.
 #include <algorithm>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ namespace prt::web {
 
 void GlRenderer::releaseBiScale() {
   BiScalePass& b = biScale_;
-  for (GLuint* t : {&b.rtt, &b.rotations, &b.rotated})
+  for (GLuint* t : {&b.rtt, &b.rotations, &b.rotated, &b.idMap, &b.placements})
     if (*t) glDeleteTextures(1, t);
   for (GLuint* buffer : {&b.rotatedBuffer, &b.corners})
     if (*buffer) glDeleteBuffers(1, buffer);
@@ -48,8 +49,28 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   int rotationRows = 0;
   PRT_RETURN_IF_ERROR(textureRowsFor(asset.positions.size() * static_cast<std::size_t>(rotations.texelsPerVertex), maxSize,
                                      "bi-scale rotations", &rotationRows));
+  const bool synthesised = !asset.idMap.empty();
+  if (synthesised && asset.atlases.size() != 1) {
+    return Status::error(StatusCode::kInvalidArgument, "the scene's synthesised id map spans " + std::to_string(asset.atlases.size()) +
+                                                           " atlases; the client draws one");
+  }
   std::vector<std::uint32_t> corners;
-  PRT_RETURN_IF_ERROR(packBiScaleCorners(asset.positions, asset.normals, asset.tangents, asset.patchUv, asset.indices, &corners));
+  PRT_RETURN_IF_ERROR(packBiScaleCorners(asset.positions, asset.normals, asset.tangents, asset.patchUv,
+                                         synthesised ? std::span<const float>(asset.atlasUv) : std::span<const float>(), asset.indices,
+                                         &corners));
+  int placementRows = 0;
+  std::vector<float> placementTexels;
+  if (synthesised) {
+    const std::vector<float> placements = packPatchPlacements(asset.patchPlacements);
+    PRT_RETURN_IF_ERROR(textureRowsFor(placements.size() / 4, maxSize, "bi-scale patch placements", &placementRows));
+    placementTexels.assign(static_cast<std::size_t>(kTransferTextureWidth) * placementRows * 4, 0.0f);
+    std::copy(placements.begin(), placements.end(), placementTexels.begin());
+    if (asset.atlases[0].width > static_cast<std::uint32_t>(maxSize) || asset.atlases[0].height > static_cast<std::uint32_t>(maxSize)) {
+      return Status::error(StatusCode::kInvalidArgument, "the scene's id map is " + std::to_string(asset.atlases[0].width) + " x " +
+                                                             std::to_string(asset.atlases[0].height) + " texels; this device holds " +
+                                                             std::to_string(maxSize) + " a side");
+    }
+  }
 
   releaseBiScale();
   BiScalePass& b = biScale_;
@@ -78,6 +99,21 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   setNearestClamp(GL_TEXTURE_2D);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, rotationRows, 0, GL_RGBA, GL_FLOAT, rotationTexels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
+  if (synthesised) {
+    b.idMapWidth = static_cast<int>(asset.atlases[0].width);
+    b.idMapHeight = static_cast<int>(asset.atlases[0].height);
+    glGenTextures(1, &b.idMap);
+    glBindTexture(GL_TEXTURE_2D, b.idMap);
+    setNearestClamp(GL_TEXTURE_2D);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R16UI, b.idMapWidth, b.idMapHeight, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, asset.idMap.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glGenTextures(1, &b.placements);
+    glBindTexture(GL_TEXTURE_2D, b.placements);
+    setNearestClamp(GL_TEXTURE_2D);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, placementRows, 0, GL_RGBA, GL_FLOAT, placementTexels.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
   glGenVertexArrays(1, &b.vao);
   glBindVertexArray(b.vao);
   b.corners = makeBuffer(GL_ARRAY_BUFFER, corners.data(), corners.size() * sizeof(std::uint32_t));
@@ -91,8 +127,10 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, kStride, at(6));
   glEnableVertexAttribArray(3);
   glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, kStride, at(9));
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, kStride, at(11));
   glEnableVertexAttribArray(4);
-  glVertexAttribIPointer(4, 3, GL_UNSIGNED_INT, kStride, at(11));
+  glVertexAttribIPointer(4, 3, GL_UNSIGNED_INT, kStride, at(13));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   b.cornerCount = static_cast<GLsizei>(asset.indices.size());
@@ -176,12 +214,19 @@ bool GlRenderer::drawBiScale(const FrameParams& p) {
   if (g.bands == 0) return false;
   const int bands = std::clamp(std::min({p.displayOrder, g.bands, b.bands}), 1, 8);
   if (!updateBiScaleTransfer(g, static_cast<int>(p.mode), bands, p.lightingVersion)) return false;
-  const std::string key = "biscale-draw\n" + std::to_string(bands) + "\n" + std::to_string(b.rowTexels);
+  const bool synthesised = b.idMap != 0;
+  const std::string defines = "#define BANDS " + std::to_string(bands) + "\n#define ROW_TEXELS " + std::to_string(b.rowTexels) + "\n" +
+                              (synthesised ? "#define SYNTHESISED 1\n" : "");
+  const std::string key = "biscale-draw\n" + defines;
   auto it = specialised_.find(key);
   if (it == specialised_.end()) {
-    const std::string defines = "#define BANDS " + std::to_string(bands) + "\n#define ROW_TEXELS " + std::to_string(b.rowTexels) + "\n";
     Program program;
-    if (!link(shaders::k_biscale_vert, withDefines(shaders::k_biscale_frag, defines).c_str(), &program).isOk()) return false;
+    if (Status st = link(shaders::k_biscale_vert, withDefines(shaders::k_biscale_frag, defines).c_str(), &program); !st.isOk()) {
+      // Said once on the console (as an error: tests fail on it), then drawn as PRT.
+      if (biScaleError_ != st.message()) std::fprintf(stderr, "prt: the bi-scale shader: %s\n", st.message().c_str());
+      biScaleError_ = st.message();
+      return false;
+    }
     it = specialised_.emplace(key, program).first;
   }
   const Program& draw = it->second;
@@ -204,6 +249,15 @@ bool GlRenderer::drawBiScale(const FrameParams& p) {
   glUniform1i(draw.viewDependent, p.viewDependent ? 1 : 0);
   glUniform3f(draw.eye, p.eye.x, p.eye.y, p.eye.z);
   glUniform1f(draw.exposure, p.exposure);
+  if (synthesised) {
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, b.idMap);
+    glUniform1i(draw.idMap, 2);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, b.placements);
+    glUniform1i(draw.placements, 3);
+    glUniform2i(draw.idMapSize, b.idMapWidth, b.idMapHeight);
+  }
   glBindVertexArray(b.vao);
   glDrawArrays(GL_TRIANGLES, 0, b.cornerCount);
   glBindVertexArray(0);
