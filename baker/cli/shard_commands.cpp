@@ -102,7 +102,8 @@ struct LoadedPlan {
   }
 };
 
-Status loadPlan(const std::string& planPath, const ParsedArgs& p, LoadedPlan* out) {
+// `needs`: what of a texel plan's receivers the command uses (sharded_texels.h).
+Status loadPlan(const std::string& planPath, const ParsedArgs& p, bake::TexelNeeds needs, LoadedPlan* out) {
   std::vector<std::uint8_t> bytes;
   PRT_RETURN_IF_ERROR(readFileBytes(planPath, std::uint64_t{1} << 30, &bytes));
   if (Status s = bake::decodeBakePlan(bytes, &out->plan); !s.isOk()) {
@@ -126,7 +127,7 @@ Status loadPlan(const std::string& planPath, const ParsedArgs& p, LoadedPlan* ou
   if (!out->plan.atlases.empty()) {
     out->texels.emplace();
     if (Status s = bake::prepareTexelShards(out->plan, out->scene, std::move(atlasUv),
-                                            bake::texelBakeOptions(out->bake.bake, out->transfer), &*out->texels);
+                                            bake::texelBakeOptions(out->bake.bake, out->transfer), needs, &*out->texels);
         !s.isOk()) {
       return Status::error(s.code(), "'" + planPath + "': " + s.message());
     }
@@ -270,7 +271,8 @@ int runBakeShardCommand(std::span<const std::string> args, std::FILE* out, std::
   }
   const bool quiet = p.has("--quiet");
   LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
+  const bake::TexelNeeds needs = pass == 0 ? bake::TexelNeeds::kReceivers : bake::TexelNeeds::kSeams;
+  if (Status s = loadPlan(planPath, p, needs, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
   bake::ProgressBar bar(err, !quiet);
   l.transfer.progress = [&bar](const bake::BakeProgress& pr) { bar.update(pr); };
   if (l.texels) l.texels->options = bake::texelBakeOptions(l.bake.bake, l.transfer);  // its bar too: "texel ..."
@@ -319,12 +321,16 @@ int runMergeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   if (output) {
     if (Status s = checkOutputPath(*output, std::vector<std::string>{planPath}); !s.isOk()) return reportFailure(err, "merge", s);
   }
+  std::uint32_t pass = 0;
+  if (!output) {
+    if (Status s = parseIndex(p, "--pass", &pass); !s.isOk()) return reportFailure(err, "merge", s);
+  }
+  // merge --pass K >= 1 sums energies only; pass 0 computes B^0 of the receivers; -o scatters.
+  const bake::TexelNeeds needs = output ? bake::TexelNeeds::kSeams : pass == 0 ? bake::TexelNeeds::kReceivers : bake::TexelNeeds::kNothing;
   LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "merge", s);
+  if (Status s = loadPlan(planPath, p, needs, &l); !s.isOk()) return reportFailure(err, "merge", s);
   const bake::ShardContext ctx = l.context(planPath);
   if (!output) {
-    std::uint32_t pass = 0;
-    if (Status s = parseIndex(p, "--pass", &pass); !s.isOk()) return reportFailure(err, "merge", s);
     bool skipped = false, final = false;
     if (Status s = bake::mergePass(ctx, pass, &skipped, &final); !s.isOk()) return reportFailure(err, "merge", s);
     if (l.texels) {

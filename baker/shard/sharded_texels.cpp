@@ -97,16 +97,26 @@ Status previousTexelBounce(const ShardContext& ctx, std::uint32_t pass, const Me
   return Status::ok();
 }
 
+// A command that reached a piece its preparation left out (a bug in the caller, not in the files).
+Status needs(const ShardContext& ctx, TexelNeeds need) {
+  if (static_cast<int>(ctx.texels->needs) >= static_cast<int>(need)) return Status::ok();
+  return Status::error(StatusCode::kInternal, "the texel receivers were prepared without what this step needs");
+}
+
 // The texel options as the stopping rule sees them (the vertex bake's interreflection and limits).
 const BakeOptions& texelTransfer(const ShardContext& ctx) { return ctx.texels->options.transfer; }
 
 }  // namespace
 
 Status prepareTexelShards(const BakePlan& plan, const Scene& scene, std::vector<Uv> atlasUv, const TexelBakeOptions& options,
-                          TexelShardContext* out) {
+                          TexelNeeds needs, TexelShardContext* out) {
   out->atlasUv = std::move(atlasUv);
   out->options = options;
-  PRT_RETURN_IF_ERROR(prepareTexelReceivers(scene, out->atlasUv, plan.atlases, options, &out->receivers));
+  out->needs = needs;
+  if (needs == TexelNeeds::kNothing) return Status::ok();
+  TexelBakeOptions prepare = options;
+  prepare.stitchSeams = options.stitchSeams && needs == TexelNeeds::kSeams;
+  PRT_RETURN_IF_ERROR(prepareTexelReceivers(scene, out->atlasUv, plan.atlases, prepare, &out->receivers));
   if (out->receivers.count() != plan.texelReceivers) {
     return Status::error(StatusCode::kCorrupt, "the plan's atlases give " + std::to_string(out->receivers.count()) +
                                                    " texel receivers, the plan has " + std::to_string(plan.texelReceivers) +
@@ -122,6 +132,7 @@ Status bakeTexelShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t
   const TexelShardContext& t = *ctx.texels;
   const ShardHeader h = texelHeader(ctx, ShardFileKind::kTexelShard, pass, shard, range);
   if (pass == 0) {
+    PRT_RETURN_IF_ERROR(needs(ctx, TexelNeeds::kReceivers));
     TexelDirectRange r;
     PRT_RETURN_IF_ERROR(bakeTexelDirectRange(*ctx.scene, t.receivers, t.options, range.begin, range.end, &r));
     DirectShard s;
@@ -141,6 +152,7 @@ Status bakeTexelShard(const ShardContext& ctx, std::uint32_t pass, std::uint32_t
   MergedPassView previous;
   PRT_RETURN_IF_ERROR(passBefore(pass, readTexelMerged(ctx), skipped, &previousFile, &previous));
   if (*skipped) return Status::ok();
+  PRT_RETURN_IF_ERROR(needs(ctx, TexelNeeds::kSeams));
   std::vector<float> previousB;
   PRT_RETURN_IF_ERROR(previousTexelBounce(ctx, pass, previous, &previousB));
   // The bounce texture every shard of this pass makes alike: the whole previous bounce,
@@ -171,6 +183,7 @@ Status mergeTexelPass(const ShardContext& ctx, std::uint32_t pass, bool* skipped
   MergedPass merged;
   std::vector<float> bounce0;
   if (pass == 0) {
+    PRT_RETURN_IF_ERROR(needs(ctx, TexelNeeds::kReceivers));
     std::vector<float> shadowed;
     for (std::uint32_t i = 0; i < shards; ++i) {
       MappedFile file;
@@ -209,6 +222,7 @@ Status mergeTexelPass(const ShardContext& ctx, std::uint32_t pass, bool* skipped
 
 Status mergeTexelShards(const ShardContext& ctx, TexelBakeResult* out) {
   *out = TexelBakeResult{};
+  PRT_RETURN_IF_ERROR(needs(ctx, TexelNeeds::kSeams));
   MappedFile lastFile;
   MergedPassView last;
   std::uint32_t finalPass = 0;

@@ -19,17 +19,26 @@
 
 namespace prt::bake {
 
+// What a command needs of the receivers (why: rasterising and finding seams is about 60% of a
+// merge's CPU time at a 512² atlas, and most commands need less than all of it).
+enum class TexelNeeds : std::uint8_t {
+  kNothing,    // merge --pass K >= 1: the plan's ranges and the files only
+  kReceivers,  // the direct pass, merge --pass 0: the receivers, no seams
+  kSeams,      // a bounce, merge -o: the receivers and the seams (every scatter stitches them)
+};
+
 struct TexelShardContext {
   std::vector<Uv> atlasUv;      // the prepared scene's atlas UVs
   TexelBakeOptions options;     // texelBakeOptions of the plan's bake options
-  TexelReceivers receivers;     // the plan's atlases rasterised (prepareTexelShards)
+  TexelReceivers receivers;     // the plan's atlases rasterised (prepareTexelShards), as `needs` says
+  TexelNeeds needs = TexelNeeds::kNothing;
 };
 
-// Rasterises the plan's atlases over `atlasUv` on the prepared `scene` into *out. kCorrupt
-// when the receivers are not the plan's count (the plan or its prepared scene damaged or
-// made by another prt-bake); the texel bake's errors otherwise.
+// Rasterises the plan's atlases over `atlasUv` on the prepared `scene` into *out, as far as
+// `needs` asks. kCorrupt when the receivers are not the plan's count (the plan or its prepared
+// scene damaged or made by another prt-bake); the texel bake's errors otherwise.
 Status prepareTexelShards(const BakePlan& plan, const Scene& scene, std::vector<Uv> atlasUv, const TexelBakeOptions& options,
-                          TexelShardContext* out);
+                          TexelNeeds needs, TexelShardContext* out);
 
 // Texel shard `shard` of pass `pass` (ctx.texels set): the direct pass over its receivers, or
 // bounce `pass` over them, which reads texel merged pass pass-1, B^{pass-1} of every receiver
