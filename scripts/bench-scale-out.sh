@@ -64,8 +64,10 @@ cmp "$work/one.prt" "$work/sharded.prt" || { echo "bench-scale-out: the sharded 
 bytes=$(du -sb "$work" | cut -f1)
 # Bytes of each kind of work file (the assets excluded).
 kind_bytes() { find "$work" -name "$1" -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; }
-direct_bytes=$(kind_bytes 'p.plan.pass0.shard*') merged_bytes=$(kind_bytes 'p.plan.pass*.merged')
-bounce_bytes=$(calc "$(kind_bytes 'p.plan.pass*.shard*') - $direct_bytes")
+# The vertex series' files (a texel plan's texel files, PLAN.passK.texels.*, match the same globs).
+vertex_bytes() { find "$work" -name "$1" ! -name '*.texels.*' -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; }
+direct_bytes=$(vertex_bytes 'p.plan.pass0.shard*') merged_bytes=$(vertex_bytes 'p.plan.pass*.merged')
+bounce_bytes=$(calc "$(vertex_bytes 'p.plan.pass*.shard*') - $direct_bytes")
 # A texel plan's texel series (--texels): its shards and merged passes, beside the vertex ones.
 texel_direct_bytes=$(kind_bytes 'p.plan.pass0.texels.shard*') texel_bytes=$(kind_bytes 'p.plan.pass*.texels.*')
 load=$(cut -d' ' -f1-3 /proc/loadavg)
