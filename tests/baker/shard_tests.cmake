@@ -21,7 +21,7 @@ endforeach()
 # take turns (one set of ports), and each has a time limit so a stuck job fails the test.
 # Not under the sanitizers: the time goes to Slurm's scheduling, and the code the jobs run is
 # the shard_cli cases' (which the sanitizer build runs).
-set(PRT_SLURM_CASES identical requeue failure)
+set(PRT_SLURM_CASES identical texels requeue failure)
 if(PRT_SANITIZE)
   set(PRT_SLURM_CASES)
 endif()
