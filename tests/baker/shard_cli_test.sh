@@ -102,6 +102,17 @@ case_texels() {
                  "${texel_small[*]} --order 3 --passes unshadowed,shadowed"; do
     identical_to_one_machine "$options" 1 2 3
   done
+  # The two series stop apart: at threshold 0.1 the room's vertex series gathers 3 bounces, its
+  # texel series 2, so pass 3 has vertex shards and no texel ones (nor a texel merged pass).
+  local passes
+  run --default -o one.prt "${texel_small[@]}" --order 2 --bounce-threshold 0.1
+  passes=$(run plan --default -o room.plan --shards 2 "${texel_small[@]}" --order 2 --bounce-threshold 0.1 --json | plan_passes)
+  bake_all room.plan sharded.prt 2 "$passes"
+  cmp one.prt sharded.prt || fail "threshold 0.1: the merged texel asset differs from the one-machine bake"
+  [[ -e room.plan.pass3.shard1 && -e room.plan.pass3.merged && -e room.plan.pass2.texels.merged && ! -e room.plan.pass3.texels.shard0 &&
+     ! -e room.plan.pass3.texels.merged && ! -e room.plan.pass4.merged ]] ||
+    fail "threshold 0.1: the vertex series did not go one bounce past the texel series"
+  rm -f room.plan*
   # The texel files are there, beside the vertex ones, and named for their series.
   run plan --default -o room.plan --shards 2 "${texel_small[@]}" --order 2 --bounces 1
   bake_all room.plan sharded.prt 2 2
