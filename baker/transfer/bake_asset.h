@@ -142,8 +142,8 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
                  const std::function<void(const AssetBakeReport&)>& started = {});
 
 // The steps bakeAsset takes just before and after bakeTransfer, shared with a sharded bake
-// (baker/shard) that runs bakeTransfer's pieces itself (vertex passes only: it applies no
-// glossy material split and picks no atlas, which bakeAsset does before this).
+// (baker/shard) that runs bakeTransfer's pieces itself. prepareVertexBake applies no glossy
+// material split and picks no atlas: prepareAssetScene (below) does those first.
 // Puts *scene in bake order (optimizeMeshOrder, grouped by `triangleGroup` when given: the
 // texture sets' atlas per triangle, permuted with the triangles) and sets *transfer to the
 // options bakeAsset passes to bakeTransfer (local lighting's sphere resolved, interreflection
