@@ -6,6 +6,7 @@
 # with no queueing; "total" against the one-machine time is the overhead of sharding.
 # Every step is timed twice: wall clock, and CPU (user + system, from /usr/bin/time), which a
 # machine shared with other work disturbs far less, so overheads are given in CPU time too.
+# Works for texel bakes (--texels) too: their texel files are counted apart.
 # --json FILE also writes the numbers as one JSON object (docs/bench/scale-out.json holds runs).
 # Usage: scripts/bench-scale-out.sh [--shards N] [--json FILE] [SCENE|--default] [prt-bake options]
 set -euo pipefail
@@ -63,8 +64,12 @@ cmp "$work/one.prt" "$work/sharded.prt" || { echo "bench-scale-out: the sharded 
 bytes=$(du -sb "$work" | cut -f1)
 # Bytes of each kind of work file (the assets excluded).
 kind_bytes() { find "$work" -name "$1" -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; }
-direct_bytes=$(kind_bytes 'p.plan.pass0.shard*') merged_bytes=$(kind_bytes 'p.plan.pass*.merged')
-bounce_bytes=$(calc "$(kind_bytes 'p.plan.pass*.shard*') - $direct_bytes")
+# The vertex series' files (a texel plan's texel files, PLAN.passK.texels.*, match the same globs).
+vertex_bytes() { find "$work" -name "$1" ! -name '*.texels.*' -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; }
+direct_bytes=$(vertex_bytes 'p.plan.pass0.shard*') merged_bytes=$(vertex_bytes 'p.plan.pass*.merged')
+bounce_bytes=$(calc "$(vertex_bytes 'p.plan.pass*.shard*') - $direct_bytes")
+# A texel plan's texel series (--texels): its shards and merged passes, beside the vertex ones.
+texel_direct_bytes=$(kind_bytes 'p.plan.pass0.texels.shard*') texel_bytes=$(kind_bytes 'p.plan.pass*.texels.*')
 load=$(cut -d' ' -f1-3 /proc/loadavg)
 
 echo "prt-bake $* ; $shards shards, $passes passes planned; $(nproc) cores; load $load"
@@ -78,8 +83,11 @@ printf 'critical path with %d machines (no queueing): %.2f s, a speed-up of %.2f
   "$shards" "$critical" "$(calc "$one / $critical")" "$(calc "$bytes / 1000000")"
 printf 'work files: direct shards %.1f MB, bounce shards %.1f MB, merged passes %.1f MB\n' \
   "$(calc "$direct_bytes / 1000000")" "$(calc "$bounce_bytes / 1000000")" "$(calc "$merged_bytes / 1000000")"
+if ((texel_bytes > 0)); then
+  printf 'texel files: %.1f MB (texel direct shards %.1f MB)\n' "$(calc "$texel_bytes / 1000000")" "$(calc "$texel_direct_bytes / 1000000")"
+fi
 if [[ -n $json ]]; then
-  printf '{"args": "%s", "shards": %d, "passes": %d, "cores": %d, "load": "%s", "one_machine_s": %.3f, "one_machine_cpu_s": %.3f, "plan_s": %.3f, "plan_cpu_s": %.3f, "asset_merge_s": %.3f, "asset_merge_cpu_s": %.3f, "sharded_total_s": %.3f, "sharded_total_cpu_s": %.3f, "critical_path_s": %.3f, "work_bytes": %d, "direct_shard_bytes": %d, "bounce_shard_bytes": %d, "merged_pass_bytes": %d, "identical": true, "pass_rows": [%s]}\n' \
+  printf '{"args": "%s", "shards": %d, "passes": %d, "cores": %d, "load": "%s", "one_machine_s": %.3f, "one_machine_cpu_s": %.3f, "plan_s": %.3f, "plan_cpu_s": %.3f, "asset_merge_s": %.3f, "asset_merge_cpu_s": %.3f, "sharded_total_s": %.3f, "sharded_total_cpu_s": %.3f, "critical_path_s": %.3f, "work_bytes": %d, "direct_shard_bytes": %d, "bounce_shard_bytes": %d, "merged_pass_bytes": %d, "texel_bytes": %d, "texel_direct_shard_bytes": %d, "identical": true, "pass_rows": [%s]}\n' \
     "$*" "$shards" "$passes" "$(nproc)" "$load" "$one" "$one_cpu" "$plan_s" "$plan_cpu" "$final" "$final_cpu" "$total" "$total_cpu" \
-    "$critical" "$bytes" "$direct_bytes" "$bounce_bytes" "$merged_bytes" "$json_passes" > "$json"
+    "$critical" "$bytes" "$direct_bytes" "$bounce_bytes" "$merged_bytes" "$texel_bytes" "$texel_direct_bytes" "$json_passes" > "$json"
 fi

@@ -556,9 +556,7 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   const auto t0 = std::chrono::steady_clock::now();
   bake::Scene scene;
   if (c.scene.empty()) {
-    // The built-in atlas's gutters follow the side it is baked at (texels per unit: the default).
-    const auto& t = c.bake.texels;
-    scene = t && t->textureSize > 0 ? bake::makeDefaultScene(t->textureSize, t->padding) : bake::makeDefaultScene();
+    scene = defaultSceneFor(c.bake);
   } else {
     std::vector<std::string> warnings;
     if (Status s = bake::loadGltf(c.scene, &scene, &warnings); !s.isOk()) return reportFailure(err, "", s);
@@ -727,6 +725,12 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     std::fputs(s.c_str(), out);
   }
   return kExitOk;
+}
+
+bake::Scene defaultSceneFor(const bake::AssetBakeOptions& options) {
+  // The built-in atlas's gutters follow the side it is baked at (texels per unit: the default).
+  const auto& t = options.texels;
+  return t && t->textureSize > 0 ? bake::makeDefaultScene(t->textureSize, t->padding) : bake::makeDefaultScene();
 }
 
 }  // namespace prt

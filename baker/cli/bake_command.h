@@ -31,4 +31,8 @@ struct BakeCommandLine {
 // command does. Errors: kUsage naming the flag.
 Status parseBakeCommandLine(std::span<const std::string> args, BakeCommandLine* out);
 
+// The built-in room (--default) as the bake command bakes it with `options`: with texels at a
+// given texture size, its atlas's gutters follow that size and the padding.
+bake::Scene defaultSceneFor(const bake::AssetBakeOptions& options);
+
 }  // namespace prt

@@ -1,5 +1,6 @@
 #include "baker/cli/shard_commands.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstdlib>
 #include <unistd.h>
@@ -16,7 +17,9 @@
 #include "baker/shard/bake_plan.h"
 #include "baker/shard/plan_scene.h"
 #include "baker/shard/sharded_bake.h"
+#include "baker/shard/sharded_texels.h"
 #include "baker/transfer/bake_asset.h"
+#include "baker/transfer/texture_sets.h"
 #include "native/cli_args.h"
 #include "native/exit_status.h"
 #include "native/file_io.h"
@@ -34,8 +37,9 @@ constexpr const char* kPlanHelp =
     "'prt-bake bake-shard --plan PLAN --shard I --pass K' for every I and 'prt-bake merge --plan\n"
     "PLAN --pass K', and finally 'prt-bake merge --plan PLAN -o ASSET' (scripts/slurm-bake.sh does\n"
     "this on Slurm). The asset is byte for byte the one of 'prt-bake SCENE -o ASSET [options]'.\n"
-    "Bake options: those of 'prt-bake --default --help', except --texels and --texel-glossy\n"
-    "(not sharded yet). --json prints the plan's passes and shards on stdout.\n";
+    "Bake options: those of 'prt-bake --default --help' (with --texels, the plan picks or generates\n"
+    "the atlas once and splits its texel receivers too; normal-mapped scenes are not sharded yet).\n"
+    "--json prints the plan's passes and shards on stdout.\n";
 
 constexpr const char* kShardHelp =
     "Usage: prt-bake bake-shard --plan PLAN --shard I --pass K [--threads N] [--quiet]\n"
@@ -59,36 +63,33 @@ int printHelp(std::FILE* out, const char* text) {
   return kExitOk;
 }
 
-Status refuseUnsharded(const BakeCommandLine& c) {
+// A texel bake of a normal-mapped scene: the prepared scene does not hold the normal maps
+// (images and tangents) the texel receivers' shading normals come from. Bi-scale: not yet.
+Status refuseUnsharded(const BakeCommandLine& c, const bake::Scene& scene) {
   if (c.bake.biScale) {
     return Status::error(StatusCode::kInvalidArgument,
                          "sharded bakes do not support --rtt yet (bi-scale, docs/bi-scale.md); bake it on one machine");
   }
-  const char* flag = c.bake.texels ? (c.bake.texels->visibilityOrder > 0 ? "--texel-glossy" : "--texels") : nullptr;
-  if (!flag) return Status::ok();
-  return Status::error(StatusCode::kInvalidArgument, std::string("sharded bakes do not support ") + flag +
-                                                         " yet (vertex passes only: docs/scale-out.md); bake it on one machine");
+  if (!c.bake.texels || std::none_of(scene.normalMapOf.begin(), scene.normalMapOf.end(), [](std::int32_t m) { return m >= 0; })) {
+    return Status::ok();
+  }
+  return Status::error(StatusCode::kInvalidArgument,
+                       "sharded bakes do not support --texels on a normal-mapped scene yet (the prepared scene does not "
+                       "hold the normal maps: docs/scale-out.md); bake it on one machine");
 }
 
 // `files`: every file the load read (none for the built-in room).
-Status loadScene(const std::string& path, bool quiet, std::FILE* err, bake::Scene* scene, std::vector<bake::SceneFile>* files) {
+Status loadScene(const std::string& path, const bake::AssetBakeOptions& options, bool quiet, std::FILE* err, bake::Scene* scene,
+                 std::vector<bake::SceneFile>* files) {
   files->clear();
   if (path.empty()) {
-    *scene = bake::makeDefaultScene();
+    *scene = defaultSceneFor(options);
     return Status::ok();
   }
   std::vector<std::string> warnings;
   PRT_RETURN_IF_ERROR(bake::loadGltf(path, scene, &warnings, files));
   if (!quiet)
     for (const std::string& w : warnings) std::fprintf(err, "prt-bake: warning: %s\n", w.c_str());
-  return Status::ok();
-}
-
-// The scene as bakeAsset bakes it: the glossy material split (--glossy) before the vertex
-// order, then *transfer as bakeAsset passes it to bakeTransfer.
-Status prepareScene(const bake::AssetBakeOptions& o, bake::Scene* scene, bake::BakeOptions* transfer) {
-  if (o.transfer.glossy) PRT_RETURN_IF_ERROR(bake::applyGlossyMaterials(o.glossyMaterials, scene));
-  bake::prepareVertexBake(o, scene, transfer);
   return Status::ok();
 }
 
@@ -99,9 +100,14 @@ struct LoadedPlan {
   BakeCommandLine bake;
   bake::Scene scene;
   bake::BakeOptions transfer;
+  std::optional<bake::TexelShardContext> texels;  // a texel plan's receivers, rasterised again (deterministic)
+  bake::ShardContext context(const std::string& planPath) const {
+    return {&plan, planPath, &scene, &transfer, texels ? &*texels : nullptr};
+  }
 };
 
-Status loadPlan(const std::string& planPath, const ParsedArgs& p, LoadedPlan* out) {
+// `needs`: what of a texel plan's receivers the command uses (sharded_texels.h).
+Status loadPlan(const std::string& planPath, const ParsedArgs& p, bake::TexelNeeds needs, LoadedPlan* out) {
   std::vector<std::uint8_t> bytes;
   PRT_RETURN_IF_ERROR(readFileBytes(planPath, std::uint64_t{1} << 30, &bytes));
   if (Status s = bake::decodeBakePlan(bytes, &out->plan); !s.isOk()) {
@@ -110,15 +116,26 @@ Status loadPlan(const std::string& planPath, const ParsedArgs& p, LoadedPlan* ou
   if (Status s = parseBakeCommandLine(out->plan.bakeArgs, &out->bake); !s.isOk()) {
     return Status::error(StatusCode::kCorrupt, "'" + planPath + "': its bake options do not parse: " + s.message());
   }
-  PRT_RETURN_IF_ERROR(refuseUnsharded(out->bake));
   if (const std::string* s = p.value("--threads")) {
     int v = 0;
     PRT_RETURN_IF_ERROR(parseIntArg("--threads", *s, 1, 1024, &v));
     out->bake.bake.transfer.threads = static_cast<unsigned>(v);
   }
   PRT_RETURN_IF_ERROR(bake::checkSceneFiles(out->plan));
-  PRT_RETURN_IF_ERROR(bake::readPreparedScene(out->plan, planPath, &out->scene));
+  std::vector<bake::Uv> atlasUv;
+  PRT_RETURN_IF_ERROR(bake::readPreparedScene(out->plan, planPath, &out->scene, &atlasUv));
   out->transfer = bake::vertexBakeOptions(out->bake.bake, out->scene);
+  if (out->bake.bake.texels.has_value() != !out->plan.atlases.empty()) {
+    return Status::error(StatusCode::kCorrupt, "'" + planPath + "': its bake options and its atlases disagree on --texels");
+  }
+  if (!out->plan.atlases.empty()) {
+    out->texels.emplace();
+    if (Status s = bake::prepareTexelShards(out->plan, out->scene, std::move(atlasUv),
+                                            bake::texelBakeOptions(out->bake.bake, out->transfer), needs, &*out->texels);
+        !s.isOk()) {
+      return Status::error(s.code(), "'" + planPath + "': " + s.message());
+    }
+  }
   return Status::ok();
 }
 
@@ -169,7 +186,6 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   }
   BakeCommandLine c;
   if (Status s = parseBakeCommandLine(bakeArgs, &c); !s.isOk()) return reportFailure(err, "plan", s);
-  if (Status s = refuseUnsharded(c); !s.isOk()) return reportFailure(err, "plan", s);
   std::vector<std::string> inputs;
   if (!c.scene.empty()) inputs.push_back(c.scene);
   if (Status s = checkOutputPath(c.output, inputs); !s.isOk()) return reportFailure(err, "plan", s);
@@ -189,11 +205,27 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     plan.scenePath = real;
   }
   bake::Scene scene;
-  if (Status s = loadScene(plan.scenePath, c.quiet, err, &scene, &plan.sceneFiles); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = loadScene(plan.scenePath, c.bake, c.quiet, err, &scene, &plan.sceneFiles); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = refuseUnsharded(c, scene); !s.isOk()) return reportFailure(err, "plan", s);
   bake::BakeOptions transfer;
-  if (Status s = prepareScene(c.bake, &scene, &transfer); !s.isOk()) return reportFailure(err, "plan", s);
+  bake::TextureSetPlan atlas;
+  if (Status s = bake::prepareAssetScene(c.bake, &scene, &transfer, &atlas); !s.isOk()) return reportFailure(err, "plan", s);
+  // A texel bake's atlas is picked (or generated) here, once: the shards read it from the plan
+  // and the prepared scene, and rasterise the same receivers from it.
+  std::vector<bake::Uv> atlasUv;
+  std::uint64_t texelReceivers = 0;
+  if (c.bake.texels) {
+    plan.atlases = bake::texelAtlasesOf(atlas, scene.indices.size() / 3);
+    atlasUv = scene.texcoord[atlas.texcoord];
+    bake::TexelReceivers receivers;
+    if (Status s = bake::prepareTexelReceivers(scene, atlasUv, plan.atlases, bake::texelBakeOptions(c.bake, transfer), &receivers);
+        !s.isOk()) {
+      return reportFailure(err, "plan", s);
+    }
+    texelReceivers = receivers.count();
+  }
   plan.bakeArgs = bakeArgs;
-  plan.sceneHash = bake::sceneHash(scene);
+  plan.sceneHash = bake::sceneHash(scene, atlasUv);
   plan.sceneName = scene.name;
   plan.vertices = scene.positions.size();
   plan.triangles = scene.indices.size() / 3;
@@ -202,20 +234,30 @@ int runPlanCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
   if (Status s = bake::planRanges(plan.vertices, static_cast<std::uint32_t>(shards), &plan.shards); !s.isOk()) {
     return reportFailure(err, "plan", s);
   }
+  if (c.bake.texels) {
+    plan.texelReceivers = texelReceivers;
+    if (Status s = bake::planRanges(texelReceivers, static_cast<std::uint32_t>(shards), &plan.texelShards, "texel receivers");
+        !s.isOk()) {
+      return reportFailure(err, "plan", s);
+    }
+  }
   const std::vector<std::uint8_t> bytes = bake::encodeBakePlan(&plan);
   // The prepared scene first: a plan on disk always has its scene (a scene without its plan
   // is never read).
   if (Status s = checkOutputPath(bake::preparedScenePath(c.output), inputs); !s.isOk()) return reportFailure(err, "plan", s);
-  if (Status s = bake::writePreparedScene(plan, c.output, scene, inputs); !s.isOk()) return reportFailure(err, "plan", s);
+  if (Status s = bake::writePreparedScene(plan, c.output, scene, atlasUv, inputs); !s.isOk()) return reportFailure(err, "plan", s);
   if (Status s = writeFileAtomically(c.output, bytes, inputs); !s.isOk()) return reportFailure(err, "plan", s);
   if (!c.quiet) {
-    std::fprintf(err, "prt-bake: plan %s: %s, %llu vertices in %d shards, up to %u passes (plan id %08x)\n", c.output.c_str(),
+    std::fprintf(err, "prt-bake: plan %s: %s, %llu vertices%s in %d shards, up to %u passes (plan id %08x)\n", c.output.c_str(),
                  plan.scenePath.empty() ? "default scene" : plan.scenePath.c_str(),
-                 static_cast<unsigned long long>(plan.vertices), shards, plan.passes, plan.id);
+                 static_cast<unsigned long long>(plan.vertices),
+                 c.bake.texels ? (" and " + std::to_string(texelReceivers) + " texel receivers").c_str() : "", shards, plan.passes,
+                 plan.id);
   }
   if (c.json) {
-    std::fprintf(out, "{\"plan\": %s, \"id\": \"%08x\", \"vertices\": %llu, \"shards\": %d, \"passes\": %u}\n",
-                 jsonString(c.output).c_str(), plan.id, static_cast<unsigned long long>(plan.vertices), shards, plan.passes);
+    std::fprintf(out, "{\"plan\": %s, \"id\": \"%08x\", \"vertices\": %llu, \"texelReceivers\": %llu, \"shards\": %d, \"passes\": %u}\n",
+                 jsonString(c.output).c_str(), plan.id, static_cast<unsigned long long>(plan.vertices),
+                 static_cast<unsigned long long>(texelReceivers), shards, plan.passes);
   }
   return kExitOk;
 }
@@ -233,13 +275,23 @@ int runBakeShardCommand(std::span<const std::string> args, std::FILE* out, std::
   }
   const bool quiet = p.has("--quiet");
   LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
+  const bake::TexelNeeds needs = pass == 0 ? bake::TexelNeeds::kReceivers : bake::TexelNeeds::kSeams;
+  if (Status s = loadPlan(planPath, p, needs, &l); !s.isOk()) return reportFailure(err, "bake-shard", s);
   bake::ProgressBar bar(err, !quiet);
   l.transfer.progress = [&bar](const bake::BakeProgress& pr) { bar.update(pr); };
-  bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
+  if (l.texels) l.texels->options = bake::texelBakeOptions(l.bake.bake, l.transfer);  // its bar too: "texel ..."
+  const bake::ShardContext ctx = l.context(planPath);
   bool skipped = false;
   bake::PassStats stats;
-  const Status s = bake::bakeShard(ctx, pass, shard, &skipped, &stats);
+  Status s = bake::bakeShard(ctx, pass, shard, &skipped, &stats);
+  // The texel series (a texel plan) in its own files: it may go on after the vertex series ended, or stop before.
+  if (s.isOk() && l.texels) {
+    bool texelSkipped = false;
+    bake::PassStats texelStats;
+    s = bake::bakeTexelShard(ctx, pass, shard, &texelSkipped, &texelStats);
+    skipped = skipped && texelSkipped;
+    stats.seconds += texelStats.seconds;
+  }
   bar.finish();
   if (!s.isOk()) return reportFailure(err, "bake-shard", s);
   if (!quiet) {
@@ -273,14 +325,24 @@ int runMergeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   if (output) {
     if (Status s = checkOutputPath(*output, std::vector<std::string>{planPath}); !s.isOk()) return reportFailure(err, "merge", s);
   }
-  LoadedPlan l;
-  if (Status s = loadPlan(planPath, p, &l); !s.isOk()) return reportFailure(err, "merge", s);
-  bake::ShardContext ctx{&l.plan, planPath, &l.scene, &l.transfer};
+  std::uint32_t pass = 0;
   if (!output) {
-    std::uint32_t pass = 0;
     if (Status s = parseIndex(p, "--pass", &pass); !s.isOk()) return reportFailure(err, "merge", s);
+  }
+  // merge --pass K >= 1 sums energies only; pass 0 computes B^0 of the receivers; -o scatters.
+  const bake::TexelNeeds needs = output ? bake::TexelNeeds::kSeams : pass == 0 ? bake::TexelNeeds::kReceivers : bake::TexelNeeds::kNothing;
+  LoadedPlan l;
+  if (Status s = loadPlan(planPath, p, needs, &l); !s.isOk()) return reportFailure(err, "merge", s);
+  const bake::ShardContext ctx = l.context(planPath);
+  if (!output) {
     bool skipped = false, final = false;
     if (Status s = bake::mergePass(ctx, pass, &skipped, &final); !s.isOk()) return reportFailure(err, "merge", s);
+    if (l.texels) {
+      bool texelSkipped = false, texelFinal = false;
+      if (Status s = bake::mergeTexelPass(ctx, pass, &texelSkipped, &texelFinal); !s.isOk()) return reportFailure(err, "merge", s);
+      final = (final || skipped) && (texelFinal || texelSkipped);  // the last pass of both series
+      skipped = skipped && texelSkipped;
+    }
     if (!quiet) {
       if (skipped) std::fprintf(err, "prt-bake: pass %u is not needed: the bounce series ended before it; nothing written\n", pass);
       else std::fprintf(err, "prt-bake: wrote %s%s\n", bake::mergedPassPath(planPath, pass).c_str(), final ? " (the last pass)" : "");
@@ -292,9 +354,17 @@ int runMergeCommand(std::span<const std::string> args, std::FILE* out, std::FILE
   const int bounces = result.bounces;
   BakedAsset asset;
   std::vector<bake::CompressedPass> compressed;
-  if (Status s = bake::assembleVertexAsset(std::move(l.scene), std::move(result), l.bake.bake, l.transfer.lighting, &asset,
-                                           &compressed);
-      !s.isOk()) {
+  if (l.texels) {
+    bake::TexelBakeResult texels;
+    if (Status s = bake::mergeTexelShards(ctx, &texels); !s.isOk()) return reportFailure(err, "merge", s);
+    if (Status s = bake::assembleTexelAsset(std::move(l.scene), std::move(result), std::move(texels), l.texels->atlasUv,
+                                            l.plan.atlases, l.bake.bake, l.transfer.lighting, &asset, &compressed);
+        !s.isOk()) {
+      return reportFailure(err, "merge", s);
+    }
+  } else if (Status s = bake::assembleVertexAsset(std::move(l.scene), std::move(result), l.bake.bake, l.transfer.lighting,
+                                                  &asset, &compressed);
+             !s.isOk()) {
     return reportFailure(err, "merge", s);
   }
   std::vector<std::uint8_t> bytes;

@@ -18,11 +18,34 @@ constexpr std::uint32_t kMaxSceneFiles = 65536;
 
 Status corrupt(const std::string& what) { return Status::error(StatusCode::kCorrupt, "bake plan: " + what); }
 
+// `shards` ranges (u64 begin, end; the caller checked they fit) tiling [0, items) in whole
+// blocks: contiguous, non-empty, no gap, no overlap.
+Status readRanges(ByteReader* r, std::uint32_t shards, std::uint64_t items, const char* label, const char* what,
+                  std::vector<VertexRange>* out) {
+  std::uint64_t next = 0;
+  for (std::uint32_t i = 0; i < shards; ++i) {
+    VertexRange v;
+    r->u64(&v.begin);
+    r->u64(&v.end);
+    if (v.begin != next || !(v.end > v.begin) || v.end > items || (v.end != items && v.end % kBlockVertices != 0)) {
+      return corrupt(std::string(label) + " " + std::to_string(i) + " covers [" + std::to_string(v.begin) + ", " +
+                     std::to_string(v.end) + "), which does not continue the ranges at " + std::to_string(next) +
+                     " in whole blocks");
+    }
+    next = v.end;
+    out->push_back(v);
+  }
+  if (next != items) {
+    return corrupt("the " + std::string(label) + "s cover " + std::to_string(next) + " of " + std::to_string(items) + " " + what);
+  }
+  return Status::ok();
+}
+
 }  // namespace
 
-std::uint32_t sceneHash(const Scene& scene) { return crc32c(encodePreparedScene(scene)); }
+std::uint32_t sceneHash(const Scene& scene, std::span<const Uv> atlasUv) { return crc32c(encodePreparedScene(scene, atlasUv)); }
 
-Status planRanges(std::uint64_t vertices, std::uint32_t shards, std::vector<VertexRange>* out) {
+Status planRanges(std::uint64_t vertices, std::uint32_t shards, std::vector<VertexRange>* out, const char* what) {
   const std::uint64_t blocks = (vertices + kBlockVertices - 1) / kBlockVertices;
   if (shards == 0 || shards > kMaxShards) {
     return Status::error(StatusCode::kInvalidArgument,
@@ -31,7 +54,7 @@ Status planRanges(std::uint64_t vertices, std::uint32_t shards, std::vector<Vert
   if (shards > blocks) {
     return Status::error(StatusCode::kInvalidArgument, "shard count " + std::to_string(shards) + " exceeds the scene's " +
                                                            std::to_string(blocks) + " blocks of " +
-                                                           std::to_string(kBlockVertices) + " vertices");
+                                                           std::to_string(kBlockVertices) + " " + what);
   }
   out->clear();
   for (std::uint64_t i = 0; i < shards; ++i) {
@@ -64,6 +87,20 @@ std::vector<std::uint8_t> encodeBakePlan(BakePlan* plan) {
   for (const VertexRange& r : plan->shards) {
     w.u64(r.begin);
     w.u64(r.end);
+  }
+  w.u32(static_cast<std::uint32_t>(plan->atlases.size()));
+  for (const TextureAtlas& a : plan->atlases) {
+    w.u32(a.width);
+    w.u32(a.height);
+    w.u32(a.firstTriangle);
+    w.u32(a.triangleCount);
+  }
+  if (!plan->atlases.empty()) {
+    w.u64(plan->texelReceivers);
+    for (const VertexRange& r : plan->texelShards) {
+      w.u64(r.begin);
+      w.u64(r.end);
+    }
   }
   ShardHeader h;
   h.kind = ShardFileKind::kPlan;
@@ -106,20 +143,35 @@ Status decodeBakePlan(std::span<const std::uint8_t> bytes, BakePlan* plan) {
   if (shards < 1 || shards > kMaxShards || shards > r.remaining() / 16) {
     return corrupt(std::to_string(shards) + " shards do not fit the file");
   }
-  std::uint64_t next = 0;
-  for (std::uint32_t i = 0; i < shards; ++i) {
-    VertexRange v;
-    r.u64(&v.begin);
-    r.u64(&v.end);
-    // Contiguous, non-empty, block-aligned: no gap, no overlap.
-    if (v.begin != next || !(v.end > v.begin) || v.end > p.vertices || (v.end != p.vertices && v.end % kBlockVertices != 0)) {
-      return corrupt("shard " + std::to_string(i) + " covers [" + std::to_string(v.begin) + ", " + std::to_string(v.end) +
-                     "), which does not continue the ranges at " + std::to_string(next) + " in whole blocks");
+  PRT_RETURN_IF_ERROR(readRanges(&r, shards, p.vertices, "shard", "vertices", &p.shards));
+  std::uint32_t atlases = 0;
+  if (!r.u32(&atlases)) return corrupt("the atlas count is cut short");
+  if (atlases > kMaxAssetAtlases || atlases > r.remaining() / 16) return corrupt(std::to_string(atlases) + " atlases do not fit the file");
+  std::uint64_t nextTriangle = 0;
+  for (std::uint32_t a = 0; a < atlases; ++a) {
+    TextureAtlas t;
+    r.u32(&t.width);
+    r.u32(&t.height);
+    r.u32(&t.firstTriangle);
+    r.u32(&t.triangleCount);
+    // Runs of triangles, one after another, covering them all (as the asset's atlases must).
+    if (t.width < 1 || t.width > kMaxAssetAtlasSize || t.height < 1 || t.height > kMaxAssetAtlasSize ||
+        t.firstTriangle != nextTriangle || t.triangleCount == 0) {
+      return corrupt("atlas " + std::to_string(a) + " (" + std::to_string(t.width) + " x " + std::to_string(t.height) +
+                     " over triangles from " + std::to_string(t.firstTriangle) + ") is not a run continuing the atlases at triangle " +
+                     std::to_string(nextTriangle));
     }
-    next = v.end;
-    p.shards.push_back(v);
+    nextTriangle += t.triangleCount;
+    p.atlases.push_back(t);
   }
-  if (next != p.vertices) return corrupt("the shards cover " + std::to_string(next) + " of " + std::to_string(p.vertices) + " vertices");
+  if (atlases > 0) {
+    if (nextTriangle != p.triangles) {
+      return corrupt("the atlases cover " + std::to_string(nextTriangle) + " of " + std::to_string(p.triangles) + " triangles");
+    }
+    if (!r.u64(&p.texelReceivers) || p.texelReceivers == 0) return corrupt("the texel receiver count is cut short or 0");
+    if (shards > r.remaining() / 16) return corrupt("the texel shard ranges are cut short");
+    PRT_RETURN_IF_ERROR(readRanges(&r, shards, p.texelReceivers, "texel shard", "texel receivers", &p.texelShards));
+  }
   if (r.remaining() != 0) return corrupt(std::to_string(r.remaining()) + " bytes after the shard ranges");
   p.id = crc32c(bytes);
   *plan = std::move(p);
@@ -132,6 +184,14 @@ std::string shardPath(const std::string& planPath, std::uint32_t pass, std::uint
 
 std::string mergedPassPath(const std::string& planPath, std::uint32_t pass) {
   return planPath + ".pass" + std::to_string(pass) + ".merged";
+}
+
+std::string texelShardPath(const std::string& planPath, std::uint32_t pass, std::uint32_t shard) {
+  return planPath + ".pass" + std::to_string(pass) + ".texels.shard" + std::to_string(shard);
+}
+
+std::string texelMergedPassPath(const std::string& planPath, std::uint32_t pass) {
+  return planPath + ".pass" + std::to_string(pass) + ".texels.merged";
 }
 
 std::string preparedScenePath(const std::string& planPath) { return planPath + ".scene"; }

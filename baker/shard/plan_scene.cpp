@@ -21,12 +21,12 @@ std::string sceneLabel(const BakePlan& plan) {
 }  // namespace
 
 Status writePreparedScene(const BakePlan& plan, const std::string& planPath, const Scene& scene,
-                          std::span<const std::string> inputs) {
+                          std::span<const Uv> atlasUv, std::span<const std::string> inputs) {
   ShardHeader h;
   h.kind = ShardFileKind::kPreparedScene;
   h.planId = plan.id;
   h.vertexEnd = plan.vertices;
-  return writeFileAtomically(preparedScenePath(planPath), encodeShardFile(h, encodePreparedScene(scene)), inputs);
+  return writeFileAtomically(preparedScenePath(planPath), encodeShardFile(h, encodePreparedScene(scene, atlasUv)), inputs);
 }
 
 Status checkSceneFiles(const BakePlan& plan) {
@@ -45,7 +45,7 @@ Status checkSceneFiles(const BakePlan& plan) {
   return Status::ok();
 }
 
-Status readPreparedScene(const BakePlan& plan, const std::string& planPath, Scene* scene) {
+Status readPreparedScene(const BakePlan& plan, const std::string& planPath, Scene* scene, std::vector<Uv>* atlasUv) {
   const std::string path = preparedScenePath(planPath);
   const std::string named = "the prepared scene ('" + path + "')";
   MappedFile file;
@@ -73,9 +73,13 @@ Status readPreparedScene(const BakePlan& plan, const std::string& planPath, Scen
                   static_cast<unsigned long long>(plan.vertices));
     return Status::error(StatusCode::kCorrupt, named + text);
   }
-  if (Status s = decodePreparedScene(payload, scene); !s.isOk()) return Status::error(s.code(), named + " is corrupt: " + s.message());
+  if (Status s = decodePreparedScene(payload, scene, atlasUv); !s.isOk()) return Status::error(s.code(), named + " is corrupt: " + s.message());
   if (scene->positions.size() != plan.vertices || scene->indices.size() / 3 != plan.triangles) {
     return Status::error(StatusCode::kCorrupt, named + " does not have the plan's vertex and triangle counts");
+  }
+  if (atlasUv->empty() != plan.atlases.empty()) {
+    return Status::error(StatusCode::kCorrupt, named + (plan.atlases.empty() ? " holds atlas UVs the plan has no atlas for"
+                                                                            : " has no atlas UVs for the plan's texel atlases"));
   }
   scene->name = plan.sceneName;
   return Status::ok();

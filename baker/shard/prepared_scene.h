@@ -17,12 +17,14 @@
 namespace prt::bake {
 
 // The payload: u64 vertices, positions, normals, albedo (f32 triples), u64 index count, the
-// indices (u32), then with glossy materials each vertex's f0 r, g, b, f90, exponent (f32).
-std::vector<std::uint8_t> encodePreparedScene(const Scene& scene);
+// indices (u32), u32 flags, then with glossy materials (flag 1) each vertex's f0 r, g, b, f90,
+// exponent (f32), then with a texel bake's atlas (flag 2, `atlasUv` not empty) each vertex's atlas u, v (f32).
+std::vector<std::uint8_t> encodePreparedScene(const Scene& scene, std::span<const Uv> atlasUv = {});
 
 // Reads a payload into the scene's positions, normals, albedo, indices and specular materials
-// (other fields cleared). kCorrupt naming the problem when a size does not fit the bytes, the
-// index count is not a multiple of 3 or an index is not below the vertex count.
-Status decodePreparedScene(std::span<const std::uint8_t> payload, Scene* scene);
+// (other fields cleared) and, when given, *atlasUv (empty without). kCorrupt naming the problem
+// when a size does not fit the bytes, the flags are unknown, the index count is not a multiple
+// of 3 or an index is not below the vertex count.
+Status decodePreparedScene(std::span<const std::uint8_t> payload, Scene* scene, std::vector<Uv>* atlasUv = nullptr);
 
 }  // namespace prt::bake

@@ -16,6 +16,8 @@ const char* magicFor(ShardFileKind kind) {
     case ShardFileKind::kShard: return "PRTSHRD1";
     case ShardFileKind::kMergedPass: return "PRTPASS1";
     case ShardFileKind::kPreparedScene: return "PRTSCEN1";
+    case ShardFileKind::kTexelShard: return "PRTTSHD1";
+    case ShardFileKind::kTexelMergedPass: return "PRTTPAS1";
   }
   return "????????";
 }
@@ -26,6 +28,8 @@ const char* kindName(ShardFileKind kind) {
     case ShardFileKind::kShard: return "bake shard";
     case ShardFileKind::kMergedPass: return "merged pass";
     case ShardFileKind::kPreparedScene: return "prepared scene";
+    case ShardFileKind::kTexelShard: return "texel bake shard";
+    case ShardFileKind::kTexelMergedPass: return "texel merged pass";
   }
   return "file";
 }

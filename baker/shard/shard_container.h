@@ -13,12 +13,15 @@
 
 namespace prt::bake {
 
-enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass, kPreparedScene };
+// kTexelShard and kTexelMergedPass: a texel plan's texel series (their range: texel receivers).
+enum class ShardFileKind : std::uint8_t { kPlan, kShard, kMergedPass, kPreparedScene, kTexelShard, kTexelMergedPass };
 
+// 5: texel plans (the atlases and texel ranges in the plan, atlas UVs and a flags word in the
+// prepared scene, the texel files), visibility vectors in a direct shard;
 // 4: merged bounce passes without B^b (the next bounce reads it from the shards);
 // 3: the prepared scene beside the plan, and the scene's name and files in the plan;
 // 2: glossy payloads, and merged passes without the running sum (docs/scale-out.md, "Files").
-inline constexpr std::uint32_t kShardFormatVersion = 4;
+inline constexpr std::uint32_t kShardFormatVersion = 5;
 inline constexpr std::size_t kShardHeaderBytes = 56;
 inline constexpr std::uint32_t kNoShard = 0xFFFFFFFFu;  // the header's shard field in plans and merged passes
 

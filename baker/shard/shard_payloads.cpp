@@ -14,7 +14,7 @@ Status corrupt(const std::string& what) { return Status::error(StatusCode::kCorr
 std::size_t blocksOf(std::size_t count) { return (count + kBlockVertices - 1) / kBlockVertices; }
 
 // The direct shard's flags word.
-constexpr std::uint32_t kHasHits = 1, kGlossy = 2;
+constexpr std::uint32_t kHasHits = 1, kGlossy = 2, kVisibility = 4;
 
 // A hit record in the file (u32 triangle, u16 u, u16 v, f32 weight, little-endian) is Hit's
 // layout on this (little-endian) host, so blocks of them are copied whole.
@@ -51,7 +51,7 @@ void directShardParts(const DirectShard& s, PayloadParts* out) {
   out->scratch.clear();
   out->scratch.reserve(4 + 8 + (s.hasHits ? vertices * 4 : 0));
   ByteWriter w(&out->scratch);
-  w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0));
+  w.u32((s.hasHits ? kHasHits : 0) | (s.glossy ? kGlossy : 0) | (s.hasVisibility ? kVisibility : 0));
   w.u64(s.verticesOutsideLight);
   if (s.hasHits) {
     for (const HitBlock& b : s.blocks) {
@@ -62,6 +62,7 @@ void directShardParts(const DirectShard& s, PayloadParts* out) {
   std::vector<std::span<const std::uint8_t>>& p = out->parts;
   p = {scratch.first(4), bytesOf(s.unshadowed), bytesOf(s.shadowed), scratch.subspan(4, 8)};
   if (s.glossy) p.push_back(bytesOf(s.glossyShadowed));
+  if (s.hasVisibility) p.push_back(bytesOf(s.visibility));
   if (!s.hasHits) return;
   p.push_back(scratch.subspan(12));
   for (const HitBlock& b : s.blocks) p.push_back(bytesOf(b.hits));
@@ -77,15 +78,20 @@ std::vector<std::uint8_t> encodeDirectShard(const DirectShard& s) {
 }
 
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::size_t glossyEntries,
-                         DirectShardPart part, DirectShard* out) {
+                         DirectShardPart part, DirectShard* out, std::size_t visibilityEntries) {
   ByteReader r(payload);
   std::uint32_t flags = 0;
   const std::uint64_t floats = static_cast<std::uint64_t>(count) * n2;
   const std::uint64_t glossyFloats = static_cast<std::uint64_t>(count) * glossyEntries;
   if (!r.u32(&flags)) return corrupt("the flags are cut short");
-  if ((flags & ~(kHasHits | kGlossy)) != 0) return corrupt("unknown flags " + std::to_string(flags));
+  if ((flags & ~(kHasHits | kGlossy | kVisibility)) != 0 || ((flags & kGlossy) && (flags & kVisibility))) {
+    return corrupt("unknown flags " + std::to_string(flags));
+  }
   out->hasHits = (flags & kHasHits) != 0;
   out->glossy = (flags & kGlossy) != 0;
+  out->hasVisibility = (flags & kVisibility) != 0;
+  if (out->hasVisibility && visibilityEntries == 0) return corrupt("holds visibility vectors the plan has none of");
+  out->visibility.clear();
   out->unshadowed.clear();
   out->shadowed.clear();
   out->glossyShadowed.clear();
@@ -99,6 +105,10 @@ Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t coun
   }
   if (out->glossy && !(transfer ? r.floats(glossyFloats, &out->glossyShadowed) : r.floatView(glossyFloats, &skipped))) {
     return corrupt("the glossy shadowed matrices (" + std::to_string(glossyFloats) + " floats) are cut short");
+  }
+  const std::uint64_t visibilityFloats = static_cast<std::uint64_t>(count) * visibilityEntries;
+  if (out->hasVisibility && !(transfer ? r.floats(visibilityFloats, &out->visibility) : r.floatView(visibilityFloats, &skipped))) {
+    return corrupt("the visibility vectors (" + std::to_string(visibilityFloats) + " floats) are cut short");
   }
   out->blocks.clear();
   out->hitViews.clear();

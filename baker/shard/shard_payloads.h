@@ -21,6 +21,10 @@ struct DirectShard {
   bool hasHits = false;                     // interreflection stored
   bool glossy = false;                      // --glossy: matrices, and each hit's sample index
   std::vector<float> glossyShadowed;        // glossy: count x the packing's entries
+  // A texel shard with a visibility pass (--texel-glossy): count x visibilityOrder^2, the
+  // texels' visibility vectors; never with glossy (texel passes are vectors only).
+  bool hasVisibility = false;
+  std::vector<float> visibility;
   std::vector<HitBlock> blocks;             // encoding: ceil(count / 64) when hasHits (hitSample filled when glossy)
   // Decoding DirectShardPart::kHits: ceil(count / 64) views of the records in place, into the decoded
   // payload (which must outlive them), their hitStart in `hitStarts`. Nothing is copied: a
@@ -87,13 +91,14 @@ enum class DirectShardPart : std::uint8_t {
   kTransfer,  // the merges: the transfer and glossy matrices copied out, the hit records' sizes checked only
   kHits,      // the bounce shards: the hit records viewed in place (out->hitViews), the transfer not copied
 };
-// `count` vertices at order^2 = n2 coefficients; a glossy shard's matrices `glossyEntries`
-// floats a vertex. kHits: `payload` must outlive out->hitViews and be 4-byte aligned (as a
+// `count` vertices (or texel receivers) at order^2 = n2 coefficients; a glossy shard's matrices
+// `glossyEntries` floats a vertex, a shard with visibility vectors `visibilityEntries` floats a
+// receiver (0: the shard may not have them). kHits: `payload` must outlive out->hitViews and be 4-byte aligned (as a
 // mapped file is). The records' values (triangle, weight, sample index) are not checked here
 // but by gatherBounceRange, their one reader, in its single pass over them (why: checking them
 // twice cost a bounce shard two passes over ~100 MB of records).
 Status decodeDirectShard(std::span<const std::uint8_t> payload, std::size_t count, int n2, std::size_t glossyEntries,
-                         DirectShardPart part, DirectShard* out);
+                         DirectShardPart part, DirectShard* out, std::size_t visibilityEntries = 0);
 
 void bounceShardParts(const BounceShard& s, PayloadParts* out);
 std::vector<std::uint8_t> encodeBounceShard(const BounceShard& s);

@@ -16,11 +16,14 @@
 
 namespace prt::bake {
 
+struct TexelShardContext;  // sharded_texels.h
+
 struct ShardContext {
   const BakePlan* plan = nullptr;
   std::string planPath;
   const Scene* scene = nullptr;            // prepared as bakeAsset prepares it (glossy split, prepareVertexBake): the plan's prepared scene
   const BakeOptions* transfer = nullptr;   // as prepareVertexBake returns them
+  const TexelShardContext* texels = nullptr;  // a texel plan's texel series (sharded_texels.h); else null
 };
 
 // The number of passes a bake with `transfer` runs at most: 1 + the bounce limit with interreflection, else 1.

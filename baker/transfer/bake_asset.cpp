@@ -105,26 +105,55 @@ struct TexelBake {
   std::vector<TransferPass> passes;
 };
 
+// The asset's texel fields of a finished texel bake over `uv`: the atlas UVs, the coverage,
+// the normals and the passes options store (out->atlases are set by the caller).
+void fillTexelBake(TexelBakeResult&& r, std::span<const Uv> uv, const AssetBakeOptions& o, TexelBake* out) {
+  out->atlasUv.resize(2 * uv.size());
+  for (std::size_t v = 0; v < uv.size(); ++v) {
+    out->atlasUv[2 * v] = uv[v].u;
+    out->atlasUv[2 * v + 1] = uv[v].v;
+  }
+  out->coverage = std::move(r.coverage);
+  out->normals = std::move(r.normals);
+  auto texelPass = [](TransferKind kind, int channels, int bounces, std::vector<float>&& coeffs) {
+    TransferPass p{kind, channels, bounces, std::move(coeffs), {}};
+    p.domain = TransferDomain::kTexel;
+    return p;
+  };
+  out->passes.clear();
+  if (o.storeUnshadowed) out->passes.push_back(texelPass(TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed)));
+  if (o.storeShadowed) out->passes.push_back(texelPass(TransferKind::kShadowed, 1, 0, std::move(r.shadowed)));
+  if (o.storeInterreflected) {
+    out->passes.push_back(texelPass(TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected)));
+  }
+  if (r.visibilityOrder > 0) {
+    TransferPass v = texelPass(TransferKind::kShadowed, 1, 0, std::move(r.visibility));
+    v.form = TransferForm::kVisibility;
+    v.order = r.visibilityOrder;
+    out->passes.push_back(std::move(v));
+  }
+}
+
+// The texel bake's part of the asset, after the vertex passes makeAsset put there.
+void attachTexels(TexelBake&& texel, const AssetBakeOptions& o, BakedAsset* asset) {
+  if (!o.texels->keepVertexPasses) {
+    std::erase_if(asset->passes, [](const TransferPass& p) { return p.form == TransferForm::kVector; });
+  }
+  for (TransferPass& p : texel.passes) asset->passes.push_back(std::move(p));
+  asset->atlasUv = std::move(texel.atlasUv);
+  asset->atlases = std::move(texel.atlases);
+  asset->texelCoverage = std::move(texel.coverage);
+  asset->texelNormals = std::move(texel.normals);
+}
+
 // The texel passes over the planned atlases; `triangleAtlas` per triangle of the (reordered)
 // scene, grouped in ascending runs (empty: one atlas).
 Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptions& transfer, TextureSetPlan&& plan,
                   TexelBake* out, TexelBakeReport* report) {
-  const TexelBakeSettings& t = *o.texels;
   const std::vector<Uv>& uv = scene.texcoord[plan.texcoord];
   const std::size_t triangles = scene.indices.size() / 3;
-  out->atlases.clear();
-  for (std::size_t a = 0, first = 0; a < plan.atlases.size(); ++a) {
-    std::size_t end = first;
-    if (plan.triangleAtlas.empty()) {
-      end = triangles;
-    } else {
-      while (end < triangles && plan.triangleAtlas[end] == a) ++end;
-    }
-    const auto side = static_cast<std::uint32_t>(plan.atlases[a].size);
-    out->atlases.push_back(TextureAtlas{side, side, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end - first)});
-    plan.atlases[a].triangles = end - first;
-    first = end;
-  }
+  out->atlases = texelAtlasesOf(plan, triangles);
+  for (std::size_t a = 0; a < plan.atlases.size(); ++a) plan.atlases[a].triangles = out->atlases[a].triangleCount;
   report->texcoord = plan.atlases.front().texcoord;
   for (const TexelAtlasReport& a : plan.atlases) {
     if (a.texcoord != report->texcoord) report->texcoord = -1;
@@ -135,18 +164,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   report->rejected = std::move(plan.rejected);
   report->sets = std::move(plan.reason);
   if (plan.atlases.size() == 1) report->generated = plan.atlases.front().generated;
-  TexelBakeOptions options;
-  options.transfer = transfer;
-  options.transfer.glossy = false;  // glossy stays per vertex (matrices)
-  options.dilation = t.dilation;
-  options.visibilityOrder = t.visibilityOrder;
-  if (transfer.progress) {
-    // The same bar as the vertex passes, named "texel direct", "texel bounce N".
-    options.transfer.progress = [&transfer](const BakeProgress& p) {
-      const std::string name = std::string("texel ") + p.pass;
-      transfer.progress({name.c_str(), p.done, p.total, p.rays});
-    };
-  }
+  const TexelBakeOptions options = texelBakeOptions(o, transfer);
   TexelBakeResult r;
   PRT_RETURN_IF_ERROR(bakeTexelTransfer(scene, uv, out->atlases, options, &r));
   report->texels = r.texels;
@@ -175,29 +193,7 @@ Status bakeTexels(const Scene& scene, const AssetBakeOptions& o, const BakeOptio
   }
   report->atlases = std::move(plan.atlases);
 
-  out->atlasUv.resize(2 * uv.size());
-  for (std::size_t v = 0; v < uv.size(); ++v) {
-    out->atlasUv[2 * v] = uv[v].u;
-    out->atlasUv[2 * v + 1] = uv[v].v;
-  }
-  out->coverage = std::move(r.coverage);
-  out->normals = std::move(r.normals);
-  auto texelPass = [](TransferKind kind, int channels, int bounces, std::vector<float>&& coeffs) {
-    TransferPass p{kind, channels, bounces, std::move(coeffs), {}};
-    p.domain = TransferDomain::kTexel;
-    return p;
-  };
-  if (o.storeUnshadowed) out->passes.push_back(texelPass(TransferKind::kUnshadowed, 1, 0, std::move(r.unshadowed)));
-  if (o.storeShadowed) out->passes.push_back(texelPass(TransferKind::kShadowed, 1, 0, std::move(r.shadowed)));
-  if (o.storeInterreflected) {
-    out->passes.push_back(texelPass(TransferKind::kInterreflected, 3, r.bounces, std::move(r.interreflected)));
-  }
-  if (r.visibilityOrder > 0) {
-    TransferPass v = texelPass(TransferKind::kShadowed, 1, 0, std::move(r.visibility));
-    v.form = TransferForm::kVisibility;
-    v.order = r.visibilityOrder;
-    out->passes.push_back(std::move(v));
-  }
+  fillTexelBake(std::move(r), uv, o, out);
   return Status::ok();
 }
 
@@ -338,20 +334,10 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
                              ": TPFL multiplies each texel's visibility with the distant light");
   }
   if (options.biScale) PRT_RETURN_IF_ERROR(checkBiScaleOptions(options, scene));
-  // A visibility pass is glossy too: it shades with the split's lobe, and the diffuse passes
-  // must then hold the split's diffuse part, exactly as with transfer.glossy.
-  if (options.transfer.glossy || wantsVisibility(options)) {
-    PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, &scene));
-  }
-  // Before the vertex order and the report: a generated atlas splits vertices at its seams,
-  // and texture sets split them between objects. The order keeps each atlas's triangles
-  // contiguous (the asset's atlases are runs of triangles).
   TextureSetPlan atlas;
-  if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, &scene, &atlas));
   const bool synthesised = options.biScale && options.biScale->synthesised;
-  if (synthesised) PRT_RETURN_IF_ERROR(planTextureSets(idMapAtlasSettings(*options.biScale), &scene, &atlas));
   BakeOptions transfer;
-  prepareVertexBake(options, &scene, &transfer, &atlas.triangleAtlas);
+  PRT_RETURN_IF_ERROR(prepareAssetScene(options, &scene, &transfer, &atlas));
   report->vertices = scene.positions.size();
   report->triangles = scene.indices.size() / 3;
   report->lighting = transfer.lighting;
@@ -405,19 +391,75 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
       }
     }
   }
-  if (options.texels) {
-    if (!options.texels->keepVertexPasses) {
-      std::erase_if(asset->passes, [](const TransferPass& p) { return p.form == TransferForm::kVector; });
-    }
-    for (TransferPass& p : texel.passes) asset->passes.push_back(std::move(p));
-    asset->atlasUv = std::move(texel.atlasUv);
-    asset->atlases = std::move(texel.atlases);
-    asset->texelCoverage = std::move(texel.coverage);
-    asset->texelNormals = std::move(texel.normals);
-  }
+  if (options.texels) attachTexels(std::move(texel), options, asset);
   if (options.compress) {
     PRT_RETURN_IF_ERROR(
         compressPasses(*options.compress, options.compressMatrices.value_or(*options.compress), asset, &report->compressed));
+  }
+  return Status::ok();
+}
+
+Status prepareAssetScene(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer, TextureSetPlan* atlas) {
+  // A visibility pass is glossy too: it shades with the split's lobe, and the diffuse passes
+  // must then hold the split's diffuse part, exactly as with transfer.glossy.
+  if (options.transfer.glossy || wantsVisibility(options)) {
+    PRT_RETURN_IF_ERROR(applyGlossyMaterials(options.glossyMaterials, scene));
+  }
+  // Before the vertex order: a generated atlas splits vertices at its seams, and texture sets
+  // split them between objects. The order keeps each atlas's triangles contiguous (the
+  // asset's atlases are runs of triangles).
+  *atlas = TextureSetPlan{};
+  if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, scene, atlas));
+  // A synthesised id map lies on one atlas of its own (checkBiScaleOptions refuses it with texels).
+  if (options.biScale && options.biScale->synthesised) {
+    PRT_RETURN_IF_ERROR(planTextureSets(idMapAtlasSettings(*options.biScale), scene, atlas));
+  }
+  prepareVertexBake(options, scene, transfer, &atlas->triangleAtlas);
+  return Status::ok();
+}
+
+std::vector<TextureAtlas> texelAtlasesOf(const TextureSetPlan& plan, std::size_t triangles) {
+  std::vector<TextureAtlas> atlases;
+  for (std::size_t a = 0, first = 0; a < plan.atlases.size(); ++a) {
+    std::size_t end = first;
+    if (plan.triangleAtlas.empty()) {
+      end = triangles;
+    } else {
+      while (end < triangles && plan.triangleAtlas[end] == a) ++end;
+    }
+    const auto side = static_cast<std::uint32_t>(plan.atlases[a].size);
+    atlases.push_back(TextureAtlas{side, side, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end - first)});
+    first = end;
+  }
+  return atlases;
+}
+
+TexelBakeOptions texelBakeOptions(const AssetBakeOptions& options, const BakeOptions& transfer) {
+  TexelBakeOptions t;
+  t.transfer = transfer;
+  t.transfer.glossy = false;  // glossy stays per vertex (matrices)
+  t.dilation = options.texels->dilation;
+  t.visibilityOrder = options.texels->visibilityOrder;
+  if (transfer.progress) {
+    // The same bar as the vertex passes, named "texel direct", "texel bounce N".
+    t.transfer.progress = [&transfer](const BakeProgress& p) {
+      const std::string name = std::string("texel ") + p.pass;
+      transfer.progress({name.c_str(), p.done, p.total, p.rays});
+    };
+  }
+  return t;
+}
+
+Status assembleTexelAsset(Scene&& scene, BakeResult&& vertex, TexelBakeResult&& texels, std::span<const Uv> atlasUv,
+                          std::vector<TextureAtlas> atlases, const AssetBakeOptions& options, const LightingInfo& lighting,
+                          BakedAsset* asset, std::vector<CompressedPass>* compressed) {
+  TexelBake texel;
+  texel.atlases = std::move(atlases);
+  fillTexelBake(std::move(texels), atlasUv, options, &texel);
+  *asset = makeAsset(std::move(scene), std::move(vertex), options, lighting);
+  attachTexels(std::move(texel), options, asset);
+  if (options.compress) {
+    PRT_RETURN_IF_ERROR(compressPasses(*options.compress, options.compressMatrices.value_or(*options.compress), asset, compressed));
   }
   return Status::ok();
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "baker/biscale/id_map_synthesis.h"
 #include "baker/scene/parametric_id_map.h"
 #include "baker/scene/scene.h"
+#include "baker/transfer/texel_bake.h"
 #include "baker/transfer/transfer_bake.h"
 #include "baker/unwrap/uv_unwrap.h"
 #include "prt/asset.h"
@@ -24,6 +26,8 @@
 #include "prt/transfer_codec.h"
 
 namespace prt::bake {
+
+struct TextureSetPlan;  // texture_sets.h
 
 // Transfer textures (docs/transfer-textures.md): the vector passes baked per texel over the
 // scene's lightmap atlas (TEXCOORD_1, else TEXCOORD_0: chooseUvAtlas, else a generated one),
@@ -159,8 +163,8 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
                  const std::function<void(const AssetBakeReport&)>& started = {});
 
 // The steps bakeAsset takes just before and after bakeTransfer, shared with a sharded bake
-// (baker/shard) that runs bakeTransfer's pieces itself (vertex passes only: it applies no
-// glossy material split and picks no atlas, which bakeAsset does before this).
+// (baker/shard) that runs bakeTransfer's pieces itself. prepareVertexBake applies no glossy
+// material split and picks no atlas: prepareAssetScene (below) does those first.
 // Puts *scene in bake order (optimizeMeshOrder, grouped by `triangleGroup` when given: the
 // texture sets' atlas per triangle, permuted with the triangles) and sets *transfer to the
 // options bakeAsset passes to bakeTransfer (local lighting's sphere resolved, interreflection
@@ -177,5 +181,25 @@ BakeOptions vertexBakeOptions(const AssetBakeOptions& options, const Scene& prep
 // *compressed). Errors: the codec's, as bakeAsset reports them.
 Status assembleVertexAsset(Scene&& scene, BakeResult&& result, const AssetBakeOptions& options,
                            const LightingInfo& lighting, BakedAsset* asset, std::vector<CompressedPass>* compressed);
+
+// bakeAsset's preparation of `scene`, shared with a sharded bake's plan: the glossy material
+// split (transfer.glossy or a texel visibility pass), the texture set (options.texels; *atlas
+// left empty without), then prepareVertexBake grouped by atlas. Errors: the split's and planTextureSets'.
+Status prepareAssetScene(const AssetBakeOptions& options, Scene* scene, BakeOptions* transfer, TextureSetPlan* atlas);
+
+// The asset's atlases of a planned texture set on the prepared scene's `triangles`: each a
+// run of triangles (plan.triangleAtlas, or all of them for one atlas), square at its size.
+std::vector<TextureAtlas> texelAtlasesOf(const TextureSetPlan& plan, std::size_t triangles);
+
+// The texel bake's options bakeAsset derives from options.texels (must be set) and the vertex
+// bake's `transfer` (glossy off; progress named "texel ..." through transfer's, which must outlive them).
+TexelBakeOptions texelBakeOptions(const AssetBakeOptions& options, const BakeOptions& transfer);
+
+// The asset bakeAsset makes of a finished vertex bake and texel bake over `atlasUv` and
+// `atlases` (options.texels set): assembleVertexAsset's, then the texel passes options stores,
+// the atlases, coverage and normals. Errors: the codec's.
+Status assembleTexelAsset(Scene&& scene, BakeResult&& vertex, TexelBakeResult&& texels, std::span<const Uv> atlasUv,
+                          std::vector<TextureAtlas> atlases, const AssetBakeOptions& options, const LightingInfo& lighting,
+                          BakedAsset* asset, std::vector<CompressedPass>* compressed);
 
 }  // namespace prt::bake

@@ -87,6 +87,84 @@ case_glossy() {
   done
 }
 
+# Transfer textures (--texels): the plan picks the atlas once and splits the texel receivers
+# too; the texel series runs beside the vertex one in its own files (PLAN.passK.texels.*).
+texel_small=(--texels --texture-size 64 --samples 64 --quiet)
+
+case_texels() {
+  # Two bounces (the bounce texture of every texel shard made from the whole previous bounce);
+  # the visibility vectors of --texel-glossy; the threshold ending both series early; local
+  # lighting with a codec and without the unshadowed pass; no interreflection (one pass).
+  local options
+  for options in "${texel_small[*]} --order 3 --bounces 2" "${texel_small[*]} --order 3 --bounces 2 --texel-glossy" \
+                 "${texel_small[*]} --order 2 --bounce-threshold 0.05" \
+                 "${texel_small[*]} --order 2 --bounces 1 --lighting local --compress q16 --passes shadowed,interreflected" \
+                 "${texel_small[*]} --order 3 --passes unshadowed,shadowed"; do
+    identical_to_one_machine "$options" 1 2 3
+  done
+  # The two series stop apart: at threshold 0.1 the room's vertex series gathers 3 bounces, its
+  # texel series 2, so pass 3 has vertex shards and no texel ones (nor a texel merged pass).
+  local passes
+  run --default -o one.prt "${texel_small[@]}" --order 2 --bounce-threshold 0.1
+  passes=$(run plan --default -o room.plan --shards 2 "${texel_small[@]}" --order 2 --bounce-threshold 0.1 --json | plan_passes)
+  bake_all room.plan sharded.prt 2 "$passes"
+  cmp one.prt sharded.prt || fail "threshold 0.1: the merged texel asset differs from the one-machine bake"
+  [[ -e room.plan.pass3.shard1 && -e room.plan.pass3.merged && -e room.plan.pass2.texels.merged && ! -e room.plan.pass3.texels.shard0 &&
+     ! -e room.plan.pass3.texels.merged && ! -e room.plan.pass4.merged ]] ||
+    fail "threshold 0.1: the vertex series did not go one bounce past the texel series"
+  rm -f room.plan*
+  # The texel files are there, beside the vertex ones, and named for their series.
+  run plan --default -o room.plan --shards 2 "${texel_small[@]}" --order 2 --bounces 1
+  bake_all room.plan sharded.prt 2 2
+  [[ -s room.plan.pass0.texels.shard1 && -s room.plan.pass1.texels.shard0 && -s room.plan.pass1.texels.merged ]] ||
+    fail "a texel plan wrote no texel shards or merged passes"
+  # More shards than blocks of 64 texel receivers: refused before any work.
+  expect_failure 4 "shard count 30 exceeds the scene's 26 blocks of 64 texel receivers" \
+    "$bake" plan --default -o big.plan --shards 30 "${texel_small[@]}"
+  [[ ! -e big.plan ]] || fail "a refused plan was written"
+}
+
+case_texels_damaged() {
+  local options=("${texel_small[@]}" --order 3 --bounces 2)
+  run --default -o one.prt "${options[@]}"
+  run plan --default -o room.plan --shards 3 "${options[@]}"
+  bake_all room.plan merged.prt 3 3
+  cmp one.prt merged.prt || fail "the merged texel asset differs from the one-machine bake"
+  # A missing texel shard: named by its merge, by merge -o, and by the next bounce's shards.
+  mv room.plan.pass1.texels.shard2 saved.shard
+  expect_failure 3 "texel shard 2 of pass 1 \('room.plan.pass1.texels.shard2'\) is missing \(run prt-bake bake-shard --plan room.plan --shard 2 --pass 1\)" \
+    "$bake" merge --plan room.plan --pass 1
+  expect_failure 3 "texel shard 2 of pass 1 .* is missing" "$bake" merge --plan room.plan -o out.prt
+  expect_failure 3 "texel shard 2 of pass 1 .* is missing" "$bake" bake-shard --plan room.plan --shard 0 --pass 2
+  mv saved.shard room.plan.pass1.texels.shard2
+  expect_failure 3 "texel merged pass 1 .* is missing" \
+    bash -c "mv room.plan.pass1.texels.merged saved.merged && '$bake' bake-shard --plan room.plan --shard 1 --pass 2"
+  mv saved.merged room.plan.pass1.texels.merged
+  # A flipped byte in a texel direct shard's hit records: the bounce shard that reads them
+  # refuses it by name and writes nothing; merge -o too.
+  cp room.plan.pass0.texels.shard1 saved.shard
+  flip_byte room.plan.pass0.texels.shard1 $(($(stat -c %s room.plan.pass0.texels.shard1) - 100))
+  expect_failure 4 "texel shard 1 of pass 0 \('room.plan.pass0.texels.shard1'\) is corrupt: payload checksum mismatch" \
+    bash -c "rm room.plan.pass1.texels.shard1 && '$bake' bake-shard --plan room.plan --shard 1 --pass 1"
+  [[ ! -e room.plan.pass1.texels.shard1 ]] || fail "a texel bounce shard was written from damaged hit records"
+  expect_failure 4 "texel shard 1 of pass 0 .* is corrupt: payload checksum mismatch" "$bake" merge --plan room.plan -o out.prt
+  cp saved.shard room.plan.pass0.texels.shard1
+  run bake-shard --plan room.plan --shard 1 --pass 1 --quiet
+  # A flipped byte in a texel bounce shard, cut short, not a shard, a vertex shard in its place.
+  flip_byte room.plan.pass2.texels.shard0 100
+  expect_failure 4 "texel shard 0 of pass 2 \('room.plan.pass2.texels.shard0'\) is corrupt: payload checksum mismatch" \
+    "$bake" merge --plan room.plan -o out.prt
+  head -c 1000 room.plan.pass1.texels.shard2 > cut && mv cut room.plan.pass1.texels.shard2
+  expect_failure 4 "texel shard 2 of pass 1 .* is corrupt: truncated" "$bake" merge --plan room.plan --pass 1
+  cp room.plan.pass1.shard2 room.plan.pass1.texels.shard2
+  expect_failure 4 "texel shard 2 of pass 1 .* is corrupt: not a texel bake shard" "$bake" merge --plan room.plan --pass 1
+  [[ ! -e out.prt ]] || fail "a failed merge wrote its output"
+  # A damaged prepared scene's atlas UVs (its last bytes): refused by its checksum, named.
+  flip_byte room.plan.scene $(($(stat -c %s room.plan.scene) - 4))
+  expect_failure 4 "the prepared scene \('room.plan.scene'\) is corrupt: payload checksum mismatch" \
+    "$bake" bake-shard --plan room.plan --shard 0 --pass 0
+}
+
 # A 4-shard plan of the small room with every pass done and merged.
 baked_plan() {
   run --default -o one.prt "${small[@]}"
@@ -158,14 +236,20 @@ case_mismatched() {
 }
 
 case_changed_scene() {
-  cp "$models/glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf" box.gltf
-  run plan box.gltf -o box.plan --shards 1 "${small[@]}"
-  run bake-shard --plan box.plan --shard 0 --pass 0 --quiet
-  sed -i 's/"metallicFactor": 0.0/"metallicFactor": 0.0, "baseColorFactor": [0.5, 0.5, 0.5, 1.0]/' box.gltf
-  expect_failure 4 "the scene '.*box.gltf' changed since the plan was made" "$bake" bake-shard --plan box.plan --shard 0 --pass 1
-  expect_failure 4 "changed since the plan was made" "$bake" merge --plan box.plan --pass 0
-  rm box.gltf
-  expect_failure 3 "box.gltf" "$bake" bake-shard --plan box.plan --shard 0 --pass 0
+  local texels
+  # The vertex bake, then a texel bake (whose atlas the plan took from the scene's UVs).
+  for texels in "" "--texels --texture-size 32"; do
+    cp "$models/glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf" box.gltf
+    # shellcheck disable=SC2086
+    run plan box.gltf -o box.plan --shards 1 "${small[@]}" $texels
+    run bake-shard --plan box.plan --shard 0 --pass 0 --quiet
+    sed -i 's/"metallicFactor": 0.0/"metallicFactor": 0.0, "baseColorFactor": [0.5, 0.5, 0.5, 1.0]/' box.gltf
+    expect_failure 4 "the scene '.*box.gltf' changed since the plan was made" "$bake" bake-shard --plan box.plan --shard 0 --pass 1
+    expect_failure 4 "changed since the plan was made" "$bake" merge --plan box.plan --pass 0
+    rm box.gltf
+    expect_failure 3 "box.gltf" "$bake" bake-shard --plan box.plan --shard 0 --pass 0
+    rm -f box.plan*
+  done
 }
 
 case_prepared_scene() {
@@ -204,8 +288,9 @@ case_usage() {
   expect_failure 2 "missing --shards" "$bake" plan --default -o p.plan
   expect_failure 2 "--shards '0' is out of range" "$bake" plan --default -o p.plan --shards 0
   expect_failure 4 "shard count 400 exceeds the scene's 320 blocks of 64 vertices" "$bake" plan --default -o p.plan --shards 400
-  expect_failure 4 "sharded bakes do not support --texels yet" "$bake" plan --default -o p.plan --shards 2 --texels
-  expect_failure 4 "sharded bakes do not support --texel-glossy yet" "$bake" plan --default -o p.plan --shards 2 --texels --texel-glossy
+  # Normal maps shade texels, and the prepared scene does not hold them (yet).
+  expect_failure 4 "sharded bakes do not support --texels on a normal-mapped scene yet" \
+    "$bake" plan "$models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf" -o p.plan --shards 1 --texels --texture-size 64
   expect_failure 2 "unknown option '--bogus'" "$bake" plan --default -o p.plan --shards 2 --bogus
   [[ ! -e p.plan ]] || fail "a refused plan was written"
   expect_failure 3 "no-such.plan" "$bake" bake-shard --plan no-such.plan --shard 0 --pass 0

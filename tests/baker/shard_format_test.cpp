@@ -18,7 +18,8 @@
 namespace prt::bake {
 namespace {
 
-BakePlan samplePlan() {
+// texels: a texel plan, two atlases over the 300 triangles and 300 receivers in 3 ranges.
+BakePlan samplePlan(bool texels = false) {
   BakePlan p;
   p.scenePath = "/data/scene.glb";
   p.workingDirectory = "/data";
@@ -31,6 +32,11 @@ BakePlan samplePlan() {
   p.order = 3;
   p.passes = 3;
   EXPECT_TRUE(planRanges(p.vertices, 3, &p.shards).isOk());
+  if (texels) {
+    p.atlases = {{64, 64, 0, 200}, {32, 16, 200, 100}};
+    p.texelReceivers = 300;
+    EXPECT_TRUE(planRanges(p.texelReceivers, 3, &p.texelShards, "texel receivers").isOk());
+  }
   return p;
 }
 
@@ -50,32 +56,55 @@ TEST(ShardFormat, PlanRangesTileTheVerticesInWholeBlocks) {
 }
 
 TEST(ShardFormat, PlanRoundTripsAndRefusesDamage) {
-  BakePlan p = samplePlan();
-  const std::vector<std::uint8_t> bytes = encodeBakePlan(&p);
+  for (bool texels : {false, true}) {
+    BakePlan p = samplePlan(texels);
+    const std::vector<std::uint8_t> bytes = encodeBakePlan(&p);
+    BakePlan q;
+    ASSERT_TRUE(decodeBakePlan(bytes, &q).isOk());
+    EXPECT_EQ(q.scenePath, p.scenePath);
+    EXPECT_EQ(q.bakeArgs, p.bakeArgs);
+    EXPECT_EQ(q.sceneHash, p.sceneHash);
+    EXPECT_EQ(q.sceneName, "scene");
+    ASSERT_EQ(q.sceneFiles.size(), 2u);
+    EXPECT_EQ(q.sceneFiles[1].path, "/data/scene.bin");
+    EXPECT_EQ(q.sceneFiles[0].bytes, 1234u);
+    EXPECT_EQ(q.sceneFiles[0].crc32c, 0xabcdef01u);
+    EXPECT_EQ(q.shards.size(), 3u);
+    EXPECT_EQ(q.id, p.id);
+    ASSERT_EQ(q.atlases.size(), texels ? 2u : 0u);
+    EXPECT_EQ(q.texelReceivers, texels ? 300u : 0u);
+    ASSERT_EQ(q.texelShards.size(), texels ? 3u : 0u);
+    if (texels) {
+      EXPECT_EQ(q.atlases[1].height, 16u);
+      EXPECT_EQ(q.atlases[1].firstTriangle, 200u);
+      EXPECT_EQ(q.texelShards[1].begin, p.texelShards[1].begin);
+      EXPECT_EQ(q.texelShards[2].end, 300u);
+    }
+    for (std::size_t n = 0; n < bytes.size(); ++n) {
+      EXPECT_FALSE(decodeBakePlan(std::span(bytes).first(n), &q).isOk()) << "prefix of " << n << " bytes";
+    }
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      std::vector<std::uint8_t> b = bytes;
+      b[i] ^= 0x01;
+      EXPECT_FALSE(decodeBakePlan(b, &q).isOk()) << "byte " << i << " flipped";
+    }
+    std::vector<std::uint8_t> longer = bytes;
+    longer.push_back(0);
+    const Status s = decodeBakePlan(longer, &q);
+    EXPECT_EQ(s.code(), StatusCode::kCorrupt) << s.message();
+  }
+  // Atlases that leave triangles uncovered, and texel ranges past the receivers: refused, named.
+  BakePlan gap = samplePlan(true);
+  gap.atlases[1].triangleCount = 99;
   BakePlan q;
-  ASSERT_TRUE(decodeBakePlan(bytes, &q).isOk());
-  EXPECT_EQ(q.scenePath, p.scenePath);
-  EXPECT_EQ(q.bakeArgs, p.bakeArgs);
-  EXPECT_EQ(q.sceneHash, p.sceneHash);
-  EXPECT_EQ(q.sceneName, "scene");
-  ASSERT_EQ(q.sceneFiles.size(), 2u);
-  EXPECT_EQ(q.sceneFiles[1].path, "/data/scene.bin");
-  EXPECT_EQ(q.sceneFiles[0].bytes, 1234u);
-  EXPECT_EQ(q.sceneFiles[0].crc32c, 0xabcdef01u);
-  EXPECT_EQ(q.shards.size(), 3u);
-  EXPECT_EQ(q.id, p.id);
-  for (std::size_t n = 0; n < bytes.size(); ++n) {
-    EXPECT_FALSE(decodeBakePlan(std::span(bytes).first(n), &q).isOk()) << "prefix of " << n << " bytes";
-  }
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    std::vector<std::uint8_t> b = bytes;
-    b[i] ^= 0x01;
-    EXPECT_FALSE(decodeBakePlan(b, &q).isOk()) << "byte " << i << " flipped";
-  }
-  std::vector<std::uint8_t> longer = bytes;
-  longer.push_back(0);
-  const Status s = decodeBakePlan(longer, &q);
-  EXPECT_EQ(s.code(), StatusCode::kCorrupt) << s.message();
+  Status s = decodeBakePlan(encodeBakePlan(&gap), &q);
+  EXPECT_EQ(s.code(), StatusCode::kCorrupt);
+  EXPECT_NE(s.message().find("the atlases cover 299 of 300 triangles"), std::string::npos) << s.message();
+  BakePlan past = samplePlan(true);
+  past.texelReceivers = 200;
+  s = decodeBakePlan(encodeBakePlan(&past), &q);
+  EXPECT_EQ(s.code(), StatusCode::kCorrupt);
+  EXPECT_NE(s.message().find("texel shard 2 covers"), std::string::npos) << s.message();
 }
 
 // Two triangles over four vertices, with specular materials when `glossy`.
@@ -91,28 +120,38 @@ Scene sampleScene(bool glossy) {
 
 TEST(ShardFormat, PreparedSceneRoundTripsItsHashAndRefusesDamage) {
   for (bool glossy : {false, true}) {
-    const Scene s = sampleScene(glossy);
-    const std::vector<std::uint8_t> payload = encodePreparedScene(s);
-    // The payload's checksum is the scene hash: the container's check is the plan's.
-    EXPECT_EQ(crc32c(payload), sceneHash(s));
-    Scene t;
-    ASSERT_TRUE(decodePreparedScene(payload, &t).isOk());
-    EXPECT_EQ(t.indices, s.indices);
-    EXPECT_EQ(sceneHash(t), sceneHash(s));
-    EXPECT_EQ(t.specular.size(), glossy ? 4u : 0u);
-    if (glossy) {
-      EXPECT_EQ(t.specular[2].exponent, 200.0f);
-      EXPECT_EQ(t.specular[2].f90, 0.5f);
+    for (bool texels : {false, true}) {
+      const Scene s = sampleScene(glossy);
+      const std::vector<Uv> uv = texels ? std::vector<Uv>{{0.1f, 0.2f}, {0.3f, 0.4f}, {0.5f, 0.6f}, {0.7f, 0.875f}} : std::vector<Uv>{};
+      const std::vector<std::uint8_t> payload = encodePreparedScene(s, uv);
+      // The payload's checksum is the scene hash: the container's check is the plan's.
+      EXPECT_EQ(crc32c(payload), sceneHash(s, uv));
+      if (texels) {
+        EXPECT_NE(sceneHash(s, uv), sceneHash(s));  // another atlas is another plan's scene
+      }
+      Scene t;
+      std::vector<Uv> tuv{{9, 9}};
+      ASSERT_TRUE(decodePreparedScene(payload, &t, &tuv).isOk());
+      ASSERT_EQ(tuv.size(), uv.size());
+      if (texels) {
+        EXPECT_EQ(tuv[3].v, 0.875f);
+      }
+      EXPECT_EQ(t.indices, s.indices);
+      EXPECT_EQ(sceneHash(t, tuv), sceneHash(s, uv));
+      EXPECT_EQ(t.specular.size(), glossy ? 4u : 0u);
+      if (glossy) {
+        EXPECT_EQ(t.specular[2].exponent, 200.0f);
+        EXPECT_EQ(t.specular[2].f90, 0.5f);
+      }
+      for (std::size_t n = 0; n < payload.size(); ++n) {
+        // Every prefix is cut short: the flags say which arrays follow.
+        Scene u;
+        EXPECT_FALSE(decodePreparedScene(std::span(payload).first(n), &u).isOk()) << "prefix of " << n << " bytes";
+      }
+      std::vector<std::uint8_t> longer = payload;
+      longer.push_back(0);
+      EXPECT_EQ(decodePreparedScene(longer, &t).code(), StatusCode::kCorrupt);
     }
-    for (std::size_t n = 0; n < payload.size(); ++n) {
-      // Every prefix: cut short, or (cut exactly before the materials) a valid scene without them.
-      Scene u;
-      const bool ok = decodePreparedScene(std::span(payload).first(n), &u).isOk();
-      EXPECT_EQ(ok, glossy && n == encodePreparedScene(sampleScene(false)).size()) << "prefix of " << n << " bytes";
-    }
-    std::vector<std::uint8_t> longer = payload;
-    longer.push_back(0);
-    EXPECT_EQ(decodePreparedScene(longer, &t).code(), StatusCode::kCorrupt);
   }
   // An index outside the vertices would read past them in every gather: refused.
   Scene bad = sampleScene(false);
@@ -147,6 +186,15 @@ TEST(ShardFormat, ShardFileOfAnotherKindIsNotRead) {
   const Status s = decodeShardFile(plan, ShardFileKind::kShard, &h, &payload);
   EXPECT_EQ(s.code(), StatusCode::kBadMagic);
   EXPECT_NE(s.message().find("not a bake shard"), std::string::npos) << s.message();
+  // A texel series' file never passes for the vertex series' (their ranges count other things).
+  ShardHeader t;
+  t.kind = ShardFileKind::kTexelShard;
+  const std::vector<std::uint8_t> texel = encodeShardFile(t, std::vector<std::uint8_t>(8, 0));
+  EXPECT_EQ(decodeShardFile(texel, ShardFileKind::kShard, &h, &payload).code(), StatusCode::kBadMagic);
+  EXPECT_TRUE(decodeShardFile(texel, ShardFileKind::kTexelShard, &h, &payload).isOk());
+  t.kind = ShardFileKind::kTexelMergedPass;
+  const Status m = decodeShardFile(encodeShardFile(t, {}), ShardFileKind::kMergedPass, &h, &payload);
+  EXPECT_EQ(m.code(), StatusCode::kBadMagic);
 }
 
 // A direct shard of 70 vertices (two blocks) with hits, at order 2.
@@ -216,6 +264,35 @@ TEST(ShardFormat, DirectShardRoundTripsAndRefusesDamage) {
     b[i] ^= 0x80;
     EXPECT_FALSE(decodeShardFile(b, ShardFileKind::kShard, &g, &view).isOk()) << "byte " << i << " flipped";
   }
+}
+
+// A texel direct shard with visibility vectors (--texel-glossy): round-trips; refused where the
+// plan has none, with another vector size, or together with the glossy flag.
+TEST(ShardFormat, DirectShardVisibilityRoundTripsAndRefusesDamage) {
+  DirectShard d = sampleDirect();
+  d.hasVisibility = true;
+  d.visibility.assign(70 * 9, 0.5f);
+  d.visibility[9 * 69 + 8] = -2.0f;
+  const std::vector<std::uint8_t> payload = encodeDirectShard(d);
+  DirectShard e;
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kTransfer, &e, 9).isOk());
+  EXPECT_TRUE(e.hasVisibility);
+  EXPECT_EQ(e.visibility, d.visibility);
+  EXPECT_EQ(e.shadowed, d.shadowed);
+  ASSERT_TRUE(decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kHits, &e, 9).isOk());
+  ASSERT_EQ(e.hitViews.size(), 2u);
+  EXPECT_EQ(e.hitViews[1].hits[0].triangle, 9u);
+  Status s = decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kTransfer, &e, 0);
+  EXPECT_EQ(s.code(), StatusCode::kCorrupt);
+  EXPECT_NE(s.message().find("visibility vectors the plan has none of"), std::string::npos) << s.message();
+  EXPECT_FALSE(decodeDirectShard(payload, 70, 4, 0, DirectShardPart::kTransfer, &e, 16).isOk());
+  for (std::size_t n = 0; n < payload.size(); ++n) {
+    EXPECT_FALSE(decodeDirectShard(std::span(payload).first(n), 70, 4, 0, DirectShardPart::kTransfer, &e, 9).isOk())
+        << "prefix of " << n << " bytes";
+  }
+  std::vector<std::uint8_t> both = payload;
+  both[0] |= 2;  // glossy too: never in one file
+  EXPECT_EQ(decodeDirectShard(both, 70, 4, 4, DirectShardPart::kTransfer, &e, 9).code(), StatusCode::kCorrupt);
 }
 
 // The records' values are checked once, by their reader (gatherBounceRange), since the

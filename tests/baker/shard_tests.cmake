@@ -8,7 +8,7 @@ add_executable(prt_shard_format_tests ${CMAKE_CURRENT_LIST_DIR}/shard_format_tes
 target_link_libraries(prt_shard_format_tests PRIVATE prt_shard GTest::gtest_main)
 target_compile_options(prt_shard_format_tests PRIVATE ${PRT_STRICT_WARNINGS})
 add_test(NAME shard_format_tests COMMAND prt_shard_format_tests)
-set(PRT_SHARD_CASES identical glossy missing corrupt mismatched changed_scene prepared_scene usage)
+set(PRT_SHARD_CASES identical glossy texels texels_damaged missing corrupt mismatched changed_scene prepared_scene usage)
 foreach(case IN LISTS PRT_SHARD_CASES)
   add_test(NAME shard_cli_${case}
            COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/shard_cli_test.sh ${case} $<TARGET_FILE:prt-bake>
@@ -21,7 +21,7 @@ endforeach()
 # take turns (one set of ports), and each has a time limit so a stuck job fails the test.
 # Not under the sanitizers: the time goes to Slurm's scheduling, and the code the jobs run is
 # the shard_cli cases' (which the sanitizer build runs).
-set(PRT_SLURM_CASES identical requeue failure)
+set(PRT_SLURM_CASES identical texels requeue failure)
 if(PRT_SANITIZE)
   set(PRT_SLURM_CASES)
 endif()

@@ -6,6 +6,8 @@
 #   identical  the asset equals the one-machine bake's bytes
 #   requeue    a shard's prt-bake is killed (SIGKILL) mid-run; the job requeues itself, runs
 #              again, and the asset still equals the one-machine bake's bytes
+#   texels     a transfer-texture bake (--texels, 2 shards): the texel series runs in the same
+#              jobs, and the asset equals the one-machine bake's bytes
 #   failure    a bake that cannot finish (a shard's output path is a directory) fails with
 #              --wait naming the shard, instead of hanging
 set -euo pipefail
@@ -36,6 +38,13 @@ case_identical() {
   timeout 600 "$repo/scripts/slurm-bake.sh" --default -o room.prt --shards 4 --wait "${options[@]}"
   cmp one.prt room.prt || fail "the Slurm bake differs from the one-machine bake"
   ls room.prt.shards/logs/pass2-shard3.log > /dev/null || fail "no log of the last pass's shards"
+}
+
+case_texels() {
+  timeout 300 "$bake" --default -o one-texels.prt "${options[@]}" --texels --texture-size 64 --quiet
+  timeout 600 "$repo/scripts/slurm-bake.sh" --default -o room.prt --shards 2 --wait "${options[@]}" --texels --texture-size 64
+  cmp one-texels.prt room.prt || fail "the Slurm texel bake differs from the one-machine bake"
+  ls room.prt.shards/plan.pass2.texels.shard1 > /dev/null || fail "no texel shard of the last pass"
 }
 
 job_state() { scontrol show job "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | head -1; }

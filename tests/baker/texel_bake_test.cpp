@@ -11,6 +11,7 @@
 
 #include "baker/test_scenes.h"
 #include "baker/texture/atlas_samples.h"
+#include "baker/transfer/texel_range.h"
 #include "prt/glossy_radiance.h"
 #include "prt/sh_basis.h"
 #include "prt/sh_triple_product.h"
@@ -386,6 +387,61 @@ TEST(TexelBake, ResultsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.interreflected, two.interreflected);
   EXPECT_EQ(one.coverage, two.coverage);
   EXPECT_EQ(one.bounceEnergy, two.bounceEnergy);
+}
+
+// The pieces a sharded bake runs (texel_range.h): the direct pass over two block ranges is the
+// whole pass's, and a bounce's gather refuses hit records that do not fit the scene (a
+// sharded bake reads them from a file) before it reads the texture at them.
+TEST(TexelBake, RangesPutTogetherAreTheWholeDirectPassAndBadHitsAreRefused) {
+  AtlasScene s;
+  addFloor(&s, 2.0f, 0.0f, 1.0f, {0.7f, 0.6f, 0.5f});
+  addBox(&s, {-0.5f, 0.0f, -0.5f}, {0.5f, 0.8f, 0.5f}, 0.0f, 1.0f, 0.0f, 1.0f, {0.4f, 0.8f, 0.3f});
+  const std::vector<TextureAtlas> atlases = {{40, 40, 0, 2}, {30, 20, 2, 12}};
+  TexelBakeOptions o = quickOptions();
+  o.transfer.maxBounces = 1;
+  TexelReceivers rec;
+  ASSERT_TRUE(prepareTexelReceivers(s.scene, s.uv, atlases, o, &rec).isOk());
+  ASSERT_GT(rec.count(), 2 * kBlockVertices);
+  TexelDirectRange whole, first, rest;
+  ASSERT_TRUE(bakeTexelDirectRange(s.scene, rec, o, 0, rec.count(), &whole).isOk());
+  ASSERT_TRUE(bakeTexelDirectRange(s.scene, rec, o, 0, kBlockVertices, &first).isOk());
+  ASSERT_TRUE(bakeTexelDirectRange(s.scene, rec, o, kBlockVertices, rec.count(), &rest).isOk());
+  std::vector<float> shadowed = first.shadowed;
+  shadowed.insert(shadowed.end(), rest.shadowed.begin(), rest.shadowed.end());
+  EXPECT_EQ(shadowed, whole.shadowed);
+  ASSERT_EQ(rest.blocks.size() + 1, whole.blocks.size());
+  EXPECT_EQ(rest.blocks[0].hitStart, whole.blocks[1].hitStart);
+  EXPECT_EQ(rest.blocks[0].hits.size(), whole.blocks[1].hits.size());
+  // Not block-aligned: refused, naming the range.
+  const Status unaligned = bakeTexelDirectRange(s.scene, rec, o, 10, 70, &first);
+  EXPECT_EQ(unaligned.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(unaligned.message().find("[10, 70)"), std::string::npos) << unaligned.message();
+
+  std::vector<float> b0;
+  double e0 = 0.0;
+  ASSERT_TRUE(texelFirstBounce(rec, o.transfer.order, whole.shadowed, &b0, &e0).isOk());
+  TexelTexture texture;
+  ASSERT_TRUE(scatterTexels(rec, atlases, b0, 3 * shCoeffCount(o.transfer.order), o.dilation, &texture).isOk());
+  std::vector<HitBlock> blocks = whole.blocks;
+  ASSERT_FALSE(blocks[1].hits.empty());
+  std::vector<float> current;
+  std::vector<double> energy;
+  std::uint64_t unmapped = 0;
+  PassStats stats;
+  ASSERT_TRUE(gatherTexelBounceRange(s.scene, s.uv, atlases, rec, o, 1, 0, hitBlockViews(blocks), texture, &current,
+                                     &energy, &unmapped, &stats)
+                  .isOk());
+  EXPECT_GT(energy[0] + energy[1], 0.0);
+  blocks[1].hits[0].triangle = static_cast<std::uint32_t>(s.scene.indices.size() / 3);  // one past the triangles
+  Status bad = gatherTexelBounceRange(s.scene, s.uv, atlases, rec, o, 1, 0, hitBlockViews(blocks), texture, &current,
+                                      &energy, &unmapped, &stats);
+  EXPECT_EQ(bad.code(), StatusCode::kCorrupt);
+  EXPECT_NE(bad.message().find("texel block 1"), std::string::npos) << bad.message();
+  blocks[1].hits[0] = whole.blocks[1].hits[0];
+  blocks[1].hits[0].weight = std::nanf("");
+  bad = gatherTexelBounceRange(s.scene, s.uv, atlases, rec, o, 1, 0, hitBlockViews(blocks), texture, &current, &energy,
+                               &unmapped, &stats);
+  EXPECT_EQ(bad.code(), StatusCode::kCorrupt);
 }
 
 TEST(TexelBake, RejectsBadInputWithAClearMessage) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "prt/sh_rotation.h"
 #include "transfer_texture.h"
@@ -12,10 +13,9 @@ namespace {
 
 const char kComponent[4] = {'x', 'y', 'z', 'w'};
 
-// "t3.y": component i % 4 of texel i / 4 of the vectors named `name`.
-std::string element(const char* name, int i) {
-  return std::string(name) + std::to_string(i / 4) + "." + kComponent[i % 4];
-}
+// Writes "t3.y": component i % 4 of texel i / 4 of the vectors named `name`. (A stream: GCC 12
+// warns falsely about string concatenations of this shape, -Wrestrict.)
+void element(std::ostringstream& out, char name, int i) { out << name << i / 4 << '.' << kComponent[i % 4]; }
 
 }  // namespace
 
@@ -64,30 +64,41 @@ Status packBiScaleRotations(std::span<const Vec3> normals, std::span<const Vec3>
 
 std::string biScaleRotateMain(int bands, int rowTexels) {
   const int rotationTexels = biScaleRotationTexels(bands);
-  std::string s = "void main() {\n  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);\n";
-  s += "  int row = (uChannel * uVertices + gl_VertexID) * " + std::to_string(rowTexels) + ";\n";
-  for (int t = 0; t < texelsForOrder(bands); ++t) s += "  vec4 t" + std::to_string(t) + " = transferTexel(row + " + std::to_string(t) + ");\n";
-  s += "  int base = gl_VertexID * " + std::to_string(std::max(1, rotationTexels)) + ";\n";
-  for (int t = 0; t < rotationTexels; ++t) s += "  vec4 r" + std::to_string(t) + " = rotationTexel(base + " + std::to_string(t) + ");\n";
+  std::ostringstream s;
+  s << "void main() {\n  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);\n";
+  s << "  int row = (uChannel * uVertices + gl_VertexID) * " << rowTexels << ";\n";
+  for (int t = 0; t < texelsForOrder(bands); ++t) s << "  vec4 t" << t << " = transferTexel(row + " << t << ");\n";
+  s << "  int base = gl_VertexID * " << std::max(1, rotationTexels) << ";\n";
+  for (int t = 0; t < rotationTexels; ++t) s << "  vec4 r" << t << " = rotationTexel(base + " << t << ");\n";
+  // Output coefficient i: band 0 as it is; band l's entry m the row of its block times band l's
+  // coefficients; beyond bands^2, 0.
   std::vector<std::string> out(static_cast<std::size_t>(rowTexels) * 4, "0.0");
-  out[0] = element("t", 0);
+  {
+    std::ostringstream e;
+    element(e, 't', 0);
+    out[0] = e.str();
+  }
   int entry = 0;
   for (int l = 1; l < bands; ++l) {
     const int first = l * l, width = 2 * l + 1;
     for (int m = 0; m < width; ++m) {
-      std::string sum;
+      std::ostringstream sum;
       for (int k = 0; k < width; ++k) {
-        sum += (k ? " + " : "") + element("r", entry++) + " * " + element("t", first + k);
+        if (k) sum << " + ";
+        element(sum, 'r', entry++);
+        sum << " * ";
+        element(sum, 't', first + k);
       }
-      out[static_cast<std::size_t>(first + m)] = sum;
+      out[static_cast<std::size_t>(first + m)] = sum.str();
     }
   }
   for (int t = 0; t < rowTexels; ++t) {
-    s += "  vR" + std::to_string(t) + " = vec4(";
-    for (int k = 0; k < 4; ++k) s += (k ? ",\n    " : "") + out[static_cast<std::size_t>(4 * t + k)];
-    s += ");\n";
+    s << "  vR" << t << " = vec4(";
+    for (int k = 0; k < 4; ++k) s << (k ? ",\n    " : "") << out[static_cast<std::size_t>(4 * t + k)];
+    s << ");\n";
   }
-  return s + "}\n";
+  s << "}\n";
+  return s.str();
 }
 
 void biScaleRotateCpu(const BiScaleRotations& rotations, std::span<const float> transfer, int vertices, int rowTexels,
