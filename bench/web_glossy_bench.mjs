@@ -7,6 +7,9 @@
 // rounds, best round per setting. Writes JSON (and prints a Markdown table).
 // Usage: node web_glossy_bench.mjs BASE_URL SCENE OUT_JSON [--mode shadowed|interreflected]
 //          [--order N] [--gpu] [--synthetic BANDS,CHANNELS,CLUSTERS,VECTORS] [--rounds R (default 5)]
+//          [--bi-scale]
+// --bi-scale adds the scene's bi-scale frames (docs/bi-scale.md; the scene needs an RTT): camera
+// moving, lights moving, and view dependence off.
 // SCENE is the catalogue name of a scene with a glossy matrix pass; --synthetic puts a
 // synthetic CPCA matrix pass of that shape on it instead (any baked scene; stated in the JSON).
 import fs from 'node:fs';
@@ -28,6 +31,7 @@ const mode = option('--mode') || 'interreflected';
 const order = Number(option('--order') || 5);
 const synthetic = option('--synthetic');
 const ROUNDS = Number(option('--rounds') || 5), FRAMES = 10;
+const biScale = argv.includes('--bi-scale');
 
 const args = ['--no-sandbox', '--disable-background-networking', '--disable-component-update', '--no-first-run'];
 if (!gpu) args.push('--use-angle=swiftshader', '--enable-unsafe-swiftshader');
@@ -44,6 +48,7 @@ if (synthetic) {
   const [bands, channels, clusters, vectors] = synthetic.split(',').map(Number);
   await page.evaluate((s) => window.prtApp.useSyntheticGlossy(s), { mode, bands, channels, clusters, vectors, seed: 1, f0: 0.5, exponent: 30, minGreen: 0 });
 }
+if (biScale && !(await page.evaluate(() => window.prtApp.biScaleOrder))) throw new Error(`scene '${scene}' has no RTT (--bi-scale)`);
 const info = await page.evaluate((m) => {
   const gl = document.getElementById('view').getContext('webgl2');
   const ext = gl.getExtension('WEBGL_debug_renderer_info');
@@ -65,7 +70,14 @@ const settings = [
   { name: 'glossy: table + fused step (lights moving)', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'relight' },
   { name: 'glossy: table + transferred radiance + view step', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'transfer' },
   { name: 'glossy: view step alone', set: { mode, order, glossy: { [mode]: 'both' } }, glossy: 'view' },
+  ...(biScale ? [
+    { name: 'bi-scale, camera moving', set: { mode, order, biScale: true, viewDependence: true } },
+    { name: 'bi-scale, lights moving', set: { mode, order, biScale: true, viewDependence: true }, relight: true },
+    { name: 'bi-scale, view dependence off', set: { mode, order, biScale: true, viewDependence: false } },
+  ] : []),
 ];
+// The PRT rows draw without the meso scale.
+for (const s of settings) if (!('biScale' in s.set)) s.set.biScale = false;
 const best = Object.fromEntries(settings.map((s) => [s.name, Infinity]));
 for (let round = 0; round < ROUNDS; round++) {
   for (const s of settings) {

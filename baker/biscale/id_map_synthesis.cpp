@@ -125,4 +125,61 @@ Status synthesiseIdMap(std::span<const Vec3> positions, std::span<const Vec3> no
   return Status::ok();
 }
 
+Status synthesiseTriangleIdMap(std::span<const Vec3> positions, std::span<const Vec3> normals,
+                               std::span<const std::uint32_t> indices, const IdMapSettings& settings, SynthesisedIdMap* out) {
+  *out = SynthesisedIdMap{};
+  PRT_RETURN_IF_ERROR(checkSettings(settings));
+  if (normals.size() != positions.size() || indices.size() % 3 != 0 || indices.empty()) {
+    return Status::error(StatusCode::kInvalidArgument, "the mesh's normals, positions and indices disagree");
+  }
+  // Triangle centroids and face normals stand for the texels' samples.
+  std::vector<AtlasTexel> samples;
+  samples.reserve(indices.size() / 3);
+  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
+    const std::uint32_t* c = &indices[3 * t];
+    if (c[0] >= positions.size() || c[1] >= positions.size() || c[2] >= positions.size()) {
+      return Status::error(StatusCode::kInvalidArgument, "triangle " + std::to_string(t) + " has an index out of range");
+    }
+    const Vec3 a = positions[c[0]], b = positions[c[1]], d = positions[c[2]];
+    AtlasTexel s;
+    s.index = t;
+    s.triangle = static_cast<std::uint32_t>(t);
+    s.position = (a + b + d) * (1.0f / 3.0f);
+    Vec3 n = cross(b - a, d - a);
+    const float length = std::sqrt(dot(n, n));
+    // A degenerate triangle takes its vertices' mean normal.
+    if (!(length > 0.0f)) n = normals[c[0]] + normals[c[1]] + normals[c[2]];
+    const float nl = std::sqrt(dot(n, n));
+    if (!std::isfinite(s.position.x + s.position.y + s.position.z) || !(nl > 0.0f) || !std::isfinite(nl)) {
+      return Status::error(StatusCode::kInvalidArgument, "triangle " + std::to_string(t) + " has no finite position or normal");
+    }
+    s.normal = n * (1.0f / nl);
+    samples.push_back(s);
+  }
+  const double diameter = settings.patchWidth * settings.cellPatches;
+  const double area = meshArea(positions, indices);
+  if (!(area > 0)) return Status::error(StatusCode::kInvalidArgument, "the mesh has zero area: no surface to place patches on");
+  const double cells = area / (kPi / 4 * diameter * diameter);
+  if (!(cells <= static_cast<double>(kMaxPatchPlacements))) return tooManyCells(std::ceil(cells), area, settings);
+  std::vector<SurfaceSeed> seeds;
+  SeedGrid grid(diameter);
+  throwSeedDarts(positions, normals, indices, diameter, std::max<std::size_t>(1, std::llround(cells)), settings.seed, &seeds, &grid);
+  fillSeedGaps(samples, diameter, kMaxPatchPlacements, &seeds, &grid);
+  if (seeds.size() > kMaxPatchPlacements) return tooManyCells(static_cast<double>(seeds.size()), area, settings);
+  SynthesisedIdMap r;
+  Pcg32 phases(settings.seed, kPhaseStream);
+  for (const SurfaceSeed& s : seeds) {
+    const float u0 = phases.nextFloat(), v0 = phases.nextFloat();
+    r.placements.push_back(placementAt(s, settings.patchWidth, u0, v0));
+  }
+  r.placementOfTexel.resize(samples.size());
+  for (const AtlasTexel& t : samples) {
+    const std::uint32_t id = nearestFacingSeed(grid, seeds, t.position, t.normal, diameter);
+    if (id == kNoSeed) return Status::error(StatusCode::kInternal, "triangle " + std::to_string(t.index) + " has no seed");
+    r.placementOfTexel[t.index] = static_cast<std::uint16_t>(id);
+  }
+  *out = std::move(r);
+  return Status::ok();
+}
+
 }  // namespace prt::bake

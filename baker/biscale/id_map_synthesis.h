@@ -44,4 +44,12 @@ Status synthesiseIdMap(std::span<const Vec3> positions, std::span<const Vec3> no
                        std::span<const std::uint32_t> indices, std::span<const Uv> atlasUv,
                        std::span<const TextureAtlas> atlases, const IdMapSettings& settings, SynthesisedIdMap* out);
 
+// The same over the mesh's triangles instead of an atlas (no UVs needed): each triangle takes
+// the placement of the facing seed nearest its centroid (its face normal), so cells end on
+// mesh edges; for meshes whose triangles are much smaller than a cell (scans). placementOfTexel
+// then holds one entry per triangle. Errors as synthesiseIdMap's, and kInvalidArgument for
+// inconsistent sizes, an index out of range or a non-finite position.
+Status synthesiseTriangleIdMap(std::span<const Vec3> positions, std::span<const Vec3> normals,
+                               std::span<const std::uint32_t> indices, const IdMapSettings& settings, SynthesisedIdMap* out);
+
 }  // namespace prt::bake

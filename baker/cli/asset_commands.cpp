@@ -324,7 +324,7 @@ int runInfoCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
       const std::string placement = atlases.idMap.empty()
                                         ? std::string("tangents and patch uv per vertex")
                                         : "tangents per vertex, synthesised id map of " + std::to_string(atlases.patchPlacements.size()) +
-                                              " placements over the atlas";
+                                              (atlases.idMapPerTriangle ? " placements per triangle" : " placements over the atlas");
       std::fprintf(out, "bi-scale: RTT order %d, %d channel%s, %dx%d samples x %dx%d views, %zu bytes; %s\n", rtt.order, rtt.channels,
                    rtt.channels == 1 ? "" : "s", rtt.spatial, rtt.spatial, rtt.views, rtt.views, atlases.rtt.size(), placement.c_str());
     }

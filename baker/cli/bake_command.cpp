@@ -123,7 +123,8 @@ constexpr const char* kHelp =
     "                            cells over the surface with random phases (needs no UVs; an atlas\n"
     "                            is generated with Blender when the scene's UVs are not one)\n"
     "  --cell-patches C          a cell's mean diameter in patch widths, >= 1 (default 3)\n"
-    "  --id-map-size N           the id map's atlas side in texels, 16..8192 (default 1024)\n"
+    "  --id-map-size N           store the id map over an atlas of N x N texels, 16..8192, instead\n"
+    "                            of per triangle (the default, for meshes finer than a cell)\n"
     "  --quiet                   no progress output\n"
     "  --json                    print bake statistics as JSON on stdout\n";
 
@@ -631,9 +632,11 @@ int runBakeCommand(std::span<const std::string> args, std::FILE* out, std::FILE*
     if (c.bake.biScale && !c.quiet) {
       const auto& b = *c.bake.biScale;
       if (b.synthesised) {
-        std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), synthesised id map: %zu cells of %g patches %g m wide, %dx%d atlas\n",
+        const std::string where = report.idMapSize > 0 ? std::to_string(report.idMapSize) + "x" + std::to_string(report.idMapSize) + " atlas"
+                                                       : std::string("per triangle");
+        std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), synthesised id map: %zu cells of %g patches %g m wide, %s\n",
                      describeRtt(b.rtt).c_str(), b.rtt.size(), report.placements, b.synthesised->cellPatches, b.synthesised->patchWidth,
-                     report.idMapSize, report.idMapSize);
+                     where.c_str());
       } else {
         std::fprintf(err, "prt-bake: bi-scale: %s (%zu bytes), %g patches per UV unit; %zu vertices with no UV direction\n",
                      describeRtt(b.rtt).c_str(), b.rtt.size(), b.placement.patchesPerUv, report.tangentFallbacks);

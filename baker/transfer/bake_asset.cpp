@@ -220,16 +220,21 @@ struct IdMapAsset {
 // vertex tangents along the same direction field as the placements' axes.
 Status synthesiseIdMapAsset(const Scene& scene, const TextureSetPlan& plan, const AssetBakeOptions::BiScale& b,
                             std::vector<Vec3>* tangents, IdMapAsset* out) {
-  const std::vector<Uv>& uv = scene.texcoord[plan.texcoord];
+  static const std::vector<Uv> kNone;
+  const std::vector<Uv>& uv = b.idMapSize > 0 ? scene.texcoord[plan.texcoord] : kNone;
   out->atlasUv.resize(2 * uv.size());
   for (std::size_t v = 0; v < uv.size(); ++v) {
     out->atlasUv[2 * v] = uv[v].u;
     out->atlasUv[2 * v + 1] = uv[v].v;
   }
-  const auto side = static_cast<std::uint32_t>(plan.atlases.front().size);
-  out->atlas = {side, side, 0, static_cast<std::uint32_t>(scene.indices.size() / 3)};
-  PRT_RETURN_IF_ERROR(synthesiseIdMap(scene.positions, scene.normals, scene.indices, uv, {&out->atlas, 1}, *b.synthesised, &out->map));
   tangents->resize(scene.normals.size());
+  if (b.idMapSize == 0) {
+    PRT_RETURN_IF_ERROR(synthesiseTriangleIdMap(scene.positions, scene.normals, scene.indices, *b.synthesised, &out->map));
+  } else {
+    const auto side = static_cast<std::uint32_t>(plan.atlases.front().size);
+    out->atlas = {side, side, 0, static_cast<std::uint32_t>(scene.indices.size() / 3)};
+    PRT_RETURN_IF_ERROR(synthesiseIdMap(scene.positions, scene.normals, scene.indices, uv, {&out->atlas, 1}, *b.synthesised, &out->map));
+  }
   for (std::size_t v = 0; v < scene.normals.size(); ++v) (*tangents)[v] = patchTangent(scene.normals[v]);
   return Status::ok();
 }
@@ -246,7 +251,7 @@ Status checkBiScaleOptions(const AssetBakeOptions& options, const Scene& scene) 
                                                            std::to_string(options.transfer.order));
   }
   if (options.biScale->synthesised) {
-    if (options.texels) {
+    if (options.texels && options.biScale->idMapSize > 0) {
       return Status::error(StatusCode::kInvalidArgument,
                            "the synthesised id map and --texels cannot share one atlas yet: give one of them (or --patches-per-uv)");
     }
@@ -381,13 +386,16 @@ Status bakeAsset(Scene&& scene, const AssetBakeOptions& options, BakedAsset* ass
     asset->tangents = std::move(tangents);
     asset->patchUv = std::move(patchUv);
     if (synthesised) {
-      asset->atlasUv = std::move(idMap.atlasUv);
-      asset->atlases = {idMap.atlas};
       asset->patchPlacements = std::move(idMap.map.placements);
       asset->idMap = std::move(idMap.map.placementOfTexel);
-      asset->texelCoverage.resize(asset->idMap.size());
-      for (std::size_t t = 0; t < asset->idMap.size(); ++t) {
-        asset->texelCoverage[t] = static_cast<std::uint8_t>(asset->idMap[t] == kNoPlacement ? TexelCoverage::kEmpty : TexelCoverage::kSampled);
+      asset->idMapPerTriangle = options.biScale->idMapSize == 0;
+      if (!asset->idMapPerTriangle) {
+        asset->atlasUv = std::move(idMap.atlasUv);
+        asset->atlases = {idMap.atlas};
+        asset->texelCoverage.resize(asset->idMap.size());
+        for (std::size_t t = 0; t < asset->idMap.size(); ++t) {
+          asset->texelCoverage[t] = static_cast<std::uint8_t>(asset->idMap[t] == kNoPlacement ? TexelCoverage::kEmpty : TexelCoverage::kSampled);
+        }
       }
     }
   }
@@ -411,7 +419,7 @@ Status prepareAssetScene(const AssetBakeOptions& options, Scene* scene, BakeOpti
   *atlas = TextureSetPlan{};
   if (options.texels) PRT_RETURN_IF_ERROR(planTextureSets(*options.texels, scene, atlas));
   // A synthesised id map lies on one atlas of its own (checkBiScaleOptions refuses it with texels).
-  if (options.biScale && options.biScale->synthesised) {
+  if (options.biScale && options.biScale->synthesised && options.biScale->idMapSize > 0) {
     PRT_RETURN_IF_ERROR(planTextureSets(idMapAtlasSettings(*options.biScale), scene, atlas));
   }
   prepareVertexBake(options, scene, transfer, &atlas->triangleAtlas);

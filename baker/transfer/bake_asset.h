@@ -91,12 +91,13 @@ struct AssetBakeOptions {
   struct BiScale {
     std::vector<std::uint8_t> rtt;
     ParametricIdMap placement;
-    // Set: the synthesised id map instead (docs/bi-scale.md, "Synthesised id map") over one
-    // atlas of idMapSize texels a side (the scene's UVs when they make a valid atlas, else one
-    // generated like --texels's, with `unwrap`); vertex tangents follow patchTangent. Not with
-    // texels (one atlas serves both: not yet).
+    // Set: the synthesised id map instead (docs/bi-scale.md, "Synthesised id map"), per
+    // triangle (idMapSize 0: no UVs needed) or over one atlas of idMapSize texels a side (the
+    // scene's UVs when they make a valid atlas, else one generated like --texels's, with
+    // `unwrap`; not with texels: one atlas serves both, not yet); vertex tangents follow
+    // patchTangent.
     std::optional<IdMapSettings> synthesised;
-    int idMapSize = 1024;
+    int idMapSize = 0;
     std::optional<UvUnwrapOptions> unwrap = UvUnwrapOptions{};
   };
   std::optional<BiScale> biScale;

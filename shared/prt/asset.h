@@ -171,11 +171,12 @@ struct BakedAsset {
   std::vector<Vec3> tangents;
   std::vector<float> patchUv;
   // Or, instead of patchUv, the synthesised id map (docs/bi-scale.md, "Synthesised id map"):
-  // 1..kMaxPatchPlacements placements (finite) and one placement index per texel of the
-  // asset's atlases (texelCoverage's order), each < the placement count or kNoPlacement. It
-  // brings the atlas sections (atlasUv, atlases, texelCoverage) with it, texel passes or not.
+  // 1..kMaxPatchPlacements placements (finite) and a placement index (< the placement count, or
+  // kNoPlacement) per texel of the asset's atlases (texelCoverage's order; the atlas sections
+  // then come with it, texel passes or not) or, with idMapPerTriangle, per triangle.
   std::vector<PatchPlacement> patchPlacements;
   std::vector<std::uint16_t> idMap;
+  bool idMapPerTriangle = false;
 };
 
 // The largest |patch coordinate| an asset may hold: float keeps 2^-11 patch widths there,
@@ -251,7 +252,7 @@ enum class AssetSectionType : std::uint32_t {
   kPatchUv = 21,   // float32 u, v per vertex: patch coordinates (the parametric id map)
   kRtt = 22,       // bytes: a whole RTT file (prt/rtt.h), its own checksum included
   kPatchPlacements = 23,  // float32 origin, axisU, axisV (9 floats) per placement; arg0 the count
-  kIdMap = 24,            // bytes: u16 placement index per atlas texel (kNoPlacement: none)
+  kIdMap = 24,            // bytes: u16 placement index per atlas texel (arg0 0) or per triangle (arg0 1)
 };
 
 // Bytes per texel of the texel normals section: int16 x, y (octahedral, snorm16).

@@ -57,6 +57,7 @@ struct Parsed {
   // Bi-scale (format 1.7), with a vertex matrix pass: tangents and RTT, and either patch uv or
   // the synthesised id map (placements and id map, with the atlas sections).
   int tangents = -1, patchUv = -1, rtt = -1, placements = -1, idMap = -1;
+  bool idMapPerTriangle = false;  // the id map section's arg0
   std::uint64_t texelCount = 0;  // the coverage section's size (1 byte per texel); 0 without one
   std::vector<int> transfer;  // entry indices, table order (vector, matrix and texel passes)
 };
@@ -360,8 +361,11 @@ Status checkKnownEntry(const Entry& e, Parsed* p) {
       if (!(s = expectSize(std::uint64_t{e.arg0} * kAssetPlacementBytes, "36 bytes per placement")).isOk()) return s;
       return once(&p->placements);
     case kTypeIdMap:
-      // Its size depends on the texel count: checked in checkBiScaleSections.
-      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk() || !(s = expectNoArgs()).isOk()) return s;
+      // Its size depends on the texel or triangle count: checked in checkBiScaleSections.
+      if (!(s = expectFormat(kFormatBytes, "bytes")).isOk()) return s;
+      if (e.arg0 > 1) return corrupt(label + " has domain " + num(e.arg0) + "; 0 (atlas texels) or 1 (triangles) expected");
+      if (e.arg1 != 0 || e.arg2 != 0) return corrupt(label + " has non-zero arguments 1 or 2");
+      p->idMapPerTriangle = e.arg0 == 1;
       return once(&p->idMap);
     case kTypeTexelVisibility:
     case kTypeEncodedTexelVisibility: {
@@ -448,7 +452,7 @@ Status checkTexelSections(const Parsed& p) {
   bool anyTexel = false;
   for (int t : p.transfer) anyTexel = anyTexel || isTexelType(p.entries[static_cast<std::size_t>(t)].type);
   // The atlases come with a texel pass or a synthesised id map (bi-scale).
-  const bool atlasData = anyTexel || p.idMap >= 0;
+  const bool atlasData = anyTexel || (p.idMap >= 0 && !p.idMapPerTriangle);
   const char* needer = anyTexel ? "a texel transfer section" : "an id map";
   const std::pair<int, const char*> sections[] = {{p.atlasUv, "atlas uv"}, {p.atlases, "atlases"}, {p.coverage, "texel coverage"}};
   for (const auto& [slot, name] : sections) {
@@ -505,10 +509,17 @@ Status checkBiScaleSections(const Parsed& p) {
     if (p.placements < 0) return corrupt("the asset has an id map but no patch placements section");
     if (p.idMap < 0) return corrupt("the asset has patch placements but no id map section");
     const Entry& e = p.entries[static_cast<std::size_t>(p.idMap)];
-    if (p.coverage < 0) return corrupt(sectionLabel(e) + " is present without the atlas sections");
-    if (e.size != 2 * p.texelCount) {
-      return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(2 * p.texelCount) + " expected (2 bytes per texel, " +
-                     num(p.texelCount) + " texels)");
+    if (p.idMapPerTriangle) {
+      if (e.size != 2 * std::uint64_t{p.triangleCount}) {
+        return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(2 * std::uint64_t{p.triangleCount}) +
+                       " expected (2 bytes per triangle)");
+      }
+    } else {
+      if (p.coverage < 0) return corrupt(sectionLabel(e) + " is present without the atlas sections");
+      if (e.size != 2 * p.texelCount) {
+        return corrupt(sectionLabel(e) + " is " + num(e.size) + " bytes; " + num(2 * p.texelCount) + " expected (2 bytes per texel, " +
+                       num(p.texelCount) + " texels)");
+      }
     }
   }
   for (int t : p.transfer) {
@@ -1085,6 +1096,7 @@ void readBiScaleSections(std::span<const std::uint8_t> bytes, const Parsed& p, B
     const auto ids = payload(p.idMap);
     out->idMap.resize(ids.size() / 2);
     for (std::size_t t = 0; t < out->idMap.size(); ++t) out->idMap[t] = readLe16(ids.data() + 2 * t);
+    out->idMapPerTriangle = p.idMapPerTriangle;
   }
   const auto rtt = payload(p.rtt);
   out->rtt.assign(rtt.begin(), rtt.end());
@@ -1498,6 +1510,7 @@ Status decodeAssetBiScale(std::span<const std::uint8_t> file, BakedAsset* out) {
   out->rtt = std::move(a.rtt);
   out->patchPlacements = std::move(a.patchPlacements);
   out->idMap = std::move(a.idMap);
+  out->idMapPerTriangle = a.idMapPerTriangle;
   return Status::ok();
 }
 

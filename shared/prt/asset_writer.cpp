@@ -134,9 +134,11 @@ Status checkBiScale(const BakedAsset& asset) {
                                                              " patch placements; a synthesised id map needs 1 to " +
                                                              std::to_string(kMaxPatchPlacements));
     }
-    if (asset.idMap.size() != assetTexelCount(asset)) {
-      return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.idMap.size()) + " id map texels for " +
-                                                          std::to_string(assetTexelCount(asset)) + " atlas texels; one per texel is needed");
+    const std::size_t want = asset.idMapPerTriangle ? asset.indices.size() / 3 : assetTexelCount(asset);
+    const char* what = asset.idMapPerTriangle ? " triangles" : " atlas texels";
+    if (asset.idMap.size() != want) {
+      return Status::error(StatusCode::kSizeMismatch, "asset has " + std::to_string(asset.idMap.size()) + " id map entries for " +
+                                                          std::to_string(want) + what + "; one each is needed");
     }
     for (std::size_t i = 0; i < asset.patchPlacements.size(); ++i) {
       const PatchPlacement& q = asset.patchPlacements[i];
@@ -342,7 +344,8 @@ Status checkAsset(const BakedAsset& asset) {
   // The atlases come with a texel pass or with a synthesised id map (bi-scale); texel normals
   // only with a texel pass.
   const bool anyTexel = hasTexelPass(asset);
-  if (Status s = anyTexel || !asset.idMap.empty() ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
+  const bool texelIdMap = !asset.idMap.empty() && !asset.idMapPerTriangle;
+  if (Status s = anyTexel || texelIdMap ? checkAtlasData(asset) : checkNoAtlasData(asset); !s.isOk()) return s;
   if (!anyTexel && !asset.texelNormals.empty()) {
     return Status::error(StatusCode::kInvalidArgument, "asset has " + std::to_string(asset.texelNormals.size()) +
                                                            " texel normal codes but no texel pass; they are kept only with one");
@@ -526,7 +529,8 @@ Status encodeAsset(const BakedAsset& asset, std::vector<std::uint8_t>* out) {
       sections.push_back({AssetSectionType::kPatchPlacements, AssetElementFormat::kFloat32,
                           static_cast<std::uint32_t>(asset.patchPlacements.size()), 0, 0,
                           asset.patchPlacements.size() * kAssetPlacementBytes, 0, nullptr});
-      sections.push_back({AssetSectionType::kIdMap, AssetElementFormat::kBytes, 0, 0, 0, asset.idMap.size() * 2, 0, nullptr});
+      sections.push_back({AssetSectionType::kIdMap, AssetElementFormat::kBytes, asset.idMapPerTriangle ? 1u : 0u, 0, 0,
+                          asset.idMap.size() * 2, 0, nullptr});
     }
     sections.push_back({AssetSectionType::kRtt, AssetElementFormat::kBytes, 0, 0, 0, asset.rtt.size(), 0, nullptr});
   }

@@ -188,6 +188,20 @@ TEST(BakeAssetBiScale, SynthesisedIdMapOverOneAtlas) {
   ASSERT_TRUE(encodeAsset(asset, &file).isOk());
   o.texels = TexelBakeSettings{};
   EXPECT_NE(bakeAsset(makeDefaultScene(), o, &asset, &report).message().find("cannot share one atlas yet"), std::string::npos);
+
+  // Per triangle (the default): no atlas, a placement per triangle, every one placed.
+  o.texels.reset();
+  o.biScale->idMapSize = 0;
+  ASSERT_TRUE(bakeAsset(makeDefaultScene(), o, &asset, &report).isOk());
+  EXPECT_TRUE(asset.idMapPerTriangle);
+  EXPECT_TRUE(asset.atlases.empty() && asset.atlasUv.empty());
+  ASSERT_EQ(asset.idMap.size(), asset.indices.size() / 3);
+  for (std::uint16_t id : asset.idMap) ASSERT_LT(id, asset.patchPlacements.size());
+  ASSERT_TRUE(encodeAsset(asset, &file).isOk());
+  BakedAsset back;
+  ASSERT_TRUE(decodeAsset(file, &back).isOk());
+  EXPECT_TRUE(back.idMapPerTriangle);
+  EXPECT_EQ(back.idMap, asset.idMap);
 }
 
 }  // namespace

@@ -237,7 +237,7 @@ TEST(AssetBiScale, SynthesisedIdMapRoundTripsWithItsAtlas) {
   expectError(encodeAsset(b, &bytes), StatusCode::kInvalidArgument, "both patch uv");
   b = a;
   b.idMap.pop_back();
-  expectError(encodeAsset(b, &bytes), StatusCode::kSizeMismatch, "7 id map texels for 8 atlas texels");
+  expectError(encodeAsset(b, &bytes), StatusCode::kSizeMismatch, "7 id map entries for 8 atlas texels");
   b = a;
   b.patchPlacements[0].axisU.y = NAN;
   expectError(encodeAsset(b, &bytes), StatusCode::kNotFinite, "patch placement 0 is not finite");

@@ -332,7 +332,7 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   const view = {
     scene: 'a&b #1', camera, environment: 'forest', environmentOn: false, envYaw: -1.2345678901234, envPitch: 0.3, intensity: 2.5,
     color: '#ffa07a', exposure: -1.7, background: 'colour', backgroundColor: '#102030', mode: 'shadowed', order: 4, source: 'texel',
-    glossyMix: { unshadowed: 'both', shadowed: 'glossy', interreflected: 'diffuse' }, projection: 'cpu', cubeSize: 128,
+    glossyMix: { unshadowed: 'both', shadowed: 'glossy', interreflected: 'diffuse' }, biScale: false, viewDependence: true, projection: 'cpu', cubeSize: 128,
     lights: [{ shape: 'sphere', position: [0.1, 1 / 3, -2], radius: 0.07, color: [1, 0.92, 0.8], intensity: 40 },
       { shape: 'mesh', mesh: 'torus', position: [0, 1, 0], scale: 0.5, color: [1, 1, 1], intensity: 3 }],
   };
@@ -350,11 +350,11 @@ const close = (a, b, tol = 1e-6) => Math.abs(a - b) <= tol;
   check(JSON.stringify(decodePermalink('', known)) === JSON.stringify({ view: {}, problems: [] }), 'an empty fragment');
   // Junk: every bad field named, none of them in the view; the good one kept.
   const junk = decodePermalink('#scene=nowhere&camera=1,2,x&env=mars&yaw=99&pitch=abc&color=red&mode=glow&order=0&source=pixel' +
-    '&glossy=both&projection=magic&cube=7&lights=%5B%7B&intensity=3&bogus=1&bg=sky&bgColor=12345', known);
+    '&glossy=both&projection=magic&cube=7&lights=%5B%7B&intensity=3&bogus=1&bg=sky&bgColor=12345&biscale=yes', known);
   for (const [key, pattern] of [['scene', /scene="nowhere" is not one of/], ['camera', /camera=.*six numbers/], ['env', /env="mars"/],
     ['yaw', /yaw=99 is outside/], ['pitch', /pitch="abc" is not a number/], ['color', /color="red" must be six hex/],
     ['mode', /mode="glow"/], ['order', /order="0" must be an integer 1\.\.8/], ['source', /source="pixel"/], ['glossy', /glossy="both" must be three/],
-    ['projection', /projection="magic"/], ['bg', /bg="sky" is not one of image/], ['bgColor', /bgColor="12345" must be six hex/], ['cube', /cube="7"/], ['lights', /lights is not JSON/], ['bogus', /'bogus' is not a view setting/]]) {
+    ['projection', /projection="magic"/], ['bg', /bg="sky" is not one of image/], ['bgColor', /bgColor="12345" must be six hex/], ['cube', /cube="7"/], ['lights', /lights is not JSON/], ['bogus', /'bogus' is not a view setting/], ['biscale', /biscale="yes"/]]) {
     check(junk.problems.some((p) => pattern.test(p)), `junk ${key}: no problem matching ${pattern} in ${junk.problems.join('; ')}`);
   }
   check(JSON.stringify(junk.view) === JSON.stringify({ intensity: 3 }), `junk view keeps only the good field: ${JSON.stringify(junk.view)}`);

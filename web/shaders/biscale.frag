@@ -9,7 +9,7 @@
 // renderer: the sum runs over texels t < ceil(BANDS^2 / 4), and both vectors are 0 beyond
 // BANDS^2 (the rotation step writes 0 there; the RTT's padding is 0). SYNTHESISED: q from the
 // synthesised id map (docs/bi-scale.md): the placement of the id map texel under the fragment
-// (nearest), q = fract(((p - origin) . axisU, (p - origin) . axisV)) as prt::patchCoordinates.
+// (nearest; SYNTHESISED 1) or of its triangle (SYNTHESISED 2), q = fract(((p - origin) . axisU, (p - origin) . axisV)) as prt::patchCoordinates.
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -22,6 +22,7 @@ in vec2 vPatchUv;
 in vec2 vAtlasUv;
 in vec3 vBarycentric;
 flat in uvec3 vVertices;
+flat in uint vPlacement;
 
 uniform sampler2D uRotated;       // RGBA32F: D_v T_vc, texel (c * uVertices + v) * ROW_TEXELS + t
 uniform highp sampler2DArray uRtt;  // RGBA16F layers (web/src/rtt_texture.h), LINEAR
@@ -94,8 +95,12 @@ void main() {
   vec3 w = vec3(dot(toEye, t), dot(toEye, bitangent), dot(toEye, n));
   float S = float(uRttSpatial), V = float(uRttViews);
 #ifdef SYNTHESISED
+#if SYNTHESISED == 2
+  uint placement = vPlacement;  // per triangle
+#else
   ivec2 idTexel = clamp(ivec2(floor(vAtlasUv * vec2(uIdMapSize))), ivec2(0), uIdMapSize - 1);
   uint placement = texelFetch(uIdMap, idTexel, 0).r;
+#endif
   vec2 q = vec2(0.0);
   if (placement != 65535u) {
     int k = 3 * int(placement);

@@ -13,6 +13,7 @@ layout(location = 2) in vec3 aTangent;
 layout(location = 3) in vec2 aPatchUv;
 layout(location = 4) in uvec3 aVertices;
 layout(location = 5) in vec2 aAtlasUv;  // the synthesised id map's atlas (0 when parametric)
+layout(location = 6) in uint aPlacement;  // a per-triangle id map's entry (65535: none)
 
 uniform mat4 uViewProjection;
 
@@ -23,11 +24,13 @@ out vec2 vPatchUv;
 out vec2 vAtlasUv;
 out vec3 vBarycentric;
 flat out uvec3 vVertices;
+flat out uint vPlacement;
 
 void main() {
   int corner = gl_VertexID % 3;
   vBarycentric = vec3(corner == 0 ? 1.0 : 0.0, corner == 1 ? 1.0 : 0.0, corner == 2 ? 1.0 : 0.0);
   vVertices = aVertices;
+  vPlacement = aPlacement;
   vPosition = aPosition;
   vNormal = aNormal;
   vTangent = aTangent;

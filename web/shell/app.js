@@ -46,8 +46,8 @@ const state = {
   source: params.get('source') === 'texel' ? 'texel' : 'vertex',
   // Bi-scale scenes (docs/bi-scale.md): the RTT's meso scale per fragment (a wish: scenes
   // without an RTT draw PRT), and its view dependence (the paper's Figure 6 switch).
-  biScale: params.get('biscale') !== 'off',
-  viewDependence: params.get('view') !== 'fixed',
+  biScale: true,
+  viewDependence: true,
 };
 const GLOSSY_MIXES = ['diffuse', 'glossy', 'both'];
 const BACKGROUNDS = ['image', 'blurred', 'colour', 'none'];  // BackgroundMode's names
@@ -380,6 +380,8 @@ function currentView() {
     order: state.order,
     source: state.source,
     glossyMix: { ...state.glossyMix },
+    biScale: state.biScale,
+    viewDependence: state.viewDependence,
     projection: lightSettings.projection,
     cubeSize: lightSettings.cubeSize,
     lights,
@@ -428,7 +430,9 @@ function readLinkView() {
 // take joins `problems`, keeps the default, and the notice lists them all.
 function applyLinkView({ view, problems, before }) {
   const { TransferDomain } = client;
-  for (const key of ['envYaw', 'envPitch', 'intensity', 'color', 'exposure', 'background', 'backgroundColor']) if (key in view) state[key] = view[key];
+  for (const key of ['envYaw', 'envPitch', 'intensity', 'color', 'exposure', 'background', 'backgroundColor', 'biScale', 'viewDependence']) {
+    if (key in view) state[key] = view[key];
+  }
   if ('glossyMix' in view) Object.assign(state.glossyMix, view.glossyMix);
   if ('environment' in view) selectEnvironment(view.environment);
   if ('environmentOn' in view) lightSettings.environmentOn = view.environmentOn;

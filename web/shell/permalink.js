@@ -51,6 +51,8 @@ export function encodePermalink(view) {
   p.set('order', String(view.order));
   p.set('source', view.source);
   p.set('glossy', PASSES.map((n) => view.glossyMix[n]).join(','));
+  p.set('biscale', view.biScale ? '1' : '0');
+  p.set('rttView', view.viewDependence ? '1' : '0');
   p.set('projection', view.projection);
   p.set('cube', String(view.cubeSize));
   p.set('lights', JSON.stringify(view.lights));
@@ -95,7 +97,7 @@ export function decodePermalink(fragment, known) {
     return { view, problems: [`the link's view cannot be read (${e.message})`] };
   }
   const keys = ['v', 'scene', 'camera', 'env', 'envOn', 'yaw', 'pitch', 'intensity', 'color', 'exposure', 'bg', 'bgColor', 'mode', 'order', 'source',
-    'glossy', 'projection', 'cube', 'lights'];
+    'glossy', 'biscale', 'rttView', 'projection', 'cube', 'lights'];
   for (const key of p.keys()) if (!keys.includes(key)) problems.push(`'${key}' is not a view setting`);
   if (p.has('v') && p.get('v') !== String(PERMALINK_VERSION)) {
     problems.push(`v=${describe(p.get('v'))}: this page reads version ${PERMALINK_VERSION} links`);
@@ -134,6 +136,11 @@ export function decodePermalink(fragment, known) {
     else problems.push(`order=${describe(get('order'))} must be an integer 1..${known.maxOrder}`);
   }
   if (get('source') !== null) view.source = oneOf(get('source'), 'source', SOURCES, problems);
+  for (const [key, field] of [['biscale', 'biScale'], ['rttView', 'viewDependence']]) {
+    if (get(key) === null) continue;
+    const on = oneOf(get(key), key, ['0', '1'], problems);
+    if (on !== undefined) view[field] = on === '1';
+  }
   if (get('glossy') !== null) {
     const mixes = get('glossy').split(',');
     if (mixes.length === PASSES.length && mixes.every((m) => GLOSSY_MIXES.includes(m))) {

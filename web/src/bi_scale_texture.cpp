@@ -123,11 +123,13 @@ void biScaleRotateCpu(const BiScaleRotations& rotations, std::span<const float> 
 }
 
 Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const Vec3> tangents,
-                          std::span<const float> patchUv, std::span<const float> atlasUv, std::span<const std::uint32_t> indices,
+                          std::span<const float> patchUv, std::span<const float> atlasUv,
+                          std::span<const std::uint16_t> trianglePlacements, std::span<const std::uint32_t> indices,
                           std::vector<std::uint32_t>* out) {
   const std::size_t n = positions.size();
   const auto pairs = [n](std::span<const float> uv) { return uv.empty() || uv.size() == 2 * n; };
-  if (normals.size() != n || tangents.size() != n || !pairs(patchUv) || !pairs(atlasUv) || indices.size() % 3 != 0) {
+  if (normals.size() != n || tangents.size() != n || !pairs(patchUv) || !pairs(atlasUv) || indices.size() % 3 != 0 ||
+      !(trianglePlacements.empty() || trianglePlacements.size() == indices.size() / 3)) {
     return Status::error(StatusCode::kInvalidArgument, "bi-scale corners: per-vertex arrays disagree with the vertex count");
   }
   std::vector<std::uint32_t> words(indices.size() * kBiScaleCornerWords);
@@ -145,6 +147,7 @@ Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3>
                          tangents[v].y,  tangents[v].z,  at(patchUv, 0), at(patchUv, 1), at(atlasUv, 0), at(atlasUv, 1)};
     std::memcpy(w, f, sizeof f);  // float bits in the buffer (std::bit_cast: not in Emscripten 3.1.6's libc++)
     for (int k = 0; k < 3; ++k) w[13 + k] = indices[triangle + static_cast<std::size_t>(k)];
+    w[16] = trianglePlacements.empty() ? kNoPlacement : trianglePlacements[i / 3];
   }
   *out = std::move(words);
   return Status::ok();

@@ -46,14 +46,15 @@ void biScaleRotateCpu(const BiScaleRotations& rotations, std::span<const float> 
                       std::span<float> out);
 
 // The fragment pass draws de-indexed triangles: per corner position, normal, tangent (3 floats
-// each), patch uv and atlas uv (2 each; the one the asset lacks is 0) and the triangle's three
-// vertex ids (3 uint32), 16 words.
-inline constexpr int kBiScaleCornerWords = 16;
+// each), patch uv and atlas uv (2 each; the one the asset lacks is 0), the triangle's three
+// vertex ids (3 uint32) and its placement (a per-triangle id map's entry, else kNoPlacement), 17 words.
+inline constexpr int kBiScaleCornerWords = 17;
 // Corner words for `indices` (3 per triangle, each < positions.size(); the other spans one
-// entry, or 2 for patchUv and atlasUv, per vertex, or empty). kInvalidArgument on inconsistent
-// sizes or an index out of range.
+// entry, or 2 for patchUv and atlasUv, per vertex, or empty; trianglePlacements one per
+// triangle or empty). kInvalidArgument on inconsistent sizes or an index out of range.
 Status packBiScaleCorners(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const Vec3> tangents,
-                          std::span<const float> patchUv, std::span<const float> atlasUv, std::span<const std::uint32_t> indices,
+                          std::span<const float> patchUv, std::span<const float> atlasUv,
+                          std::span<const std::uint16_t> trianglePlacements, std::span<const std::uint32_t> indices,
                           std::vector<std::uint32_t>* out);
 
 // The placements as RGBA32F texels, 3 a placement: (origin, 0), (axisU, 0), (axisV, 0).

@@ -290,7 +290,8 @@ class GlRenderer {
   struct BiScalePass {
     GLuint rtt = 0, rotations = 0, rotated = 0, rotatedBuffer = 0, corners = 0, vao = 0;
     GLuint idMap = 0, placements = 0;  // the synthesised id map (R16UI over the atlas) and its placements
-    int idMapWidth = 0, idMapHeight = 0;  // 0: parametric (patch uv)
+    int idMapWidth = 0, idMapHeight = 0;  // 0: parametric (patch uv), or per triangle
+    bool perTriangle = false;             // the id map is per triangle (in the corners)
     int bands = 0, rttOrder = 0, channels = 0, spatial = 0, views = 0, layersPerChannel = 0;
     int rotationTexels = 0, rowTexels = 0, rotatedHeight = 0;
     GLsizei cornerCount = 0;

@@ -49,23 +49,25 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   int rotationRows = 0;
   PRT_RETURN_IF_ERROR(textureRowsFor(asset.positions.size() * static_cast<std::size_t>(rotations.texelsPerVertex), maxSize,
                                      "bi-scale rotations", &rotationRows));
-  const bool synthesised = !asset.idMap.empty();
+  const bool perTriangle = !asset.idMap.empty() && asset.idMapPerTriangle;
+  const bool synthesised = !asset.idMap.empty() && !perTriangle;  // over an atlas
   if (synthesised && asset.atlases.size() != 1) {
     return Status::error(StatusCode::kInvalidArgument, "the scene's synthesised id map spans " + std::to_string(asset.atlases.size()) +
                                                            " atlases; the client draws one");
   }
   std::vector<std::uint32_t> corners;
   PRT_RETURN_IF_ERROR(packBiScaleCorners(asset.positions, asset.normals, asset.tangents, asset.patchUv,
-                                         synthesised ? std::span<const float>(asset.atlasUv) : std::span<const float>(), asset.indices,
-                                         &corners));
+                                         synthesised ? std::span<const float>(asset.atlasUv) : std::span<const float>(),
+                                         perTriangle ? std::span<const std::uint16_t>(asset.idMap) : std::span<const std::uint16_t>(),
+                                         asset.indices, &corners));
   int placementRows = 0;
   std::vector<float> placementTexels;
-  if (synthesised) {
+  if (synthesised || perTriangle) {
     const std::vector<float> placements = packPatchPlacements(asset.patchPlacements);
     PRT_RETURN_IF_ERROR(textureRowsFor(placements.size() / 4, maxSize, "bi-scale patch placements", &placementRows));
     placementTexels.assign(static_cast<std::size_t>(kTransferTextureWidth) * placementRows * 4, 0.0f);
     std::copy(placements.begin(), placements.end(), placementTexels.begin());
-    if (asset.atlases[0].width > static_cast<std::uint32_t>(maxSize) || asset.atlases[0].height > static_cast<std::uint32_t>(maxSize)) {
+    if (synthesised && (asset.atlases[0].width > static_cast<std::uint32_t>(maxSize) || asset.atlases[0].height > static_cast<std::uint32_t>(maxSize))) {
       return Status::error(StatusCode::kInvalidArgument, "the scene's id map is " + std::to_string(asset.atlases[0].width) + " x " +
                                                              std::to_string(asset.atlases[0].height) + " texels; this device holds " +
                                                              std::to_string(maxSize) + " a side");
@@ -99,6 +101,14 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   setNearestClamp(GL_TEXTURE_2D);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, rotationRows, 0, GL_RGBA, GL_FLOAT, rotationTexels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
+  b.perTriangle = perTriangle;
+  if (synthesised || perTriangle) {
+    glGenTextures(1, &b.placements);
+    glBindTexture(GL_TEXTURE_2D, b.placements);
+    setNearestClamp(GL_TEXTURE_2D);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, placementRows, 0, GL_RGBA, GL_FLOAT, placementTexels.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
   if (synthesised) {
     b.idMapWidth = static_cast<int>(asset.atlases[0].width);
     b.idMapHeight = static_cast<int>(asset.atlases[0].height);
@@ -108,10 +118,6 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R16UI, b.idMapWidth, b.idMapHeight, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, asset.idMap.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glGenTextures(1, &b.placements);
-    glBindTexture(GL_TEXTURE_2D, b.placements);
-    setNearestClamp(GL_TEXTURE_2D);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTransferTextureWidth, placementRows, 0, GL_RGBA, GL_FLOAT, placementTexels.data());
     glBindTexture(GL_TEXTURE_2D, 0);
   }
   glGenVertexArrays(1, &b.vao);
@@ -131,6 +137,8 @@ Status GlRenderer::uploadBiScale(const BakedAsset& asset) {
   glVertexAttribPointer(5, 2, GL_FLOAT, GL_FALSE, kStride, at(11));
   glEnableVertexAttribArray(4);
   glVertexAttribIPointer(4, 3, GL_UNSIGNED_INT, kStride, at(13));
+  glEnableVertexAttribArray(6);
+  glVertexAttribIPointer(6, 1, GL_UNSIGNED_INT, kStride, at(16));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   b.cornerCount = static_cast<GLsizei>(asset.indices.size());
@@ -214,9 +222,9 @@ bool GlRenderer::drawBiScale(const FrameParams& p) {
   if (g.bands == 0) return false;
   const int bands = std::clamp(std::min({p.displayOrder, g.bands, b.bands}), 1, 8);
   if (!updateBiScaleTransfer(g, static_cast<int>(p.mode), bands, p.lightingVersion)) return false;
-  const bool synthesised = b.idMap != 0;
+  const bool synthesised = b.idMap != 0 || b.perTriangle;
   const std::string defines = "#define BANDS " + std::to_string(bands) + "\n#define ROW_TEXELS " + std::to_string(b.rowTexels) + "\n" +
-                              (synthesised ? "#define SYNTHESISED 1\n" : "");
+                              (b.perTriangle ? "#define SYNTHESISED 2\n" : synthesised ? "#define SYNTHESISED 1\n" : "");
   const std::string key = "biscale-draw\n" + defines;
   auto it = specialised_.find(key);
   if (it == specialised_.end()) {
@@ -251,7 +259,7 @@ bool GlRenderer::drawBiScale(const FrameParams& p) {
   glUniform1f(draw.exposure, p.exposure);
   if (synthesised) {
     glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, b.idMap);
+    glBindTexture(GL_TEXTURE_2D, b.idMap);  // 0 for a per-triangle map (not sampled)
     glUniform1i(draw.idMap, 2);
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, b.placements);
