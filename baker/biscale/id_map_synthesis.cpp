@@ -73,6 +73,46 @@ PatchPlacement placementAt(const SurfaceSeed& s, double patchWidth, float u0, fl
   return {s.position - (t * (u0 * w) + b * (v0 * w)), t * inv, b * inv};
 }
 
+// The cells for `samples` (every one ends with a facing seed within a cell diameter): seeds by
+// dart throwing and gap filling, one placement each (phases from their own stream), and each
+// sample's placement, by index, into *assigned. kInvalidArgument for a zero-area mesh or too
+// many cells, naming the settings.
+Status placeCells(std::span<const Vec3> positions, std::span<const Vec3> normals, std::span<const std::uint32_t> indices,
+                  std::span<const AtlasTexel> samples, const IdMapSettings& settings, const char* sampleName,
+                  SynthesisedIdMap* r, std::vector<std::uint16_t>* assigned) {
+  const double diameter = settings.patchWidth * settings.cellPatches;
+  const double area = meshArea(positions, indices);
+  if (!(area > 0)) return Status::error(StatusCode::kInvalidArgument, "the mesh has zero area: no surface to place patches on");
+  const double cells = area / (kPi / 4 * diameter * diameter);
+  if (!(cells <= static_cast<double>(kMaxPatchPlacements))) return tooManyCells(std::ceil(cells), area, settings);
+
+  std::vector<SurfaceSeed> seeds;
+  SeedGrid grid(diameter);
+  throwSeedDarts(positions, normals, indices, diameter, std::max<std::size_t>(1, std::llround(cells)), settings.seed,
+                 &seeds, &grid);
+  fillSeedGaps(samples, diameter, kMaxPatchPlacements, &seeds, &grid);
+  if (seeds.size() > kMaxPatchPlacements) {
+    return Status::error(StatusCode::kInvalidArgument,
+                         "the surface (area " + number(area) + ") needs more than " + std::to_string(kMaxPatchPlacements) +
+                             " patch placements at patchWidth " + number(settings.patchWidth) + " and cellPatches " +
+                             number(settings.cellPatches) + " (its parts and far sides need cells of their own): " +
+                             "use a larger patchWidth or cellPatches");
+  }
+  Pcg32 phases(settings.seed, kPhaseStream);
+  r->placements.reserve(seeds.size());
+  for (const SurfaceSeed& s : seeds) {
+    const float u0 = phases.nextFloat(), v0 = phases.nextFloat();
+    r->placements.push_back(placementAt(s, settings.patchWidth, u0, v0));
+  }
+  for (const AtlasTexel& t : samples) {
+    const std::uint32_t id = nearestFacingSeed(grid, seeds, t.position, t.normal, diameter);
+    // fillSeedGaps left a facing seed within the diameter of every sample.
+    if (id == kNoSeed) return Status::error(StatusCode::kInternal, std::string(sampleName) + " " + std::to_string(t.index) + " has no seed");
+    (*assigned)[t.index] = static_cast<std::uint16_t>(id);
+  }
+  return Status::ok();
+}
+
 }  // namespace
 
 Status synthesiseIdMap(std::span<const Vec3> positions, std::span<const Vec3> normals,
@@ -86,39 +126,9 @@ Status synthesiseIdMap(std::span<const Vec3> positions, std::span<const Vec3> no
   const std::vector<Rgb> noAlbedo(positions.size());
   PRT_RETURN_IF_ERROR(rasteriseAtlases(positions, normals, noAlbedo, indices, atlasUv, atlases, &samples));
 
-  const double diameter = settings.patchWidth * settings.cellPatches;
-  const double area = meshArea(positions, indices);
-  if (!(area > 0)) return Status::error(StatusCode::kInvalidArgument, "the mesh has zero area: no surface to place patches on");
-  const double cells = area / (kPi / 4 * diameter * diameter);
-  if (!(cells <= static_cast<double>(kMaxPatchPlacements))) return tooManyCells(std::ceil(cells), area, settings);
-
-  std::vector<SurfaceSeed> seeds;
-  SeedGrid grid(diameter);
-  throwSeedDarts(positions, normals, indices, diameter, std::max<std::size_t>(1, std::llround(cells)), settings.seed,
-                 &seeds, &grid);
-  fillSeedGaps(samples.texels, diameter, kMaxPatchPlacements, &seeds, &grid);
-  if (seeds.size() > kMaxPatchPlacements) {
-    return Status::error(StatusCode::kInvalidArgument,
-                         "the surface (area " + number(area) + ") needs more than " + std::to_string(kMaxPatchPlacements) +
-                             " patch placements at patchWidth " + number(settings.patchWidth) + " and cellPatches " +
-                             number(settings.cellPatches) + " (its parts and far sides need cells of their own): " +
-                             "use a larger patchWidth or cellPatches");
-  }
-
   SynthesisedIdMap r;
-  Pcg32 phases(settings.seed, kPhaseStream);
-  r.placements.reserve(seeds.size());
-  for (const SurfaceSeed& s : seeds) {
-    const float u0 = phases.nextFloat(), v0 = phases.nextFloat();
-    r.placements.push_back(placementAt(s, settings.patchWidth, u0, v0));
-  }
   r.placementOfTexel.assign(samples.sampled.size(), kNoPlacement);
-  for (const AtlasTexel& t : samples.texels) {
-    const std::uint32_t id = nearestFacingSeed(grid, seeds, t.position, t.normal, diameter);
-    // fillSeedGaps left a facing seed within the diameter of every sample.
-    if (id == kNoSeed) return Status::error(StatusCode::kInternal, "texel " + std::to_string(t.index) + " has no seed");
-    r.placementOfTexel[t.index] = static_cast<std::uint16_t>(id);
-  }
+  PRT_RETURN_IF_ERROR(placeCells(positions, normals, indices, samples.texels, settings, "texel", &r, &r.placementOfTexel));
   PRT_RETURN_IF_ERROR(fillPlacementGutters(atlases, samples.firstTexel, samples.sampled, settings.gutterTexels,
                                            r.placementOfTexel));
   *out = std::move(r);
@@ -156,28 +166,9 @@ Status synthesiseTriangleIdMap(std::span<const Vec3> positions, std::span<const 
     s.normal = n * (1.0f / nl);
     samples.push_back(s);
   }
-  const double diameter = settings.patchWidth * settings.cellPatches;
-  const double area = meshArea(positions, indices);
-  if (!(area > 0)) return Status::error(StatusCode::kInvalidArgument, "the mesh has zero area: no surface to place patches on");
-  const double cells = area / (kPi / 4 * diameter * diameter);
-  if (!(cells <= static_cast<double>(kMaxPatchPlacements))) return tooManyCells(std::ceil(cells), area, settings);
-  std::vector<SurfaceSeed> seeds;
-  SeedGrid grid(diameter);
-  throwSeedDarts(positions, normals, indices, diameter, std::max<std::size_t>(1, std::llround(cells)), settings.seed, &seeds, &grid);
-  fillSeedGaps(samples, diameter, kMaxPatchPlacements, &seeds, &grid);
-  if (seeds.size() > kMaxPatchPlacements) return tooManyCells(static_cast<double>(seeds.size()), area, settings);
   SynthesisedIdMap r;
-  Pcg32 phases(settings.seed, kPhaseStream);
-  for (const SurfaceSeed& s : seeds) {
-    const float u0 = phases.nextFloat(), v0 = phases.nextFloat();
-    r.placements.push_back(placementAt(s, settings.patchWidth, u0, v0));
-  }
   r.placementOfTexel.resize(samples.size());
-  for (const AtlasTexel& t : samples) {
-    const std::uint32_t id = nearestFacingSeed(grid, seeds, t.position, t.normal, diameter);
-    if (id == kNoSeed) return Status::error(StatusCode::kInternal, "triangle " + std::to_string(t.index) + " has no seed");
-    r.placementOfTexel[t.index] = static_cast<std::uint16_t>(id);
-  }
+  PRT_RETURN_IF_ERROR(placeCells(positions, normals, indices, samples, settings, "triangle", &r, &r.placementOfTexel));
   *out = std::move(r);
   return Status::ok();
 }

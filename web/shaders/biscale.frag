@@ -74,16 +74,18 @@ vec2 viewCoordinates(vec3 w, float views) {
   return clamp((s + 1.0) * 0.5 * views, 0.0, views);
 }
 
-// sum over the three vertices of lambda_j (B_c . T_vjc) for channel c, B_c's texels in b.
-float channelRadiance(int c, vec4 b[16]) {
-  float sum = 0.0;
-  for (int j = 0; j < 3; ++j) {
-    int row = (c * uVertices + int(vVertices[j])) * ROW_TEXELS;
-    float dotted = 0.0;
-    for (int t = 0; t < TEXELS; ++t) dotted += dot(rotatedTexel(row + t), b[t]);
-    sum += vBarycentric[j] * dotted;
-  }
-  return sum;
+// sum_j lambda_j (B_c . T_vj,c) for one channel: row0..row2 the three vertices' rows of the
+// rotated T (texel indices), layer the channel's first RTT layer, uv the lookup. Written out
+// with constant indices and compile-time tests (t < TEXELS) and no local arrays: SwiftShader
+// does not unroll loops, and a loop-indexed array becomes per-lane memory traffic
+// (glossy_transfer.vert measured it at about twice the time).
+#define TERM(t) if ((t) < TEXELS) { b = texture(uRtt, vec3(uv, float(layer + (t)))); s0 += dot(rotatedTexel(row0 + (t)), b); s1 += dot(rotatedTexel(row1 + (t)), b); s2 += dot(rotatedTexel(row2 + (t)), b); }
+float channelRadiance(int row0, int row1, int row2, int layer, vec2 uv) {
+  vec4 b;
+  float s0 = 0.0, s1 = 0.0, s2 = 0.0;
+  TERM(0) TERM(1) TERM(2) TERM(3) TERM(4) TERM(5) TERM(6) TERM(7)
+  TERM(8) TERM(9) TERM(10) TERM(11) TERM(12) TERM(13) TERM(14) TERM(15)
+  return vBarycentric.x * s0 + vBarycentric.y * s1 + vBarycentric.z * s2;
 }
 
 void main() {
@@ -119,12 +121,12 @@ void main() {
   // filtering blends views and never two spatial samples.
   vec2 texel = cell * V + clamp(ab, vec2(0.5), vec2(V - 0.5));
   vec2 uv = texel / (S * V);
-  vec3 radiance = vec3(0.0);
-  vec4 b[16];
-  for (int c = 0; c < 3; ++c) {
-    int rttChannel = uRttChannels == 3 ? c : 0;
-    for (int k = 0; k < TEXELS; ++k) b[k] = texture(uRtt, vec3(uv, float(rttChannel * uRttLayersPerChannel + k)));
-    radiance[c] = channelRadiance(c, b);
-  }
+  // Rows of channel c of vertex v: (c V + v) ROW_TEXELS; a grey RTT serves all three channels.
+  ivec3 rows = ivec3(vVertices) * ROW_TEXELS;
+  int channelRows = uVertices * ROW_TEXELS;
+  int rgb = uRttChannels == 3 ? uRttLayersPerChannel : 0;
+  vec3 radiance = vec3(channelRadiance(rows.x, rows.y, rows.z, 0, uv),
+                       channelRadiance(rows.x + channelRows, rows.y + channelRows, rows.z + channelRows, rgb, uv),
+                       channelRadiance(rows.x + 2 * channelRows, rows.y + 2 * channelRows, rows.z + 2 * channelRows, 2 * rgb, uv));
   fragColor = vec4(linearToSrgb(acesFit(max(radiance, vec3(0.0)) * uExposure)), 1.0);
 }
