@@ -32,5 +32,13 @@ out=$(node bench/web_glossy_bench.mjs "http://127.0.0.1:$port" dragon-weave docs
   echo "$(date -u +%Y-%m-%d), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) threads. Stanford dragon res3, order 5, weave RTT 32^2 x 8^2 on a synthesised id map (patches 12 mm, cells of 3), 1280x720."
   echo
   echo "$out"
+  echo
+  echo "Bytes of the same scene: the RTT $(stat -c %s "$data/weave32.rtt") (float32 in the asset; RGBA16F on the GPU, half that padded to"
+  echo "whole texels), the asset $(stat -c %s "$root/dragon-weave.prt"); on the GPU besides: the rotations (41 RGBA32F texels a"
+  echo "vertex at order 5), the rotated T (T's size) and the corners (68 bytes each, 3 a triangle)."
+  echo
+  echo "SwiftShader rasterises on the CPU: a fragment costs what a vertex does, and bi-scale's per-fragment"
+  echo "work (63 texel fetches of the three vertices' rotated T, 7 RTT lookups, order 5) is what this measures;"
+  echo "on a GPU the fetches are cached and parallel. Lights moving adds the table, T and the rotation step."
 } > docs/bench/bi-scale-frames.md
 cat docs/bench/bi-scale-frames.md

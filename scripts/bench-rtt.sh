@@ -46,7 +46,7 @@ const lines = [
   '',
   `- Date: ${r.date}`,
   `- Machine: ${r.machine}, load average ${r.load}`,
-  '- GPU: none; the client does not draw bi-scale yet (docs/bi-scale.md), so there are no frame times.',
+  '- Frame times and texture bytes in the page: [bi-scale-frames.md](bi-scale-frames.md) (scripts/bench-bi-scale-frames.sh); no GPU machine was lent, so SwiftShader only.',
   '',
   '## RTT bake (`prt-bake rtt`)',
   '',
