@@ -11,17 +11,12 @@
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
-import { makeChecks, startServer, openPage, capture, windowLuminance, maxChannelDifference, runCase } from './browser_harness.mjs';
+import { makeChecks, openCatalogueScene, requireInputs, capture, windowLuminance, maxChannelDifference, runCase } from './browser_harness.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr] = process.argv.slice(2);
 const checks = makeChecks();
 const { check } = checks;
-for (const [what, p] of [['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]) {
-  if (!p || !fs.existsSync(p)) {
-    console.error(`${what} not found at ${p} (build the native and wasm presets; blender-data for the map)`);
-    process.exit(1);
-  }
-}
+requireInputs([['prt-serve', prtServe], ['prt-bake', prtBake], ['web dist', webDist], ['environment map', envExr]]);
 const root = path.join(workDir, 'root');
 fs.rmSync(workDir, { recursive: true, force: true });
 fs.mkdirSync(root, { recursive: true });
@@ -37,13 +32,7 @@ function bakeRoom(patch, albedo, file, placement = ['--patches-per-uv', '40']) {
 }
 
 async function openScene(browser, file) {
-  const server = await startServer(prtServe, root, webDist);
-  const scenes = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes;
-  const entry = scenes.find((s) => s.file === file);
-  if (!entry || !entry.usable) throw new Error(`${file} missing from the catalogue: ${JSON.stringify(scenes)}`);
-  const { page, consoleErrors } = await openPage(browser, `${server.base}/?scene=${encodeURIComponent(entry.name)}`);
-  const error = await page.evaluate(() => window.prtApp.error);
-  if (error) throw new Error(`page error: ${error}`);
+  const { server, page, consoleErrors } = await openCatalogueScene(browser, prtServe, root, webDist, file);
   // Every glossy shell streamed in (the macro scale is the glossy pass).
   await page.waitForFunction(() => window.prtApp.glossyBands.shadowed === 4, null, { timeout: 60000 });
   return { server, page, consoleErrors };

@@ -13,7 +13,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import path from 'node:path';
-import { makeChecks, startServer, openPage, capture, windowLuminance, runCase } from './browser_harness.mjs';
+import { makeChecks, openCatalogueScene, capture, windowLuminance, runCase } from './browser_harness.mjs';
 import { floorSceneGltf } from './floor_scene_gltf.mjs';
 
 const [caseName, prtServe, prtBake, webDist, workDir, envExr, coreJs] = process.argv.slice(2);
@@ -54,16 +54,7 @@ function compare(gpu, cpu) {
   return { error: worst / Math.max(peak, 1e-30), peak };
 }
 
-async function openScene(browser, file = 'floor.prt') {
-  const server = await startServer(prtServe, root, webDist);
-  const scenes = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes;
-  const entry = scenes.find((s) => s.file === file);
-  if (!entry || !entry.usable) throw new Error(`${file} missing from the catalogue: ${JSON.stringify(scenes)}`);
-  const { page, consoleErrors } = await openPage(browser, `${server.base}/?scene=${encodeURIComponent(entry.name)}`);
-  const error = await page.evaluate(() => window.prtApp.error);
-  if (error) throw new Error(`page error: ${error}`);
-  return { server, page, consoleErrors, entry };
-}
+const openScene = (browser, file = 'floor.prt') => openCatalogueScene(browser, prtServe, root, webDist, file);
 
 const readBack = (page) => page.evaluate(() => ({
   gpu: Array.from(window.prtApp.vertexGlossy()),

@@ -139,6 +139,19 @@ export function meanAbsDifference(a, b) {
   return d / (a.data.length / 4) / 3;
 }
 
+// A prt-serve of `root` and a page showing its catalogue entry for `file` (which must be
+// usable): {server, page, consoleErrors, entry}. Throws naming the catalogue or page error.
+export async function openCatalogueScene(browser, prtServe, root, webDist, file) {
+  const server = await startServer(prtServe, root, webDist);
+  const scenes = (await (await fetch(`${server.base}/api/scenes`)).json()).scenes;
+  const entry = scenes.find((s) => s.file === file);
+  if (!entry || !entry.usable) throw new Error(`${file} missing from the catalogue: ${JSON.stringify(scenes)}`);
+  const { page, consoleErrors } = await openPage(browser, `${server.base}/?scene=${encodeURIComponent(entry.name)}`);
+  const error = await page.evaluate(() => window.prtApp.error);
+  if (error) throw new Error(`page error: ${error}`);
+  return { server, page, consoleErrors, entry };
+}
+
 // Exits with status 1 naming the first of `inputs` ([what, path] pairs) that is missing.
 export function requireInputs(inputs) {
   for (const [what, p] of inputs) {
