@@ -8,6 +8,7 @@
 
 #include "baker/transfer/glossy_bake.h"
 #include "baker/transfer/local_sphere.h"
+#include "baker/transfer/sh_accumulate.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/sh_basis.h"
 
@@ -57,16 +58,6 @@ Status addVisibilityBasis(int order, SampleTable* t) {
   t->visibilityOrder = order;
   t->visibilityBasis.resize(static_cast<std::size_t>(shCoeffCount(order)) * t->dirs.size());
   return evalShBasisBatch(order, t->dirs.x, t->dirs.y, t->dirs.z, t->visibilityBasis);
-}
-
-// out[i] = sum_k weights[k] basis[i][k]
-void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out) {
-  for (int i = 0; i < n2; ++i) {
-    const float* __restrict row = basis + static_cast<std::size_t>(i) * count;
-    float acc = 0.0f;
-    for (std::size_t k = 0; k < count; ++k) acc += weights[k] * row[k];
-    out[i] = acc;
-  }
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {

@@ -40,9 +40,6 @@ Status makeSamples(const BakeOptions& o, SampleTable* t);
 // Adds the basis of `order` (2..kMaxShOrder) at t's directions as t->visibilityBasis.
 Status addVisibilityBasis(int order, SampleTable* t);
 
-// out[i] = sum_k weights[k] basis[i][k], basis [coefficient][sample] with `count` samples.
-void projectWeights(int n2, std::size_t count, const float* weights, const float* basis, float* out);
-
 // Serialised progress callbacks for one pass, counting receivers and rays.
 class ProgressReporter {
  public:
