@@ -395,6 +395,18 @@ void GlRenderer::glossyTable(GlossyPass& g, const GlossyPrograms& programs) {
   copyBufferToTexture(g.tableBuffer, g.table, g.tableHeight);
 }
 
+bool GlRenderer::glossyTableStale(const GlossyPass& g, unsigned lightingVersion, int bands) {
+  return !g.tableValid || g.tableVersion != lightingVersion || g.tableBands != bands;
+}
+
+void GlRenderer::remakeGlossyTable(GlossyPass& g, const GlossyPrograms& programs, unsigned lightingVersion, int bands) {
+  glossyTable(g, programs);
+  g.tableValid = true;
+  g.tableVersion = lightingVersion;
+  g.tableBands = bands;
+  g.transferValid = false;
+}
+
 void GlRenderer::glossyTransfer(GlossyPass& g, const GlossyPrograms& programs, bool allVertices) {
   // Per vertex and channel: the weighted sum of its cluster's table vectors, channel-major.
   const Program& t = *programs.transfer;
@@ -474,14 +486,8 @@ bool GlRenderer::shadeGlossy(ShadingMode mode, int displayOrder, glm::vec3 eye, 
   const int bands = std::clamp(displayOrder, 1, g.bands);
   GlossyPrograms programs;
   if (!glossyPrograms(g, bands, &programs).isOk()) return false;
-  const bool tableStale = !g.tableValid || g.tableVersion != lightingVersion || g.tableBands != bands;
-  const auto remakeTable = [&] {
-    glossyTable(g, programs);
-    g.tableValid = true;
-    g.tableVersion = lightingVersion;
-    g.tableBands = bands;
-    g.transferValid = false;
-  };
+  const bool tableStale = glossyTableStale(g, lightingVersion, bands);
+  const auto remakeTable = [&] { remakeGlossyTable(g, programs, lightingVersion, bands); };
   switch (work) {
     case GlossyWork::kTableOnly:
       remakeTable();

@@ -261,6 +261,10 @@ class GlRenderer {
   // the per-cluster table; T from the table; the fused step (exit radiance toward `eye`
   // straight from the table, into the glossy buffer); the view step (the same from T).
   void glossyTable(GlossyPass& g, const GlossyPrograms& programs);
+  // Whether g's table holds another lighting version or band count than asked; the table
+  // remade for them (T then stale).
+  static bool glossyTableStale(const GlossyPass& g, unsigned lightingVersion, int bands);
+  void remakeGlossyTable(GlossyPass& g, const GlossyPrograms& programs, unsigned lightingVersion, int bands);
   // allVertices: T of matte vertices too (bi-scale reads every vertex's; glossy.vert skips them).
   void glossyTransfer(GlossyPass& g, const GlossyPrograms& programs, bool allVertices = false);
   void glossyFused(GlossyPass& g, const GlossyPrograms& programs, glm::vec3 eye, bool fresnel);

@@ -153,14 +153,7 @@ bool GlRenderer::updateBiScaleTransfer(GlossyPass& g, int kind, int bands, unsig
   GlossyPrograms programs;
   if (!glossyPrograms(g, bands, &programs).isOk()) return false;
   BiScalePass& b = biScale_;
-  const bool tableStale = !g.tableValid || g.tableVersion != lightingVersion || g.tableBands != bands;
-  if (tableStale) {
-    glossyTable(g, programs);
-    g.tableValid = true;
-    g.tableVersion = lightingVersion;
-    g.tableBands = bands;
-    g.transferValid = false;
-  }
+  if (glossyTableStale(g, lightingVersion, bands)) remakeGlossyTable(g, programs, lightingVersion, bands);
   if (!g.transferValid || !g.transferAll) {
     glossyTransfer(g, programs, true);
     g.transferValid = true;
