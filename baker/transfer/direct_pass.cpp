@@ -178,6 +178,9 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
     std::vector<std::uint32_t> visible;
     std::vector<float> litGlossy;
     std::vector<float> visibleW;  // TPFL: per sample k, w V(x, w_k) above the horizon
+    // The block's hit records while it runs (HitBlock's fields).
+    std::vector<Hit> hits;
+    std::vector<std::uint32_t> hitSample, hitStart;
     std::unique_ptr<GlossyShadowedKernel> kernel;
     GlossyKernelStats kernelStats;
   };
@@ -204,11 +207,18 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
     Scratch& s = scratch[thread];
     const std::size_t begin = block * kBlockVertices, end = std::min(receiverCount, begin + kBlockVertices);
     HitBlock* rec = job.blocks ? &(*job.blocks)[block] : nullptr;
-    if (rec) rec->hitStart.assign(1, 0);
+    if (rec) {
+      s.hits.clear();
+      s.hitSample.clear();
+      s.hitStart.assign(1, 0);
+    }
     std::uint64_t rays = 0;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, many directions
+    // One origin, many directions: a fan, not a beam. Handed to Embree as a coherent stream
+    // (rtcIntersect1M) it is packed into packets whose rays diverge at once, which traced
+    // 1.5x slower than the same rays one at a time (docs/bench/bake-dragon.md).
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     for (std::size_t v = begin; v < end; ++v) {
       if (job.visibility) std::fill(s.visibleW.begin(), s.visibleW.end(), 0.0f);
       const Vec3 n = job.normals[v];
@@ -233,10 +243,9 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
         std::copy(s.unshadowedW.begin(), s.unshadowedW.end(), s.shadowedW.begin());
       }
       if (rec) {
-        rtcIntersect1M(job.embree->handle(), &context, s.rays.data(), count, sizeof(RTCRayHit));
+        for (unsigned j = 0; j < count; ++j) rtcIntersect1(job.embree->handle(), &context, &s.rays[j]);
       } else {
-        // Occlusion needs only RTCRay; RTCRayHit starts with one, so the stride skips the hit.
-        rtcOccluded1M(job.embree->handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
+        for (unsigned j = 0; j < count; ++j) rtcOccluded1(job.embree->handle(), &context, &s.rays[j].ray);
       }
       rays += count;
       std::size_t visibleCount = 0;
@@ -261,11 +270,11 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
         if (rec && s.unshadowedW[k] > 0.0f &&
             dot(job.faceNormal[r.hit.primID], Vec3{r.ray.dir_x, r.ray.dir_y, r.ray.dir_z}) < 0.0f) {
           auto unorm = [](float x) { return static_cast<std::uint16_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 65535.0f)); };
-          rec->hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
-          if (o.glossy) rec->hitSample.push_back(k);
+          s.hits.push_back({r.hit.primID, unorm(r.hit.u), unorm(r.hit.v), s.unshadowedW[k]});
+          if (o.glossy) s.hitSample.push_back(k);
         }
       }
-      if (rec) rec->hitStart.push_back(static_cast<std::uint32_t>(rec->hits.size()));
+      if (rec) s.hitStart.push_back(static_cast<std::uint32_t>(s.hits.size()));
       if (local) {
         // One basis evaluation per ray, batched over the vertex's rays (the distant bake
         // evaluates each sample's basis once for all vertices).
@@ -290,6 +299,13 @@ PassStats runDirectPass(const DirectPassJob& job, GlossyKernelStats* kernelStats
                             &s.kernelStats);
         }
       }
+    }
+    if (rec) {
+      // Copied out at their exact size: grown in place, a block's records kept up to twice
+      // their bytes in capacity, and they are most of a big bake's memory.
+      rec->hits.assign(s.hits.begin(), s.hits.end());
+      rec->hitSample.assign(s.hitSample.begin(), s.hitSample.end());
+      rec->hitStart.assign(s.hitStart.begin(), s.hitStart.end());
     }
     progress.add(end - begin, rays);
   });
