@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "baker/transfer/bounce_gather.h"
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/parallel_for.h"
 #include "prt/checksum.h"
@@ -59,16 +60,8 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
     for (std::size_t v = begin; v < end; ++v) {
       std::fill(gathered.begin(), gathered.end(), 0.0f);
       const std::size_t local = v - begin;
-      for (std::uint32_t h = rec.hitStart[local]; h < rec.hitStart[local + 1]; ++h) {
-        const Hit& hit = rec.hits[h];
-        const float b1 = hit.u * (1.0f / 65535.0f), b2 = hit.v * (1.0f / 65535.0f);
-        const float w[3] = {hit.weight * (1.0f - b1 - b2), hit.weight * b1, hit.weight * b2};
-        for (int corner = 0; corner < 3; ++corner) {
-          const float* src = &job.previous[scene.indices[3 * hit.triangle + corner] * stride];
-          const float wc = w[corner];
-          for (std::size_t i = 0; i < stride; ++i) gathered[i] += wc * src[i];
-        }
-      }
+      gatherHits(rec.hits.subspan(rec.hitStart[local], rec.hitStart[local + 1] - rec.hitStart[local]),
+                 scene.indices.data(), job.previous, stride, gathered.data());
       if (job.fromGlossy) {
         const float* fromGlossy = &job.fromGlossy[(v - rangeBegin) * stride];
         for (std::size_t i = 0; i < stride; ++i) gathered[i] += fromGlossy[i];

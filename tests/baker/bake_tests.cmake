@@ -1,5 +1,5 @@
 # Baker tests (native only): real Embree on scenes built in code.
-add_executable(prt_bake_tests ${CMAKE_CURRENT_LIST_DIR}/transfer_test.cpp ${CMAKE_CURRENT_LIST_DIR}/bake_asset_test.cpp ${CMAKE_CURRENT_LIST_DIR}/sh_accumulate_test.cpp)
+add_executable(prt_bake_tests ${CMAKE_CURRENT_LIST_DIR}/transfer_test.cpp ${CMAKE_CURRENT_LIST_DIR}/bake_asset_test.cpp ${CMAKE_CURRENT_LIST_DIR}/sh_accumulate_test.cpp ${CMAKE_CURRENT_LIST_DIR}/bounce_gather_test.cpp)
 target_include_directories(prt_bake_tests PRIVATE ${CMAKE_CURRENT_LIST_DIR}/..)
 target_link_libraries(prt_bake_tests PRIVATE prt_transfer GTest::gtest_main)
 add_test(NAME bake_tests COMMAND prt_bake_tests)
