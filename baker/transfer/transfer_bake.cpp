@@ -160,49 +160,4 @@ Status bakeTransfer(const Scene& scene, const BakeOptions& o, BakeResult* out) {
   return Status::ok();
 }
 
-Status measureRawOcclusion(const Scene& scene, const BakeOptions& o, PassStats* out) {
-  if (Status st = checkOptions(scene, o); !st.isOk()) return st;
-  SampleTable table;
-  if (Status st = makeSamples(o, &table); !st.isOk()) return st;
-  EmbreeScene embree;
-  if (Status st = EmbreeScene::build(scene, &embree); !st.isOk()) return st;
-  const float eps = rayOffset(embree);
-  const std::size_t vertexCount = scene.positions.size(), sampleCount = table.dirs.size();
-  const unsigned threads = o.threads ? o.threads : defaultThreadCount();
-  const std::size_t blockCount = (vertexCount + kBlockVertices - 1) / kBlockVertices;
-  struct Scratch {
-    std::vector<RTCRayHit> rays;
-    std::vector<std::uint32_t> sample;
-    std::vector<float> weight;
-  };
-  std::vector<Scratch> scratch(threads);
-  for (auto& s : scratch) {
-    s.rays.resize(sampleCount);
-    s.sample.resize(sampleCount);
-    s.weight.resize(sampleCount);
-  }
-  std::atomic<std::uint64_t> rays{0};
-  const auto t0 = std::chrono::steady_clock::now();
-  parallelFor(blockCount, threads, [&](std::size_t block, unsigned thread) {
-    Scratch& s = scratch[thread];
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    std::uint64_t n = 0;
-    const std::size_t begin = block * kBlockVertices, end = std::min(vertexCount, begin + kBlockVertices);
-    for (std::size_t v = begin; v < end; ++v) {
-      const Vec3 normal = scene.normals[v];
-      const unsigned count =
-          fillRays(table, normal, normal, scene.positions[v] + normal * eps, eps, s.rays.data(), s.sample.data(), s.weight.data());
-      rtcOccluded1M(embree.handle(), &context, &s.rays[0].ray, count, sizeof(RTCRayHit));
-      n += count;
-    }
-    rays += n;
-  });
-  out->name = "raw occlusion";
-  out->seconds = secondsSince(t0);
-  out->rays = rays.load();
-  return Status::ok();
-}
-
 }  // namespace prt::bake

@@ -105,9 +105,5 @@ struct BakeResult {
 // process: the baker's threads split the vertices.
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);
 
-// Benchmark reference: casts exactly the direct pass's rays (same origins, directions and
-// offsets) as Embree occlusion rays and does nothing else: no SH, no hit records. Its
-// rays/s is the ceiling the direct pass is measured against.
-Status measureRawOcclusion(const Scene& scene, const BakeOptions& options, PassStats* out);
 
 }  // namespace prt::bake
