@@ -20,6 +20,10 @@ namespace {
 // corner's store to the same floats (that wait was half the gather's time). The elements
 // left over after the last whole chunk are summed one by one in memory. Either way each
 // element adds the same products in the same order.
+// Rows are fetched from all over the scene: asking for hit h + 4's rows while hit h is summed
+// took a full dragon scan's bounce from 1.9 to 1.6 s (2 and 8 measured no better).
+constexpr std::size_t kPrefetchHits = 4;
+
 template <typename V, int N>
 [[gnu::always_inline]] inline void gatherBody(const Hit* hits, std::size_t count, const std::uint32_t* indices,
                                               const float* previous, std::size_t stride, float* gathered) {
@@ -29,6 +33,13 @@ template <typename V, int N>
     V acc[N];
     for (int j = 0; j < N; ++j) std::memcpy(&acc[j], gathered + begin + j * kLanes, sizeof(V));
     for (std::size_t h = 0; h < count; ++h) {
+      if (h + kPrefetchHits < count) {
+        const std::size_t t = 3 * static_cast<std::size_t>(hits[h + kPrefetchHits].triangle);
+        for (int corner = 0; corner < 3; ++corner) {
+          const char* row = reinterpret_cast<const char*>(previous + static_cast<std::size_t>(indices[t + corner]) * stride + begin);
+          for (std::size_t b = 0; b < kChunk * sizeof(float); b += 64) __builtin_prefetch(row + b);
+        }
+      }
       float w[3];
       cornerWeights(hits[h], w);
       for (int corner = 0; corner < 3; ++corner) {
