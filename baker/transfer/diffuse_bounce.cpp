@@ -56,12 +56,13 @@ PassStats gatherDiffuseBounce(const DiffuseBounceJob& job) {
       if (job.hitCrc) job.hitCrc[j] = crc32c(hitRecordBytes(rec.hits));
     }
     std::vector<float> gathered(stride);
+    WeightedRows terms;
     double e = 0.0;
     for (std::size_t v = begin; v < end; ++v) {
       std::fill(gathered.begin(), gathered.end(), 0.0f);
       const std::size_t local = v - begin;
       gatherHits(rec.hits.subspan(rec.hitStart[local], rec.hitStart[local + 1] - rec.hitStart[local]),
-                 scene.indices.data(), job.previous, stride, gathered.data());
+                 scene.indices.data(), job.previous, stride, gathered.data(), &terms);
       if (job.fromGlossy) {
         const float* fromGlossy = &job.fromGlossy[(v - rangeBegin) * stride];
         for (std::size_t i = 0; i < stride; ++i) gathered[i] += fromGlossy[i];

@@ -1,5 +1,7 @@
 #include "baker/transfer/texel_range.h"
 
+#include "baker/transfer/bounce_gather.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -8,6 +10,7 @@
 #include "baker/scene/normal_map.h"
 #include "baker/texture/texel_dilate.h"
 #include "baker/texture/texel_filter.h"
+#include "baker/transfer/bounce_gather.h"
 #include "baker/transfer/direct_pass.h"
 #include "baker/transfer/embree_scene.h"
 #include "baker/transfer/parallel_for.h"
@@ -221,9 +224,11 @@ Status gatherTexelBounceRange(const Scene& scene, std::span<const Uv> atlasUv, s
       return;
     }
     std::vector<float> gathered(stride);
+    WeightedRows terms;
     double e = 0.0;
     for (std::size_t r = b0; r < b1; ++r) {
       std::fill(gathered.begin(), gathered.end(), 0.0f);
+      terms.clear();
       const std::size_t local = r - b0;
       for (std::uint32_t h = rec.hitStart[local]; h < rec.hitStart[local + 1]; ++h) {
         const Hit& hit = rec.hits[h];
@@ -235,12 +240,9 @@ Status gatherTexelBounceRange(const Scene& scene, std::span<const Uv> atlasUv, s
         TexelTap taps[4];
         const int count = bilinearTaps(uv, atlases[a], receivers.samples.firstTexel[a], previous.filled, taps);
         if (count == 0) ++blockUnmapped[j];
-        for (int t = 0; t < count; ++t) {
-          const float* src = &previous.values[taps[t].texel * stride];
-          const float wt = hit.weight * taps[t].weight;
-          for (std::size_t i = 0; i < stride; ++i) gathered[i] += wt * src[i];
-        }
+        for (int t = 0; t < count; ++t) terms.add(taps[t].texel, hit.weight * taps[t].weight);
       }
+      addWeightedRows(terms, previous.values.data(), stride, gathered.data());
       const Rgb albedo = receivers.samples.texels[r].albedo;
       const float rho[3] = {albedo.r, albedo.g, albedo.b};
       float* dst = &(*current)[(r - begin) * stride];
