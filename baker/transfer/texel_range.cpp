@@ -1,7 +1,5 @@
 #include "baker/transfer/texel_range.h"
 
-#include "baker/transfer/bounce_gather.h"
-
 #include <algorithm>
 #include <array>
 #include <chrono>
