@@ -3,8 +3,6 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>

@@ -105,5 +105,4 @@ struct BakeResult {
 // process: the baker's threads split the vertices.
 Status bakeTransfer(const Scene& scene, const BakeOptions& options, BakeResult* out);
 
-
 }  // namespace prt::bake
